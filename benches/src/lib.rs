@@ -1,0 +1,1 @@
+//! Peer comparison harness (see `src/bin/peers.rs`).

@@ -1,0 +1,1 @@
+//! The `softwalk` program's library: scenes, the command line and outputs.

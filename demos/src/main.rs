@@ -1,0 +1,4 @@
+//! The `softwalk` command-line program.
+fn main() {
+    println!("softwalk: placeholder");
+}

@@ -1,0 +1,19 @@
+//! `engine`: a small headless game engine.
+//!
+//! It knows nothing of feet, materials or grass. It provides:
+//! - [`ecs`]: entities, components, queries, resources, commands and events;
+//! - [`schedule`]: named systems ordered by constraints, and a fixed-step [`schedule::App`];
+//! - [`geom`]: rays, boxes, a deformable [`geom::HeightGrid`] and BVH ray casts;
+//! - [`asset`]: OBJ meshes and heightmap PNGs in and out;
+//! - [`render`]: a software rasterizer, overlays, plots and image/animation output;
+//! - [`snapshot`]: golden-image tests on rendered PNGs.
+#![warn(missing_docs)]
+
+pub mod asset;
+pub mod ecs;
+pub mod geom;
+pub mod render;
+pub mod schedule;
+pub mod snapshot;
+
+pub use glam;

@@ -1,0 +1,10 @@
+//! `softwalk_systems`: the components and systems of *Soft Walks* (Eurographics 2021).
+//!
+//! - [`character`]: skeleton, walk cycle, rigid proxy with the PD balance controller, foot IK;
+//! - [`terrain`]: loose-ground materials, carving, smoothing, settling;
+//! - [`vegetation`]: grass patches, the deformation field, virtual platforms.
+#![warn(missing_docs)]
+
+pub mod character;
+pub mod terrain;
+pub mod vegetation;
