@@ -4,6 +4,7 @@
 //! - [`ecs`]: entities, components, queries, resources, commands and events;
 //! - [`schedule`]: named systems ordered by constraints, and a fixed-step [`schedule::App`];
 //! - [`geom`]: rays, boxes, a deformable [`geom::HeightGrid`] and BVH ray casts;
+//! - [`io`]: atomic file output;
 //! - [`asset`]: OBJ meshes and heightmap PNGs in and out;
 //! - [`render`]: a software rasterizer, overlays, plots and image/animation output;
 //! - [`snapshot`]: golden-image tests on rendered PNGs.
@@ -12,6 +13,7 @@
 pub mod asset;
 pub mod ecs;
 pub mod geom;
+pub mod io;
 pub mod render;
 pub mod schedule;
 pub mod snapshot;

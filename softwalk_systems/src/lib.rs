@@ -2,9 +2,12 @@
 //!
 //! - [`character`]: skeleton, walk cycle, rigid proxy with the PD balance controller, foot IK;
 //! - [`terrain`]: loose-ground materials, carving, smoothing, settling;
-//! - [`vegetation`]: grass patches, the deformation field, virtual platforms.
+//! - [`vegetation`]: grass patches, the deformation field, virtual platforms;
+//! - [`foot`] and [`ground`]: the per-foot state and ground queries they share.
 #![warn(missing_docs)]
 
 pub mod character;
+pub mod foot;
+pub mod ground;
 pub mod terrain;
 pub mod vegetation;

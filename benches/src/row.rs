@@ -1,0 +1,62 @@
+use std::time::Instant;
+
+/// One workload's result: its name and a time in nanoseconds per implementation.
+#[derive(Debug, Clone)]
+pub struct Row {
+    /// Workload name.
+    pub workload: String,
+    /// `(key, nanoseconds)` pairs, e.g. `("ours_ns", 1234.0)`.
+    pub times: Vec<(&'static str, Option<f64>)>,
+}
+
+impl Row {
+    /// A row with the given timings (`None` prints as `null`: the peer has no such workload).
+    pub fn new(workload: impl Into<String>, times: Vec<(&'static str, Option<f64>)>) -> Self {
+        Row {
+            workload: workload.into(),
+            times,
+        }
+    }
+
+    /// One JSON object.
+    pub fn to_json(&self) -> String {
+        let mut map = serde_json::Map::new();
+        map.insert("workload".into(), self.workload.clone().into());
+        for (k, v) in &self.times {
+            map.insert((*k).into(), v.map(|x| x.round()).into());
+        }
+        serde_json::Value::Object(map).to_string()
+    }
+
+    /// A human-readable line.
+    pub fn to_table_line(&self) -> String {
+        let cols: Vec<String> = self
+            .times
+            .iter()
+            .map(|(k, v)| match v {
+                Some(ns) => format!("{k}={:.1}us", ns / 1000.0),
+                None => format!("{k}=n/a"),
+            })
+            .collect();
+        format!("{:<24} {}", self.workload, cols.join("  "))
+    }
+}
+
+/// Median time in nanoseconds of `f` over enough runs to fill about `budget_ms`
+/// (at least 5 runs), after one warm-up run.
+pub fn time_ns(budget_ms: u64, mut f: impl FnMut()) -> f64 {
+    f();
+    let start = Instant::now();
+    f();
+    let one = start.elapsed().as_nanos().max(1) as u64;
+    let runs = ((budget_ms * 1_000_000) / one).clamp(5, 10_000);
+    let mut samples: Vec<f64> = (0..runs)
+        .map(|_| {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_nanos() as f64
+        })
+        .collect();
+    samples.sort_by(|a, b| a.total_cmp(b));
+    samples[samples.len() / 2]
+}

@@ -1,0 +1,46 @@
+//! What a foot's vertical ray sees: the interface between the character and
+//! whatever lies under it (deformed terrain, meshes, virtual platforms).
+
+use glam::Vec3;
+
+/// A point on the ground found by a vertical ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GroundHit {
+    /// The hit point (world).
+    pub point: Vec3,
+    /// Unit surface normal at the hit.
+    pub normal: Vec3,
+}
+
+/// Anything a foot can stand on, queried with vertical rays.
+pub trait Ground {
+    /// Casts a ray straight down from `(x, from_y, z)`; the first surface below,
+    /// or `None` when there is nothing (off the terrain).
+    fn cast_down(&self, x: f32, z: f32, from_y: f32) -> Option<GroundHit>;
+}
+
+impl Ground for engine::geom::HeightGrid {
+    fn cast_down(&self, x: f32, z: f32, from_y: f32) -> Option<GroundHit> {
+        let y = self.height_at(x, z)?;
+        if y > from_y {
+            return None;
+        }
+        Some(GroundHit {
+            point: Vec3::new(x, y, z),
+            normal: self.normal_at(x, z)?,
+        })
+    }
+}
+
+/// Flat ground at a fixed height (handy in tests).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlatGround(pub f32);
+
+impl Ground for FlatGround {
+    fn cast_down(&self, x: f32, z: f32, from_y: f32) -> Option<GroundHit> {
+        (self.0 <= from_y).then_some(GroundHit {
+            point: Vec3::new(x, self.0, z),
+            normal: Vec3::Y,
+        })
+    }
+}
