@@ -1,1 +1,9 @@
 //! The `softwalk` program's library: scenes, the command line and outputs.
+//!
+//! - [`scene`]: scene files (TOML), validation and the built-in scenes;
+//! - [`sim`]: the interface between the command line and the simulation;
+//! - [`output`]: `metrics.csv`, `summary.json`, frames and the printed summary;
+//! - [`cli`]: the `softwalk` command line.
+#![warn(missing_docs)]
+
+pub mod scene;

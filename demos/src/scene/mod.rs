@@ -1,0 +1,224 @@
+//! Scene files: a TOML description of terrain, materials, grass, characters,
+//! camera, simulation and rendering settings, checked field by field.
+//!
+//! ```
+//! use demos::scene::Scene;
+//! let scene = Scene::builtin("sand-flat").unwrap();
+//! let text = scene.to_toml_string().unwrap();
+//! let again = Scene::from_toml_str(&text, std::path::Path::new("")).unwrap();
+//! assert_eq!(scene, again);
+//! ```
+
+mod builtin;
+mod camera;
+mod character;
+mod check;
+mod error;
+mod grass;
+mod material;
+mod render_settings;
+mod sim_settings;
+mod syntax;
+mod terrain;
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+pub use builtin::{BuiltinScene, builtin_scenes};
+pub use camera::{CameraMode, CameraSpec};
+pub use character::{CharacterSpec, GRAVITY, Morphology, PathSpec, SpeedSpec};
+pub use error::SceneError;
+pub use grass::{GrassPatchSpec, MAX_GRASS_DENSITY};
+pub use material::{BUILTIN_MATERIALS, GaitResponse, MaterialSpec};
+pub use render_settings::{MAX_FRAME_SIDE, RenderSettings};
+pub use sim_settings::{MAX_STEPS, SimSettings};
+pub use terrain::{
+    MAX_RESOLUTION, MAX_TERRAIN_SIZE, MaterialRegion, Slope, TerrainShape, TerrainSpec,
+};
+
+/// A whole scene. Build one with [`Scene::from_toml_str`], [`Scene::load`] or
+/// [`Scene::builtin`]; all three validate it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Short name, used in outputs.
+    pub name: String,
+    /// One-line description.
+    #[serde(default)]
+    pub description: String,
+    /// The ground.
+    pub terrain: TerrainSpec,
+    /// Time span and step.
+    pub sim: SimSettings,
+    /// Camera; defaults to following the first character.
+    #[serde(default)]
+    pub camera: CameraSpec,
+    /// Frame settings; defaults to 960 x 540 every 2nd step.
+    #[serde(default)]
+    pub render: RenderSettings,
+    /// User-defined materials; one named like a built-in replaces it.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub materials: Vec<MaterialSpec>,
+    /// Grass patches.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub grass: Vec<GrassPatchSpec>,
+    /// The walkers (at least one).
+    pub characters: Vec<CharacterSpec>,
+    /// Folder relative paths are resolved against (the scene file's folder).
+    #[serde(skip)]
+    pub base_dir: PathBuf,
+}
+
+impl Scene {
+    /// Parses and validates TOML text; relative paths resolve against `base_dir`.
+    pub fn from_toml_str(text: &str, base_dir: &Path) -> Result<Scene, SceneError> {
+        let mut scene: Scene = toml::from_str(text).map_err(|e| syntax::syntax_error(text, &e))?;
+        scene.base_dir = base_dir.to_path_buf();
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Reads, parses and validates a scene file; errors name the file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let base = path.parent().unwrap_or(Path::new(""));
+        Scene::from_toml_str(&text, base).map_err(|e| SceneError::InFile {
+            path: path.to_path_buf(),
+            error: Box::new(e),
+        })
+    }
+
+    /// The built-in scene with this name, parsed and validated.
+    pub fn builtin(name: &str) -> Result<Scene, SceneError> {
+        let b = BuiltinScene::find(name)?;
+        Scene::from_toml_str(&b.toml, Path::new(""))
+    }
+
+    /// The scene as TOML text that [`Scene::from_toml_str`] reads back to an equal scene.
+    pub fn to_toml_string(&self) -> Result<String, SceneError> {
+        toml::to_string(self).map_err(|e| SceneError::Serialize(e.to_string()))
+    }
+
+    /// A path from the scene resolved against its folder.
+    pub fn resolve(&self, path: &Path) -> PathBuf {
+        self.base_dir.join(path)
+    }
+
+    /// The resolved heightmap file, when the terrain shape is a heightmap.
+    pub fn heightmap_path(&self) -> Option<PathBuf> {
+        match &self.terrain.shape {
+            TerrainShape::Heightmap { path, .. } => Some(self.resolve(path)),
+            _ => None,
+        }
+    }
+
+    /// The material with this name: a user definition first, then a built-in preset.
+    pub fn material(&self, name: &str) -> Option<MaterialSpec> {
+        self.materials
+            .iter()
+            .find(|m| m.name == name)
+            .cloned()
+            .or_else(|| MaterialSpec::preset(name))
+    }
+
+    /// Every material name the scene may use, built-ins first.
+    pub fn material_names(&self) -> Vec<&str> {
+        let mut names: Vec<&str> = BUILTIN_MATERIALS.to_vec();
+        for m in &self.materials {
+            if !names.contains(&m.name.as_str()) {
+                names.push(&m.name);
+            }
+        }
+        names
+    }
+
+    /// The material at `(x, z)` on the terrain.
+    pub fn material_at(&self, x: f32, z: f32) -> Option<MaterialSpec> {
+        self.material(self.terrain.material_at(x, z))
+    }
+
+    /// Number of steps the scene runs for.
+    pub fn steps(&self) -> u64 {
+        self.sim.steps()
+    }
+
+    /// Checks every field; the first problem found is returned.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        check::identifier("name", &self.name)?;
+        self.terrain.validate()?;
+        for (k, m) in self.materials.iter().enumerate() {
+            let field = format!("materials[{k}]");
+            m.validate(&field)?;
+            if self.materials[..k].iter().any(|o| o.name == m.name) {
+                return Err(SceneError::invalid(
+                    format!("{field}.name"),
+                    format!("material \"{}\" is defined twice", m.name),
+                ));
+            }
+        }
+        self.check_material("terrain.material", &self.terrain.material)?;
+        for (k, r) in self.terrain.regions.iter().enumerate() {
+            self.check_material(&format!("terrain.regions[{k}].material"), &r.material)?;
+        }
+        self.check_heightmap()?;
+        let size = self.terrain.size();
+        for (k, g) in self.grass.iter().enumerate() {
+            g.validate(&format!("grass[{k}]"), size)?;
+        }
+        if self.characters.is_empty() {
+            return Err(SceneError::invalid(
+                "characters",
+                "a scene needs at least one [[characters]] entry",
+            ));
+        }
+        for (k, c) in self.characters.iter().enumerate() {
+            let field = format!("characters[{k}]");
+            c.validate(&field, size)?;
+            if self.characters[..k].iter().any(|o| o.name == c.name) {
+                return Err(SceneError::invalid(
+                    format!("{field}.name"),
+                    format!("character \"{}\" is defined twice", c.name),
+                ));
+            }
+        }
+        let names: Vec<&str> = self.characters.iter().map(|c| c.name.as_str()).collect();
+        self.camera.validate(&names)?;
+        self.sim.validate()?;
+        self.render.validate()?;
+        Ok(())
+    }
+
+    fn check_material(&self, field: &str, name: &str) -> Result<(), SceneError> {
+        if self.material(name).is_some() {
+            Ok(())
+        } else {
+            Err(SceneError::UnknownMaterial {
+                field: field.to_owned(),
+                name: name.to_owned(),
+                known: self.material_names().join(", "),
+            })
+        }
+    }
+
+    fn check_heightmap(&self) -> Result<(), SceneError> {
+        let Some(path) = self.heightmap_path() else {
+            return Ok(());
+        };
+        let field = "terrain.shape.path".to_owned();
+        if !path.exists() {
+            return Err(SceneError::MissingFile { field, path });
+        }
+        if !path.is_file() {
+            return Err(SceneError::BadFile {
+                field,
+                path,
+                reason: "not a regular file".into(),
+            });
+        }
+        Ok(())
+    }
+}

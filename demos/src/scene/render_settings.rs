@@ -1,0 +1,62 @@
+//! `[render]`: frame size, cadence and outputs.
+
+use serde::{Deserialize, Serialize};
+
+use super::SceneError;
+use super::check::count_in_range;
+
+/// Largest accepted frame side, pixels.
+pub const MAX_FRAME_SIDE: u32 = 8192;
+
+/// The `[render]` table.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSettings {
+    /// Frame width, pixels, in `[16, 8192]`.
+    pub width: u32,
+    /// Frame height, pixels, in `[16, 8192]`.
+    pub height: u32,
+    /// Render every k-th step, k in `[1, 100000]`.
+    pub every: u32,
+    /// Draw metric overlays (plots, labels) on frames.
+    #[serde(default)]
+    pub overlays: bool,
+    /// Write an animated GIF of the frames.
+    #[serde(default)]
+    pub gif: bool,
+    /// Write an animated PNG of the frames.
+    #[serde(default)]
+    pub apng: bool,
+    /// Columns of the contact sheet of frames; 0 = no contact sheet.
+    #[serde(default)]
+    pub contact_sheet_columns: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            width: 960,
+            height: 540,
+            every: 2,
+            overlays: true,
+            gif: false,
+            apng: false,
+            contact_sheet_columns: 0,
+        }
+    }
+}
+
+impl RenderSettings {
+    pub(crate) fn validate(&self) -> Result<(), SceneError> {
+        count_in_range("render.width", self.width, 16, MAX_FRAME_SIDE)?;
+        count_in_range("render.height", self.height, 16, MAX_FRAME_SIDE)?;
+        count_in_range("render.every", self.every, 1, 100_000)?;
+        count_in_range(
+            "render.contact_sheet_columns",
+            self.contact_sheet_columns,
+            0,
+            64,
+        )?;
+        Ok(())
+    }
+}
