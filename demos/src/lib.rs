@@ -7,3 +7,5 @@
 #![warn(missing_docs)]
 
 pub mod scene;
+pub mod output;
+pub mod sim;

@@ -1,0 +1,203 @@
+//! `metrics.csv`: one row per step per character, streamed to a temporary file
+//! that is renamed over the target only when the run finishes.
+
+use std::fs::{self, File};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use engine::io::WriteError;
+
+use crate::sim::{ObserverError, RunObserver, StepRecord};
+
+/// The header line of `metrics.csv` (without the newline).
+pub const METRICS_HEADER: &str = "t,character,com_x,com_y,com_z,tilt,tilt_rate,torque,pelvis_y,lfoot_x,lfoot_y,lfoot_z,rfoot_x,rfoot_y,rfoot_z,lcontact,rcontact,ltarget_y,rtarget_y,lplatform_y,rplatform_y,knee_l,knee_r,grass_height,terrain_volume";
+
+/// Streams metric rows; [`MetricsCsv::finish`] makes the file appear.
+/// Dropped without `finish`, it removes its temporary file and the target is untouched.
+pub struct MetricsCsv {
+    path: PathBuf,
+    tmp: PathBuf,
+    writer: Option<BufWriter<File>>,
+    names: Vec<String>,
+    rows: u64,
+}
+
+impl MetricsCsv {
+    /// Starts `path` (written at [`MetricsCsv::finish`]); `names` are the character names by index.
+    pub fn create(path: &Path, names: Vec<String>) -> Result<MetricsCsv, WriteError> {
+        let file_name = path.file_name().map_or_else(
+            || "metrics.csv".to_owned(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        let tmp = path.with_file_name(format!(".{file_name}.tmp{}", std::process::id()));
+        let err = |source| WriteError {
+            path: path.to_path_buf(),
+            source,
+        };
+        let mut writer = BufWriter::new(File::create(&tmp).map_err(err)?);
+        if let Err(e) = writeln!(writer, "{METRICS_HEADER}") {
+            let _ = fs::remove_file(&tmp);
+            return Err(err(e));
+        }
+        Ok(MetricsCsv {
+            path: path.to_path_buf(),
+            tmp,
+            writer: Some(writer),
+            names,
+            rows: 0,
+        })
+    }
+
+    /// Rows written so far (header excluded).
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Appends one row.
+    pub fn write_record(&mut self, r: &StepRecord) -> Result<(), WriteError> {
+        let name = self
+            .names
+            .get(r.character)
+            .cloned()
+            .unwrap_or_else(|| r.character.to_string());
+        let writer = self.writer.as_mut().ok_or_else(|| WriteError {
+            path: self.path.clone(),
+            source: io::Error::other("metrics file already finished"),
+        })?;
+        let platform = |p: Option<f32>| p.map_or_else(String::new, |v| v.to_string());
+        let [lf, rf] = r.feet;
+        writeln!(
+            writer,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            r.t,
+            name,
+            r.com.x,
+            r.com.y,
+            r.com.z,
+            r.tilt,
+            r.tilt_rate,
+            r.torque,
+            r.pelvis_y,
+            lf.x,
+            lf.y,
+            lf.z,
+            rf.x,
+            rf.y,
+            rf.z,
+            u8::from(r.contacts[0]),
+            u8::from(r.contacts[1]),
+            r.target_y[0],
+            r.target_y[1],
+            platform(r.platform_y[0]),
+            platform(r.platform_y[1]),
+            r.knee[0],
+            r.knee[1],
+            r.grass_height,
+            r.terrain_volume,
+        )
+        .map_err(|source| WriteError {
+            path: self.path.clone(),
+            source,
+        })?;
+        self.rows += 1;
+        Ok(())
+    }
+
+    /// Flushes, syncs and renames the temporary file over the target; returns the row count.
+    pub fn finish(mut self) -> Result<u64, WriteError> {
+        let result = (|| {
+            let writer = self
+                .writer
+                .take()
+                .ok_or_else(|| io::Error::other("metrics file already finished"))?;
+            let file = writer.into_inner().map_err(|e| e.into_error())?;
+            file.sync_all()?;
+            fs::rename(&self.tmp, &self.path)
+        })();
+        result.map_err(|source| WriteError {
+            path: self.path.clone(),
+            source,
+        })?;
+        Ok(self.rows)
+    }
+}
+
+impl Drop for MetricsCsv {
+    fn drop(&mut self) {
+        // Still writing (not finished) or the rename failed: leave nothing behind.
+        if self.tmp.exists() {
+            self.writer = None;
+            let _ = fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+impl RunObserver for MetricsCsv {
+    fn on_step(&mut self, record: &StepRecord) -> Result<(), ObserverError> {
+        Ok(self.write_record(record)?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    fn record(step: u64, character: usize) -> StepRecord {
+        StepRecord {
+            step,
+            t: (step + 1) as f64 * 0.5,
+            character,
+            com: Vec3::new(1.0, 0.9, 2.0),
+            tilt: 0.1,
+            tilt_rate: -0.2,
+            torque: 3.0,
+            pelvis_y: 0.95,
+            feet: [Vec3::new(1.0, 0.0, 1.9), Vec3::new(1.2, 0.1, 2.1)],
+            contacts: [true, false],
+            target_y: [0.0, 0.05],
+            platform_y: [None, Some(0.3)],
+            knee: [0.2, 0.6],
+            grass_height: 0.0,
+            terrain_volume: 12.5,
+        }
+    }
+
+    #[test]
+    fn rows_appear_only_after_finish() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("metrics.csv");
+        let mut csv = MetricsCsv::create(&path, vec!["a".into(), "b".into()]).unwrap();
+        for step in 0..3 {
+            for c in 0..2 {
+                csv.write_record(&record(step, c)).unwrap();
+            }
+        }
+        assert!(!path.exists());
+        assert_eq!(csv.finish().unwrap(), 6);
+        let text = fs::read_to_string(&path).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], METRICS_HEADER);
+        assert_eq!(lines.len(), 7);
+        assert_eq!(
+            lines[1],
+            "0.5,a,1,0.9,2,0.1,-0.2,3,0.95,1,0,1.9,1.2,0.1,2.1,1,0,0,0.05,,0.3,0.2,0.6,0,12.5"
+        );
+        let columns = METRICS_HEADER.split(',').count();
+        assert!(lines.iter().all(|l| l.split(',').count() == columns));
+        assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn dropped_writer_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("metrics.csv");
+        fs::write(&path, "old").unwrap();
+        let mut csv = MetricsCsv::create(&path, vec!["a".into()]).unwrap();
+        csv.write_record(&record(0, 0)).unwrap();
+        drop(csv);
+        assert_eq!(fs::read_to_string(&path).unwrap(), "old");
+        assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+}

@@ -1,0 +1,226 @@
+//! The interface between the command line and the simulation.
+//!
+//! The command line calls [`run`] with a validated [`Scene`], the resolved
+//! [`RunOptions`] and a [`RunObserver`] that receives one [`StepRecord`] per
+//! character per step, the rendered [`Frame`]s and the end of every step.
+//! [`run`] returns a [`RunSummary`].
+//!
+//! The body of [`run`] here is the minimal stand-in: it advances simulated
+//! time step by step, reports the end of each step, and nothing else (no
+//! records, no frames, no hash). The full simulation replaces this body and
+//! keeps the signature.
+
+use glam::Vec3;
+use serde::Serialize;
+use thiserror::Error;
+
+use crate::scene::Scene;
+
+/// An error raised by an observer (an output writer); it stops the run.
+pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
+
+/// How to run a scene; resolved from the scene and the command line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunOptions {
+    /// Number of fixed steps to simulate.
+    pub steps: u64,
+    /// Fixed time step, seconds.
+    pub dt: f64,
+    /// Whether to render frames at all.
+    pub render: bool,
+    /// Frame width, pixels.
+    pub width: u32,
+    /// Frame height, pixels.
+    pub height: u32,
+    /// Render every k-th step (k >= 1).
+    pub render_every: u32,
+    /// Worker threads of the pool the run executes in.
+    pub threads: usize,
+    /// Whether to compute a hash of the final world ([`RunSummary::world_hash`]).
+    pub hash: bool,
+}
+
+impl RunOptions {
+    /// The scene's own settings: its step count, dt and frame size, rendering on, one thread, no hash.
+    pub fn from_scene(scene: &Scene) -> RunOptions {
+        RunOptions {
+            steps: scene.steps(),
+            dt: scene.sim.dt as f64,
+            render: true,
+            width: scene.render.width,
+            height: scene.render.height,
+            render_every: scene.render.every,
+            threads: 1,
+            hash: false,
+        }
+    }
+
+    /// Simulated time at the end of step `step` (0-based), seconds.
+    pub fn time_after(&self, step: u64) -> f64 {
+        (step + 1) as f64 * self.dt
+    }
+
+    /// True when step `step` (0-based) is rendered.
+    pub fn renders_step(&self, step: u64) -> bool {
+        self.render && step % u64::from(self.render_every.max(1)) == 0
+    }
+}
+
+/// One metrics row: the state of one character at the end of one step.
+/// SI units, angles in radians; index 0 of each pair is the left foot or knee.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepRecord {
+    /// Step index, from 0.
+    pub step: u64,
+    /// Simulated time at the end of the step, seconds.
+    pub t: f64,
+    /// Index of the character in `Scene::characters`.
+    pub character: usize,
+    /// Centre of mass (world).
+    pub com: Vec3,
+    /// Forward tilt of the rigid proxy, radians (positive leans forward).
+    pub tilt: f32,
+    /// Tilt rate, radians per second.
+    pub tilt_rate: f32,
+    /// Balance torque applied this step, N m.
+    pub torque: f32,
+    /// Pelvis height (world y), metres.
+    pub pelvis_y: f32,
+    /// Foot (sole centre) positions, left then right.
+    pub feet: [Vec3; 2],
+    /// Whether each foot touches the ground.
+    pub contacts: [bool; 2],
+    /// Height of each foot's IK target, metres.
+    pub target_y: [f32; 2],
+    /// Height of each foot's virtual platform, when one exists.
+    pub platform_y: [Option<f32>; 2],
+    /// Knee flexion, radians (0 = straight leg).
+    pub knee: [f32; 2],
+    /// Mean height of the grass blades near the character (0 without grass), metres.
+    pub grass_height: f32,
+    /// Volume of the terrain above height 0, cubic metres (shows mass conservation).
+    pub terrain_volume: f64,
+}
+
+/// A rendered frame: RGBA8 pixels, row-major, top row first.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame<'a> {
+    /// Step the frame shows, from 0.
+    pub step: u64,
+    /// Simulated time of the frame, seconds.
+    pub t: f64,
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// `width * height * 4` bytes.
+    pub rgba: &'a [u8],
+}
+
+/// Receives what a run produces, in order: for each step, its records (one per
+/// character, in scene order), then its frame if rendered, then the end of the step.
+/// Every method defaults to doing nothing. An error stops the run.
+pub trait RunObserver: Send {
+    /// One character's state at the end of a step.
+    fn on_step(&mut self, _record: &StepRecord) -> Result<(), ObserverError> {
+        Ok(())
+    }
+
+    /// A rendered frame.
+    fn on_frame(&mut self, _frame: &Frame<'_>) -> Result<(), ObserverError> {
+        Ok(())
+    }
+
+    /// Step `step` (0-based) is complete; simulated time is now `t` seconds.
+    fn on_step_end(&mut self, _step: u64, _t: f64) -> Result<(), ObserverError> {
+        Ok(())
+    }
+}
+
+/// An observer that ignores everything.
+impl RunObserver for () {}
+
+/// Sends everything to several observers, in order.
+pub struct Observers<'a>(pub Vec<&'a mut dyn RunObserver>);
+
+impl RunObserver for Observers<'_> {
+    fn on_step(&mut self, record: &StepRecord) -> Result<(), ObserverError> {
+        self.0.iter_mut().try_for_each(|o| o.on_step(record))
+    }
+
+    fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
+        self.0.iter_mut().try_for_each(|o| o.on_frame(frame))
+    }
+
+    fn on_step_end(&mut self, step: u64, t: f64) -> Result<(), ObserverError> {
+        self.0.iter_mut().try_for_each(|o| o.on_step_end(step, t))
+    }
+}
+
+/// Depth statistics of the prints one character left.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct DepthStats {
+    /// Number of footprints.
+    pub prints: u32,
+    /// Mean print depth, metres.
+    pub mean_m: f32,
+    /// Deepest print, metres.
+    pub max_m: f32,
+}
+
+/// Time spent in one named system over a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SystemTiming {
+    /// System name (e.g. `carve`).
+    pub name: String,
+    /// Mean time per step, nanoseconds.
+    pub mean_ns: f64,
+}
+
+/// What a run reports when it ends.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RunSummary {
+    /// Steps simulated.
+    pub steps: u64,
+    /// Simulated time, seconds.
+    pub sim_seconds: f64,
+    /// Hash of the final world, when [`RunOptions::hash`] asked for it and the simulation computes one.
+    pub world_hash: Option<u64>,
+    /// Print depths per character (scene order); empty when not measured.
+    pub print_depth: Vec<DepthStats>,
+    /// Per-system costs, in schedule order; empty when not measured.
+    pub timings: Vec<SystemTiming>,
+}
+
+/// The simulation failed.
+#[derive(Debug, Error)]
+pub enum SimError {
+    /// An observer (output writer) failed.
+    #[error("writing the run's output failed")]
+    Observer(#[source] ObserverError),
+    /// The scene could not be turned into a world.
+    #[error("cannot set up the scene: {0}")]
+    Setup(String),
+}
+
+/// Runs `scene` for `options.steps` fixed steps, reporting to `observer`.
+///
+/// Minimal stand-in: advances simulated time and calls
+/// [`RunObserver::on_step_end`] once per step; nothing else is simulated.
+pub fn run(
+    scene: &Scene,
+    options: &RunOptions,
+    observer: &mut dyn RunObserver,
+) -> Result<RunSummary, SimError> {
+    let _ = scene;
+    for step in 0..options.steps {
+        observer
+            .on_step_end(step, options.time_after(step))
+            .map_err(SimError::Observer)?;
+    }
+    Ok(RunSummary {
+        steps: options.steps,
+        sim_seconds: options.steps as f64 * options.dt,
+        ..RunSummary::default()
+    })
+}
