@@ -6,6 +6,11 @@
 //! - [`cli`]: the `softwalk` command line.
 #![warn(missing_docs)]
 
-pub mod scene;
+pub mod cli;
+pub mod commands;
+pub mod out_dir;
 pub mod output;
+pub mod progress;
+pub mod scene;
+pub mod scene_source;
 pub mod sim;

@@ -89,7 +89,12 @@ mod tests {
             rgba: &rgba[1..],
             ..frame
         };
-        assert!(w.write(&short).unwrap_err().to_string().contains("expected 24"));
+        assert!(
+            w.write(&short)
+                .unwrap_err()
+                .to_string()
+                .contains("expected 24")
+        );
         assert_eq!(w.written(), 1);
     }
 }

@@ -91,7 +91,9 @@ fn shape_keys(angle: f32) -> String {
 fn fill(template: &str, values: &[(&str, &str)]) -> String {
     values
         .iter()
-        .fold(template.to_owned(), |text, (key, value)| text.replace(key, value))
+        .fold(template.to_owned(), |text, (key, value)| {
+            text.replace(key, value)
+        })
 }
 
 impl BuiltinScene {
@@ -121,8 +123,16 @@ mod tests {
     fn names_are_unique_and_templates_fully_filled() {
         let all = builtin_scenes();
         for (k, b) in all.iter().enumerate() {
-            assert!(!b.toml.contains('@'), "{} has an unfilled placeholder", b.name);
-            assert!(all[..k].iter().all(|o| o.name != b.name), "{} twice", b.name);
+            assert!(
+                !b.toml.contains('@'),
+                "{} has an unfilled placeholder",
+                b.name
+            );
+            assert!(
+                all[..k].iter().all(|o| o.name != b.name),
+                "{} twice",
+                b.name
+            );
         }
         assert!(BuiltinScene::find("nope").is_err());
     }

@@ -171,7 +171,12 @@ impl CharacterSpec {
         let m = &self.morphology;
         in_range(&format!("{field}.morphology.height"), m.height, 0.5, 2.5)?;
         positive(&format!("{field}.morphology.mass"), m.mass, 300.0)?;
-        in_range(&format!("{field}.morphology.leg_factor"), m.leg_factor, 0.35, 0.65)?;
+        in_range(
+            &format!("{field}.morphology.leg_factor"),
+            m.leg_factor,
+            0.35,
+            0.65,
+        )?;
         match self.speed {
             SpeedSpec::Mps(v) => positive(&format!("{field}.speed.mps"), v, 5.0)?,
             SpeedSpec::Froude(fr) => positive(&format!("{field}.speed.froude"), fr, 1.0)?,
@@ -210,6 +215,10 @@ mod tests {
         assert!((end[0] - 1.0).abs() < 1e-5 && (end[1] - 4.0).abs() < 1e-5);
         c.validate("characters[0]", [10.0, 10.0]).unwrap();
         let e = c.validate("characters[0]", [10.0, 3.0]).unwrap_err();
-        assert!(e.to_string().starts_with("characters[0].path.length: point"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("characters[0].path.length: point"),
+            "{e}"
+        );
     }
 }

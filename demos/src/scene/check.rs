@@ -20,7 +20,10 @@ pub(crate) fn finite(field: &str, value: f32) -> Result<f32, SceneError> {
 pub(crate) fn in_range(field: &str, value: f32, min: f32, max: f32) -> Result<f32, SceneError> {
     finite(field, value)?;
     if value < min {
-        Err(SceneError::invalid(field, format!("{value} must be >= {min}")))
+        Err(SceneError::invalid(
+            field,
+            format!("{value} must be >= {min}"),
+        ))
     } else if value > max {
         Err(SceneError::invalid(
             field,
@@ -42,9 +45,17 @@ pub(crate) fn positive(field: &str, value: f32, max: f32) -> Result<f32, SceneEr
 }
 
 /// An integer in `[min, max]`.
-pub(crate) fn count_in_range(field: &str, value: u32, min: u32, max: u32) -> Result<u32, SceneError> {
+pub(crate) fn count_in_range(
+    field: &str,
+    value: u32,
+    min: u32,
+    max: u32,
+) -> Result<u32, SceneError> {
     if value < min {
-        Err(SceneError::invalid(field, format!("{value} must be >= {min}")))
+        Err(SceneError::invalid(
+            field,
+            format!("{value} must be >= {min}"),
+        ))
     } else if value > max {
         Err(SceneError::invalid(
             field,
@@ -62,7 +73,10 @@ pub(crate) fn interval(field: &str, value: [f32; 2], min: f32, max: f32) -> Resu
     if value[0] >= value[1] {
         return Err(SceneError::invalid(
             field,
-            format!("[{}, {}] must have its first bound below its second", value[0], value[1]),
+            format!(
+                "[{}, {}] must have its first bound below its second",
+                value[0], value[1]
+            ),
         ));
     }
     Ok(())
@@ -111,7 +125,9 @@ mod tests {
             "sim.dt: 0 must be > 0"
         );
         assert_eq!(
-            finite("characters[1].alpha", f32::NAN).unwrap_err().to_string(),
+            finite("characters[1].alpha", f32::NAN)
+                .unwrap_err()
+                .to_string(),
             "characters[1].alpha: NaN is not allowed"
         );
         assert_eq!(

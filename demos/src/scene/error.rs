@@ -75,7 +75,7 @@ pub enum SceneError {
         error: Box<SceneError>,
     },
     /// No built-in scene has this name.
-    #[error("unknown scene \"{name}\" (built in: {known}); a scene file path must exist")]
+    #[error("unknown scene \"{name}\": neither a built-in scene ({known}) nor an existing file")]
     UnknownBuiltin {
         /// The name asked for.
         name: String,

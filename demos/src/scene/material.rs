@@ -98,7 +98,12 @@ impl MaterialSpec {
         if self.gait.speed_factor == 0.0 {
             return Err(SceneError::invalid(speed, "0 must be > 0"));
         }
-        in_range(&format!("{field}.gait.knee_lift"), self.gait.knee_lift, 0.0, 0.5)?;
+        in_range(
+            &format!("{field}.gait.knee_lift"),
+            self.gait.knee_lift,
+            0.0,
+            0.5,
+        )?;
         Ok(())
     }
 }

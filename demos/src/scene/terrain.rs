@@ -130,7 +130,12 @@ impl Slope {
 
     fn validate(&self, field: &str) -> Result<(), SceneError> {
         in_range(&format!("{field}.angle_deg"), self.angle_deg, -60.0, 60.0)?;
-        in_range(&format!("{field}.direction_deg"), self.direction_deg, -360.0, 360.0)?;
+        in_range(
+            &format!("{field}.direction_deg"),
+            self.direction_deg,
+            -360.0,
+            360.0,
+        )?;
         Ok(())
     }
 }
@@ -174,7 +179,12 @@ impl TerrainShape {
             } => {
                 positive(&format!("{field}.amplitude"), *amplitude, 1000.0)?;
                 positive(&format!("{field}.wavelength"), *wavelength, 10.0 * longest)?;
-                in_range(&format!("{field}.direction_deg"), *direction_deg, -360.0, 360.0)?;
+                in_range(
+                    &format!("{field}.direction_deg"),
+                    *direction_deg,
+                    -360.0,
+                    360.0,
+                )?;
                 Ok(())
             }
             TerrainShape::Noise {

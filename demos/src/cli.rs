@@ -1,0 +1,176 @@
+//! The `softwalk` command line: arguments (clap derive), dispatch and the error type.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+use thiserror::Error;
+
+use crate::commands;
+use crate::out_dir::OutputDirError;
+use crate::scene::{MAX_FRAME_SIDE, SceneError};
+use crate::sim::SimError;
+
+/// Walk characters over loose ground (sand, soil, mud, snow, grass) and record what happens.
+#[derive(Debug, Parser)]
+#[command(name = "softwalk", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run a scene and write metrics.csv, summary.json and frames to a folder.
+    Run(RunArgs),
+    /// List the built-in scenes, or print one as TOML.
+    Scenes(ScenesArgs),
+    /// Run a scene without rendering and print per-step costs.
+    Bench(BenchArgs),
+}
+
+/// Which scene and for how long; shared by `run` and `bench`.
+#[derive(Debug, Clone, Args)]
+pub struct SceneArgs {
+    /// A built-in scene name (see `softwalk scenes`) or a path to a scene TOML file.
+    #[arg(default_value = "default")]
+    pub scene: String,
+    /// Simulate this many steps instead of the scene's duration.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=crate::scene::MAX_STEPS), conflicts_with = "seconds")]
+    pub steps: Option<u64>,
+    /// Simulate this many seconds instead of the scene's duration.
+    #[arg(long, value_parser = parse_seconds)]
+    pub seconds: Option<f64>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
+}
+
+/// Arguments of `softwalk run`.
+#[derive(Debug, Clone, Args)]
+pub struct RunArgs {
+    /// Scene, duration and threads.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Output folder (created if missing; must be writable).
+    #[arg(long, short)]
+    pub out: PathBuf,
+    /// Do not render frames (metrics and summary only).
+    #[arg(long)]
+    pub no_render: bool,
+    /// Compute and print a hash of the final world.
+    #[arg(long)]
+    pub hash: bool,
+    /// Frame width in pixels (overrides the scene).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub width: Option<u32>,
+    /// Frame height in pixels (overrides the scene).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub height: Option<u32>,
+}
+
+/// Arguments of `softwalk scenes`.
+#[derive(Debug, Clone, Args)]
+pub struct ScenesArgs {
+    /// Print this built-in scene as TOML instead of listing.
+    #[arg(long, value_name = "NAME")]
+    pub dump: Option<String>,
+}
+
+/// Arguments of `softwalk bench`.
+#[derive(Debug, Clone, Args)]
+pub struct BenchArgs {
+    /// Scene, duration and threads.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+}
+
+fn parse_seconds(text: &str) -> Result<f64, String> {
+    let v: f64 = text
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a number"))?;
+    if v.is_finite() && v > 0.0 && v <= 1.0e6 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{text} must be a number of seconds in (0, 1000000]"
+        ))
+    }
+}
+
+/// Everything a command can fail with.
+#[derive(Debug, Error)]
+pub enum CliError {
+    /// The scene could not be found, read or validated.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The output folder cannot be used.
+    #[error(transparent)]
+    OutputDir(#[from] OutputDirError),
+    /// An output file could not be written.
+    #[error(transparent)]
+    Write(#[from] engine::io::WriteError),
+    /// The simulation failed.
+    #[error("the run failed")]
+    Sim(#[from] SimError),
+    /// The thread pool could not be built.
+    #[error("cannot start {threads} worker threads")]
+    Threads {
+        /// Threads asked for.
+        threads: usize,
+        /// Why it failed.
+        #[source]
+        source: rayon::ThreadPoolBuildError,
+    },
+    /// Printing to standard output failed.
+    #[error("cannot print to standard output")]
+    Stdout(#[source] std::io::Error),
+}
+
+/// Runs one parsed command line, printing to `stdout`.
+pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
+    match cli.command {
+        Command::Run(args) => commands::run::run(&args, stdout),
+        Command::Scenes(args) => commands::scenes::scenes(&args, stdout),
+        Command::Bench(args) => commands::bench::bench(&args, stdout),
+    }
+}
+
+/// An error and its causes on one line, `a: b: c`; a cause already spelled out
+/// at the end of the message before it is not repeated.
+pub fn error_line(error: &(dyn std::error::Error + 'static)) -> String {
+    let mut line = error.to_string();
+    let mut cause = error.source();
+    while let Some(c) = cause {
+        let text = c.to_string();
+        if !line.ends_with(&text) {
+            line.push_str(": ");
+            line.push_str(&text);
+        }
+        cause = c.source();
+    }
+    line.replace('\n', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn error_line_joins_causes_without_repeats() {
+        let io = std::io::Error::other("disk full");
+        let write = engine::io::WriteError {
+            path: "a.csv".into(),
+            source: io,
+        };
+        let e = CliError::Write(write);
+        assert_eq!(error_line(&e), "cannot write a.csv: disk full");
+        let sim = CliError::Sim(SimError::Observer("boom".into()));
+        assert_eq!(
+            error_line(&sim),
+            "the run failed: writing the run's output failed: boom"
+        );
+    }
+}
