@@ -100,6 +100,20 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A command-line parsing error (wrong, missing or conflicting arguments).
+pub type ArgsError = clap::Error;
+
+impl Cli {
+    /// Parses arguments (the first is the program name) without exiting on error.
+    pub fn parse_args<I, T>(args: I) -> Result<Cli, ArgsError>
+    where
+        I: IntoIterator<Item = T>,
+        T: Into<std::ffi::OsString> + Clone,
+    {
+        <Cli as Parser>::try_parse_from(args)
+    }
+}
+
 /// Everything a command can fail with.
 #[derive(Debug, Error)]
 pub enum CliError {

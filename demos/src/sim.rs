@@ -62,7 +62,7 @@ impl RunOptions {
 
     /// True when step `step` (0-based) is rendered.
     pub fn renders_step(&self, step: u64) -> bool {
-        self.render && step % u64::from(self.render_every.max(1)) == 0
+        self.render && step.is_multiple_of(u64::from(self.render_every.max(1)))
     }
 }
 
@@ -223,4 +223,52 @@ pub fn run(
         sim_seconds: options.steps as f64 * options.dt,
         ..RunSummary::default()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stand_in_advances_time_and_reports_every_step() {
+        struct Steps(Vec<(u64, f64)>);
+        impl RunObserver for Steps {
+            fn on_step_end(&mut self, step: u64, t: f64) -> Result<(), ObserverError> {
+                self.0.push((step, t));
+                Ok(())
+            }
+        }
+        let scene = Scene::builtin("sand-flat").unwrap();
+        let mut options = RunOptions::from_scene(&scene);
+        options.steps = 3;
+        options.dt = 0.5;
+        let mut seen = Steps(Vec::new());
+        let summary = run(&scene, &options, &mut seen).unwrap();
+        assert_eq!(seen.0, [(0, 0.5), (1, 1.0), (2, 1.5)]);
+        assert_eq!((summary.steps, summary.sim_seconds), (3, 1.5));
+    }
+
+    #[test]
+    fn observer_errors_stop_the_run() {
+        struct Fails;
+        impl RunObserver for Fails {
+            fn on_step_end(&mut self, _: u64, _: f64) -> Result<(), ObserverError> {
+                Err("disk full".into())
+            }
+        }
+        let scene = Scene::builtin("sand-flat").unwrap();
+        let e = run(&scene, &RunOptions::from_scene(&scene), &mut Fails).unwrap_err();
+        assert!(matches!(e, SimError::Observer(_)));
+    }
+
+    #[test]
+    fn render_cadence_follows_every() {
+        let scene = Scene::builtin("sand-flat").unwrap();
+        let mut options = RunOptions::from_scene(&scene);
+        options.render_every = 3;
+        let rendered: Vec<u64> = (0..7).filter(|s| options.renders_step(*s)).collect();
+        assert_eq!(rendered, [0, 3, 6]);
+        options.render = false;
+        assert!(!options.renders_step(0));
+    }
 }

@@ -1,0 +1,189 @@
+//! The `softwalk` command line as a library: argument parsing, scene resolution,
+//! the output-folder check, listing and dumping scenes, and the files a run writes.
+
+use std::fs;
+use std::path::Path;
+
+use demos::cli::{ArgsError, Cli, CliError, Command, error_line, execute};
+use demos::output::METRICS_HEADER;
+use demos::scene::{Scene, builtin_scenes};
+
+fn parse(args: &[&str]) -> Result<Cli, ArgsError> {
+    Cli::parse_args(std::iter::once("softwalk").chain(args.iter().copied()))
+}
+
+fn execute_args(args: &[&str]) -> (Result<(), CliError>, String) {
+    let cli = parse(args).expect("arguments should parse");
+    let mut out = Vec::new();
+    let result = execute(cli, &mut out);
+    (result, String::from_utf8(out).unwrap())
+}
+
+#[test]
+fn run_defaults_to_the_default_scene() {
+    let Command::Run(run) = parse(&["run", "--out", "o"]).unwrap().command else {
+        panic!("not a run command");
+    };
+    assert_eq!(run.scene.scene, "default");
+    assert_eq!(run.out, Path::new("o"));
+    assert!(!run.no_render && !run.hash);
+    assert_eq!(
+        (run.scene.steps, run.scene.seconds, run.scene.threads),
+        (None, None, None)
+    );
+}
+
+#[test]
+fn run_accepts_every_option() {
+    let cli = parse(&[
+        "run",
+        "sand-up",
+        "--out",
+        "o",
+        "--no-render",
+        "--threads",
+        "3",
+        "--hash",
+        "--steps",
+        "12",
+        "--width",
+        "320",
+        "--height",
+        "200",
+    ])
+    .unwrap();
+    let Command::Run(run) = cli.command else {
+        panic!("not a run command");
+    };
+    assert_eq!(run.scene.scene, "sand-up");
+    assert_eq!(run.scene.steps, Some(12));
+    assert_eq!(run.scene.threads, Some(3));
+    assert_eq!((run.width, run.height), (Some(320), Some(200)));
+    assert!(run.no_render && run.hash);
+}
+
+#[test]
+fn bad_arguments_are_refused_by_the_parser() {
+    assert!(parse(&["run"]).is_err(), "--out is required");
+    assert!(parse(&["run", "--out", "o", "--steps", "3", "--seconds", "1"]).is_err());
+    assert!(parse(&["run", "--out", "o", "--threads", "0"]).is_err());
+    assert!(parse(&["run", "--out", "o", "--seconds", "nan"]).is_err());
+    assert!(parse(&["run", "--out", "o", "--seconds", "-1"]).is_err());
+    assert!(parse(&["run", "--out", "o", "--width", "100000"]).is_err());
+    assert!(parse(&["run", "--out", "o", "--frobnicate"]).is_err());
+    assert!(parse(&["fly"]).is_err());
+}
+
+#[test]
+fn scenes_lists_every_builtin_with_a_description() {
+    let (result, out) = execute_args(&["scenes"]);
+    result.unwrap();
+    let lines: Vec<&str> = out.lines().collect();
+    let all = builtin_scenes();
+    assert_eq!(lines.len(), all.len());
+    for (line, b) in lines.iter().zip(&all) {
+        let (name, description) = line
+            .split_once("  ")
+            .expect("name, two spaces, description");
+        assert_eq!(name, b.name);
+        assert_eq!(
+            description.trim(),
+            Scene::builtin(&b.name).unwrap().description
+        );
+    }
+}
+
+#[test]
+fn dump_round_trips() {
+    let (result, out) = execute_args(&["scenes", "--dump", "controller-compare"]);
+    result.unwrap();
+    let parsed = Scene::from_toml_str(&out, Path::new("")).unwrap();
+    assert_eq!(parsed, Scene::builtin("controller-compare").unwrap());
+    let (result, _) = execute_args(&["scenes", "--dump", "nope"]);
+    assert!(error_line(&result.unwrap_err()).starts_with("unknown scene \"nope\""));
+}
+
+#[test]
+fn an_output_folder_under_a_regular_file_is_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("plain-file");
+    fs::write(&file, "x").unwrap();
+    let out = file.join("run");
+    let (result, stdout) = execute_args(&["run", "sand-flat", "--out", out.to_str().unwrap()]);
+    let e = result.unwrap_err();
+    assert!(matches!(e, CliError::OutputDir(_)), "{e:?}");
+    let line = error_line(&e);
+    assert!(line.starts_with("output folder \""), "{line}");
+    assert!(
+        line.contains("plain-file/run\" cannot be created: "),
+        "{line}"
+    );
+    assert!(stdout.is_empty(), "nothing ran");
+}
+
+#[test]
+fn a_scene_file_error_names_file_and_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("bad.toml");
+    let text = Scene::builtin("sand-flat")
+        .unwrap()
+        .to_toml_string()
+        .unwrap()
+        .replacen("dt = ", "dt = -", 1);
+    fs::write(&scene, text).unwrap();
+    let out = dir.path().join("out");
+    let (result, _) = execute_args(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let line = error_line(&result.unwrap_err());
+    assert!(line.contains("bad.toml\": sim.dt: -0.01"), "{line}");
+    assert!(line.ends_with("must be > 0"), "{line}");
+    assert!(
+        !out.exists(),
+        "the scene is checked before the output folder is made"
+    );
+}
+
+#[test]
+fn run_writes_metrics_and_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("nested/out");
+    let (result, stdout) = execute_args(&[
+        "run",
+        "morphology",
+        "--out",
+        out.to_str().unwrap(),
+        "--seconds",
+        "0.5",
+        "--threads",
+        "1",
+        "--no-render",
+    ]);
+    result.unwrap();
+    let metrics = fs::read_to_string(out.join("metrics.csv")).unwrap();
+    assert_eq!(metrics.lines().next(), Some(METRICS_HEADER));
+    let summary = fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"scene\": \"morphology\""), "{summary}");
+    assert!(
+        summary.contains("\"steps\": 30,"),
+        "0.5 s at 60 Hz: {summary}"
+    );
+    for name in ["small", "medium", "tall"] {
+        assert!(
+            summary.contains(&format!("\"name\": \"{name}\"")),
+            "{summary}"
+        );
+    }
+    assert!(summary.contains("\"threads\": 1"), "{summary}");
+    assert!(!out.join("frames").exists(), "--no-render writes no frames");
+    assert!(stdout.starts_with("scene morphology: 30 steps"), "{stdout}");
+    let leftovers: Vec<_> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+}
