@@ -20,6 +20,8 @@ mod render_settings;
 mod sim_settings;
 mod syntax;
 mod terrain;
+mod terrain_build;
+mod value_noise;
 
 use std::path::{Path, PathBuf};
 
@@ -114,6 +116,11 @@ impl Scene {
             TerrainShape::Heightmap { path, .. } => Some(self.resolve(path)),
             _ => None,
         }
+    }
+
+    /// The terrain's height grid (see [`TerrainSpec::build_height_grid`]), heightmap resolved against the scene's folder.
+    pub fn build_height_grid(&self) -> Result<engine::geom::HeightGrid, SceneError> {
+        self.terrain.build_height_grid(&self.base_dir)
     }
 
     /// The material with this name: a user definition first, then a built-in preset.
