@@ -142,14 +142,19 @@ pub fn foot_ik_stage(
         ),
     ];
     let foot_radius = body.bone_radius(super::skeleton::Bone::FootLeft);
+    let mut soles = [feet[0].sole, feet[1].sole];
     for (k, &(hip, knee, ankle, toe)) in legs.iter().enumerate() {
         let hip_at = hips[k] - Vec3::Y * ik.pelvis_drop;
         let pole = hip_at + forward * body.leg_reach();
         let s = solve_two_bone(hip_at, feet[k].ankle, pole, body.thigh, body.shank);
+        // The foot follows the ankle the IK really reached.
+        let miss = s.end - feet[k].ankle;
+        soles[k].heel += miss;
+        soles[k].toe += miss;
         pose.joints[hip as usize] = hip_at;
         pose.joints[knee as usize] = s.mid;
         pose.joints[ankle as usize] = s.end;
-        pose.joints[toe as usize] = feet[k].sole.toe + feet[k].normal * foot_radius;
+        pose.joints[toe as usize] = soles[k].toe + feet[k].normal * foot_radius;
     }
 
     // Upper body, rotated by the proxy's tilt about the hips.
@@ -193,7 +198,7 @@ pub fn foot_ik_stage(
         let plan = &gait.feet[k];
         FootState {
             side,
-            sole: feet[k].sole,
+            sole: soles[k],
             ankle: ankles[k],
             velocity: if dt > 0.0 {
                 (ankles[k] - ik.last_ankles[k]) / dt
