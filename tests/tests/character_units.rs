@@ -200,3 +200,42 @@ fn same_inputs_give_bit_identical_walks() {
     };
     assert_eq!(run(), run());
 }
+
+#[test]
+fn a_raised_key_under_a_swing_foot_lifts_it_and_bends_the_knee_more() {
+    use softwalk_systems::character::{
+        balance_stage, foot_ik_stage, foot_raycast_stage, gait_stage,
+    };
+    let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 6.0).unwrap();
+    let ground = FlatGround(0.0);
+    let mut c = Character::new(CharacterDesc::adult(), &path, &ground).unwrap();
+    // Walk until the left foot is in its upward swing.
+    while c.gait.feet[0].phase != FootPhase::SwingUp || c.gait.distance < 1.0 {
+        step_character(&mut c, &path, &ground, DT);
+    }
+    let pose_with = |platform: f32| {
+        let mut c = c.clone();
+        gait_stage(&mut c.gait, &c.body, &path, &c.modifiers, DT);
+        foot_raycast_stage(&mut c.rays, &c.gait, &c.body, &ground);
+        // Stage 3 stand-in: a virtual platform raises the left key.
+        c.rays.feet[0].point.y += platform;
+        balance_stage(&mut c.proxy, &c.balance, &c.body, &c.gait, &c.rays, DT);
+        let feet = foot_ik_stage(
+            &mut c.ik,
+            &mut c.pose,
+            &c.body,
+            &c.gait,
+            &c.rays,
+            &c.proxy,
+            DT,
+        );
+        (feet[0].sole.center().y, c.pose.knee_flexion()[0])
+    };
+    let (low_y, low_knee) = pose_with(0.0);
+    let (high_y, high_knee) = pose_with(0.15);
+    assert!((high_y - low_y - 0.15).abs() < 1e-3, "{low_y} -> {high_y}");
+    assert!(
+        high_knee > low_knee + 0.05,
+        "knee {low_knee} -> {high_knee}"
+    );
+}
