@@ -1,1 +1,61 @@
-//! (module under construction)
+//! The walking character: description, body, walk cycle, foot rays, the rigid
+//! proxy with the paper's balance controller (eq. 1), and foot IK.
+//!
+//! Each fixed step runs, in order (each stage is a plain function taking all
+//! its state explicitly, so a schedule can run them as separate systems):
+//! 1. [`gait_stage`]: walk-cycle phase, footholds, swing trajectories;
+//! 2. [`foot_raycast_stage`]: vertical rays giving each foot's IK key;
+//! 3. (vegetation's virtual platforms, outside this module);
+//! 4. [`balance_stage`]: eq. 1 torque on the [`RigidProxy`], integrated;
+//! 5. [`foot_ik_stage`]: legs, feet, pelvis drop, tilt; the final [`Pose`] and [`FootState`]s.
+//!
+//! [`step_character`] runs 1, 2, 4 and 5 against one ground:
+//!
+//! ```
+//! use glam::Vec3;
+//! use softwalk_systems::character::{Character, CharacterDesc, WalkPath, step_character};
+//! use softwalk_systems::ground::FlatGround;
+//!
+//! let ground = FlatGround(0.0);
+//! let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 3.0).unwrap();
+//! let mut walker = Character::new(CharacterDesc::adult(), &path, &ground).unwrap();
+//! for _ in 0..120 {
+//!     step_character(&mut walker, &path, &ground, 1.0 / 60.0);
+//! }
+//! assert!(walker.gait.distance > 1.0);
+//! ```
+//!
+//! [`FootState`]: crate::foot::FootState
+
+mod balance;
+mod body;
+mod desc;
+mod error;
+mod foot_ik;
+mod gait;
+mod ik;
+mod mesh;
+mod metrics;
+mod path;
+mod pose;
+mod rays;
+mod skeleton;
+mod step;
+
+pub use balance::{
+    Balance, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, RigidProxy, animated_com,
+    balance_stage,
+};
+pub use body::CharacterBody;
+pub use desc::CharacterDesc;
+pub use error::CharacterError;
+pub use foot_ik::{FootIK, foot_ik_stage};
+pub use gait::{FootPlan, Gait, GaitModifiers, GaitParams, MAX_STEP_DT, clamp_dt, gait_stage};
+pub use ik::{TwoBoneSolution, solve_two_bone};
+pub use mesh::{capsule, character_mesh};
+pub use metrics::CharacterMetrics;
+pub use path::{PathPoint, PathSegment, WalkPath};
+pub use pose::Pose;
+pub use rays::{FootRays, GroundKey, foot_raycast_stage};
+pub use skeleton::{Bone, JOINT_COUNT, Joint};
+pub use step::{Character, step_character};

@@ -1,0 +1,224 @@
+//! Stage 4, balance: the rigid proxy carrying the body's global tilt and the
+//! PD controller of the paper's eq. 1 acting on it.
+//!
+//! Model (forward lean `theta` > 0 when leaning towards the walking direction):
+//!
+//! ```text
+//! I * theta'' = alpha * e + beta * theta' - k * theta - c * theta'
+//! e = (p_com - p_target) . u
+//! ```
+//!
+//! - the motion plane passes through the COM and is spanned by gravity and the
+//!   horizontal velocity; its normal is the character's right `r = v × y`;
+//! - `p_target` is the midpoint of the two foot keys projected into that plane;
+//! - `u` is the unit vector along the terrain slope in that plane (walking direction);
+//! - `p_com` is the animated (untilted) centre of mass projected onto the
+//!   terrain line through `p_target` along the ground normal, so `e` is
+//!   `(com - p_target) . u`: on an uphill slope the COM projects ahead of the
+//!   feet by about `h sin(slope)`, on a downhill slope behind;
+//! - written about `r` (positive = backward), this is eq. 1 verbatim:
+//!   `tau_r = alpha (p_target - p_com) . u + beta theta_r'`;
+//! - `k` (posture stiffness) and `c` (passive damping, larger than any allowed
+//!   beta) are the body's own passive terms: `beta` feeds the swing, the net
+//!   damping `c - beta` stays positive and falls as beta rises;
+//! - `I` is the proxy's pitch inertia about the ground: the body's inertia
+//!   scaled to the proxy mass plus `m_proxy * h_com²`, so a higher COM gives a
+//!   larger inertia, a lower natural frequency and a lower damping ratio.
+
+use glam::{Mat3, Quat, Vec2, Vec3};
+
+use super::body::CharacterBody;
+use super::error::{CharacterError, check_range};
+use super::gait::{Gait, clamp_dt};
+use super::rays::FootRays;
+
+/// The balance controller's settings (paper eq. 1), settable at run time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Balance {
+    /// Stiffness on the COM offset, N·m per metre (30 in the paper).
+    pub alpha: f32,
+    /// Swing gain on the tilt rate, N·m·s/rad (6 in the paper; 4 in medium grass).
+    pub beta: f32,
+    /// Controller on (the paper's blue character) or off (red).
+    pub enabled: bool,
+    /// Passive posture stiffness k, N·m/rad.
+    pub posture_stiffness: f32,
+    /// Passive damping c, N·m·s/rad; beta must stay below it.
+    pub passive_damping: f32,
+}
+
+/// Default posture stiffness, N·m/rad: keeps every morphology's natural
+/// frequency above its step frequency.
+pub const DEFAULT_POSTURE_STIFFNESS: f32 = 300.0;
+/// Default passive damping, N·m·s/rad (above the paper's largest beta, 6).
+pub const DEFAULT_PASSIVE_DAMPING: f32 = 12.0;
+
+impl Balance {
+    /// The controller with the given gains, enabled, and default passive terms.
+    pub fn new(alpha: f32, beta: f32) -> Result<Self, CharacterError> {
+        let mut b = Balance {
+            alpha: 30.0,
+            beta: 6.0,
+            enabled: true,
+            posture_stiffness: DEFAULT_POSTURE_STIFFNESS,
+            passive_damping: DEFAULT_PASSIVE_DAMPING,
+        };
+        b.set_gains(alpha, beta)?;
+        Ok(b)
+    }
+
+    /// Changes alpha and beta, refusing non-finite or negative values and a
+    /// beta at or above the passive damping (the swing would grow without bound).
+    pub fn set_gains(&mut self, alpha: f32, beta: f32) -> Result<(), CharacterError> {
+        check_range("alpha", alpha, 0.0, 1.0e4)?;
+        check_range("beta", beta, 0.0, self.passive_damping)?;
+        if beta >= self.passive_damping {
+            return Err(CharacterError::InvalidField {
+                field: "beta",
+                reason: format!(
+                    "{beta} must stay below the passive damping {}",
+                    self.passive_damping
+                ),
+            });
+        }
+        self.alpha = alpha;
+        self.beta = beta;
+        Ok(())
+    }
+}
+
+/// The single rigid body carrying the character's global tilt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidProxy {
+    /// Proxy mass, kg.
+    pub mass: f32,
+    /// Inertia about the COM in the body frame (X right, Y up, Z forward), kg·m²:
+    /// the body's inertia scaled to the proxy mass.
+    pub inertia: Mat3,
+    /// Pitch inertia about the ground under the COM, kg·m².
+    pub pitch_inertia: f32,
+    /// Animated (untilted) centre of mass this step (world).
+    pub com: Vec3,
+    /// Rotation of the body by the tilt (about `axis`).
+    pub orientation: Quat,
+    /// Angular velocity (world, rad/s).
+    pub angular_velocity: Vec3,
+    /// Normal of the motion plane: the character's right.
+    pub axis: Vec3,
+    /// Forward lean, radians (positive towards the walking direction).
+    pub tilt: f32,
+    /// Rate of the forward lean, rad/s.
+    pub tilt_rate: f32,
+    /// Controller torque of eq. 1 this step, forward positive, N·m.
+    pub torque: f32,
+    /// Terrain slope along the walking direction under the pelvis, radians (uphill positive).
+    pub slope: f32,
+    /// Debug collider: capsule radius, m.
+    pub capsule_radius: f32,
+    /// Debug collider: capsule half height (centre to cap centre), m.
+    pub capsule_half_height: f32,
+}
+
+impl RigidProxy {
+    /// An upright, resting proxy for a body.
+    pub fn new(body: &CharacterBody) -> Self {
+        let mass = body.desc.proxy_mass;
+        let inertia = body.inertia * (mass / body.desc.mass);
+        RigidProxy {
+            mass,
+            inertia,
+            pitch_inertia: inertia.x_axis.x + mass * body.com_height * body.com_height,
+            com: Vec3::Y * body.com_height,
+            orientation: Quat::IDENTITY,
+            angular_velocity: Vec3::ZERO,
+            axis: Vec3::X,
+            tilt: 0.0,
+            tilt_rate: 0.0,
+            torque: 0.0,
+            slope: 0.0,
+            capsule_radius: 0.15 * body.desc.height,
+            capsule_half_height: 0.35 * body.desc.height,
+        }
+    }
+}
+
+/// The animated centre of mass: the upper body above the walking pelvis and
+/// each leg's mass halfway between its hip and its foot target.
+pub fn animated_com(body: &CharacterBody, gait: &Gait, rays: &FootRays) -> Vec3 {
+    let right = gait.pelvis.right3();
+    let pelvis_xz = gait.pelvis.position + Vec2::new(right.x, right.z) * gait.sway;
+    let hip_y = rays.body.point.y + gait.params.walking_hip_height(body) + gait.bob;
+    let pelvis = Vec3::new(pelvis_xz.x, hip_y, pelvis_xz.y);
+    let leg_share = body.leg_mass() / body.desc.mass;
+    let mut com = pelvis + Vec3::Y * (body.com_height - body.hip_height);
+    for plan in &gait.feet {
+        let offset = plan.target - pelvis_xz;
+        com += Vec3::new(offset.x, 0.0, offset.y) * (0.5 * leg_share);
+    }
+    com
+}
+
+/// Stage 4: computes the eq. 1 torque and integrates the proxy's tilt by `dt`
+/// (clamped by [`clamp_dt`]), semi-implicit Euler with the damping taken implicitly.
+pub fn balance_stage(
+    proxy: &mut RigidProxy,
+    balance: &Balance,
+    body: &CharacterBody,
+    gait: &Gait,
+    rays: &FootRays,
+    dt: f32,
+) {
+    let dt = clamp_dt(dt);
+    let com = animated_com(body, gait, rays);
+    let velocity = Vec3::new(gait.velocity.x, 0.0, gait.velocity.y);
+    let forward = velocity
+        .try_normalize()
+        .unwrap_or_else(|| gait.pelvis.heading3());
+    let right = forward.cross(Vec3::Y);
+    let n = rays.body.normal;
+    let slope = (-n.dot(forward)).atan2(n.dot(Vec3::Y).max(1.0e-3));
+    let u = forward * slope.cos() + Vec3::Y * slope.sin();
+    let in_plane = |p: Vec3| p - right * (p - com).dot(right);
+    let target = (in_plane(rays.feet[0].point) + in_plane(rays.feet[1].point)) * 0.5;
+    let offset = (com - target).dot(u);
+    let torque = if balance.enabled {
+        balance.alpha * offset + balance.beta * proxy.tilt_rate
+    } else {
+        0.0
+    };
+    proxy.com = com;
+    proxy.axis = right;
+    proxy.slope = slope;
+    proxy.torque = torque;
+    if dt > 0.0 {
+        let inertia = proxy.pitch_inertia;
+        let drive = torque - balance.posture_stiffness * proxy.tilt;
+        proxy.tilt_rate = (proxy.tilt_rate + dt * drive / inertia)
+            / (1.0 + dt * balance.passive_damping / inertia);
+        proxy.tilt += dt * proxy.tilt_rate;
+    }
+    proxy.orientation = Quat::from_axis_angle(right, -proxy.tilt);
+    proxy.angular_velocity = right * -proxy.tilt_rate;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gains_are_validated_by_name() {
+        let e = Balance::new(f32::NAN, 6.0).unwrap_err();
+        assert!(matches!(
+            e,
+            CharacterError::InvalidField { field: "alpha", .. }
+        ));
+        let e = Balance::new(30.0, DEFAULT_PASSIVE_DAMPING).unwrap_err();
+        assert!(matches!(
+            e,
+            CharacterError::InvalidField { field: "beta", .. }
+        ));
+        let mut b = Balance::new(30.0, 6.0).unwrap();
+        b.set_gains(10.0, 4.0).unwrap();
+        assert_eq!((b.alpha, b.beta), (10.0, 4.0));
+    }
+}

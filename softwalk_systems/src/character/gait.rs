@@ -1,0 +1,362 @@
+//! Stage 1, the walk cycle: a parametric walk (Boulic et al. 1990, speed from
+//! a Froude number) driven by the distance walked along a [`WalkPath`], with
+//! footholds planned along the path at step length.
+
+use std::f32::consts::{PI, TAU};
+
+use glam::Vec2;
+
+use super::body::CharacterBody;
+use super::path::{PathPoint, WalkPath};
+use crate::foot::{FootPhase, Side};
+
+/// The largest time step a stage accepts; longer steps are clamped to it.
+pub const MAX_STEP_DT: f32 = 0.05;
+
+/// The step duration a stage really uses: `dt` clamped to `[0, MAX_STEP_DT]`,
+/// with NaN and negative values read as 0 (a no-op step).
+pub fn clamp_dt(dt: f32) -> f32 {
+    if dt.is_finite() && dt > 0.0 {
+        dt.min(MAX_STEP_DT)
+    } else {
+        0.0
+    }
+}
+
+/// Per-step changes of the gait asked for by terrain and vegetation systems.
+/// The default is neutral.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GaitModifiers {
+    /// Multiplies the walking speed (clamped to `[0.1, 2]`; non-finite reads as 1).
+    pub speed_scale: f32,
+    /// Multiplies the stride length (clamped to `[0.3, 1.5]`; non-finite reads as 1).
+    pub step_length_scale: f32,
+    /// Added to the swing-foot clearance, metres (clamped to `[0, 0.5]`).
+    pub extra_clearance: f32,
+}
+
+impl Default for GaitModifiers {
+    fn default() -> Self {
+        GaitModifiers {
+            speed_scale: 1.0,
+            step_length_scale: 1.0,
+            extra_clearance: 0.0,
+        }
+    }
+}
+
+fn sane(value: f32, min: f32, max: f32, neutral: f32) -> f32 {
+    if value.is_finite() {
+        value.clamp(min, max)
+    } else {
+        neutral
+    }
+}
+
+/// The walk's timing and sizes for one body and one set of modifiers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GaitParams {
+    /// Walking speed along the path, m/s.
+    pub speed: f32,
+    /// Stride (two steps), metres.
+    pub stride: f32,
+    /// Fraction of the cycle a foot is in stance (above 0.5: double support).
+    pub duty: f32,
+    /// Peak height of the swing foot above the ground key, metres.
+    pub clearance: f32,
+    /// Vertical pelvis oscillation amplitude, metres.
+    pub bob_amplitude: f32,
+    /// Lateral pelvis sway amplitude, metres.
+    pub sway_amplitude: f32,
+    /// Arm swing amplitude at the shoulder, radians.
+    pub arm_amplitude: f32,
+}
+
+impl GaitParams {
+    /// Boulic's walk for this body: v = sqrt(Fr g Ht), RV = v / Ht,
+    /// stride = 1.346 sqrt(RV) Ht, support time 0.752 Dc - 0.143.
+    pub fn new(body: &CharacterBody, modifiers: &GaitModifiers) -> Self {
+        let ht = body.hip_height;
+        let speed_scale = sane(modifiers.speed_scale, 0.1, 2.0, 1.0);
+        let length_scale = sane(modifiers.step_length_scale, 0.3, 1.5, 1.0);
+        let speed = (body.desc.froude * 9.81 * ht).sqrt() * speed_scale;
+        let rv = speed / ht;
+        let stride = 1.346 * rv.sqrt() * ht * length_scale;
+        let cycle = stride / speed;
+        let duty = ((0.752 * cycle - 0.143) / cycle).clamp(0.55, 0.7);
+        GaitParams {
+            speed,
+            stride,
+            duty,
+            clearance: 0.1 * ht + sane(modifiers.extra_clearance, 0.0, 0.5, 0.0),
+            bob_amplitude: 0.015 * rv * ht,
+            sway_amplitude: 0.032 * ht,
+            arm_amplitude: (9.88 * rv).to_radians(),
+        }
+    }
+
+    /// Hip height above the ground while walking (before bob and IK drop): the
+    /// highest at which a stance leg still reaches the farthest foothold of
+    /// its stance with 2 % of its length to spare.
+    pub fn walking_hip_height(&self, body: &CharacterBody) -> f32 {
+        let reach = 0.98 * body.leg_reach();
+        let along = self.duty * self.stride / 2.0 + 0.25 * body.foot_length;
+        body.ankle_height
+            + (reach * reach - along * along)
+                .max(0.25 * reach * reach)
+                .sqrt()
+    }
+
+    /// Duration of one walk cycle (two steps), seconds.
+    pub fn cycle_time(&self) -> f32 {
+        self.stride / self.speed
+    }
+}
+
+/// What the walk cycle asks of one foot this step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FootPlan {
+    /// Which leg.
+    pub side: Side,
+    /// Stance, or the up/down half of the swing.
+    pub phase: FootPhase,
+    /// Where the last stance was (x, z of the sole centre).
+    pub from: Vec2,
+    /// The planned (in stance: the locked) foothold, x and z of the sole centre.
+    pub foothold: Vec2,
+    /// Swing progress in `[0, 1]` (0 in stance).
+    pub swing: f32,
+    /// Sole centre (x, z) the foot should be at this step.
+    pub target: Vec2,
+    /// Height of the sole above the ground key, metres (0 in stance).
+    pub lift: f32,
+}
+
+/// The walk-cycle state of one character.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gait {
+    /// Distance walked along the path, metres.
+    pub distance: f32,
+    /// Walk-cycle phase in `[0, 1)`: 0 is the left foot's landing.
+    pub phase: f32,
+    /// Timing and sizes used this step.
+    pub params: GaitParams,
+    /// The two feet, left first.
+    pub feet: [FootPlan; 2],
+    /// The path point under the pelvis.
+    pub pelvis: PathPoint,
+    /// Lateral pelvis offset along the character's right, metres.
+    pub sway: f32,
+    /// Vertical pelvis offset (<= 0), metres.
+    pub bob: f32,
+    /// Left arm swing angle, radians (positive forward; the right arm is opposite).
+    pub arm_swing: f32,
+    /// Horizontal velocity of the pelvis along the path, m/s (x, z).
+    pub velocity: Vec2,
+    /// True once the path has ended and both feet are planted.
+    pub stopped: bool,
+}
+
+impl Gait {
+    /// A character standing at the start of `path` in double support, left foot ahead.
+    pub fn new(body: &CharacterBody, path: &WalkPath, modifiers: &GaitModifiers) -> Self {
+        let params = GaitParams::new(body, modifiers);
+        let pelvis = path.point_at(0.0);
+        let mut gait = Gait {
+            distance: 0.0,
+            phase: 0.0,
+            params,
+            feet: Side::BOTH.map(|side| FootPlan {
+                side,
+                phase: FootPhase::Stance,
+                from: pelvis.position,
+                foothold: pelvis.position,
+                swing: 0.0,
+                target: pelvis.position,
+                lift: 0.0,
+            }),
+            pelvis,
+            sway: 0.0,
+            bob: 0.0,
+            arm_swing: 0.0,
+            velocity: Vec2::ZERO,
+            stopped: false,
+        };
+        for k in 0..2 {
+            let p = gait.local_phase(k);
+            let (duty, stride) = (params.duty, params.stride);
+            let last = gait.foothold_at(body, path, k, stride * (duty / 2.0 - p));
+            let next = if p >= duty {
+                gait.foothold_at(body, path, k, stride * (1.0 + duty / 2.0 - p))
+            } else {
+                last
+            };
+            let plan = &mut gait.feet[k];
+            plan.from = last;
+            plan.foothold = next;
+            if p >= duty {
+                plan.phase = FootPhase::SwingUp;
+            }
+        }
+        gait.update_feet(body, path);
+        gait.update_body();
+        gait
+    }
+
+    /// The foot's own phase: the right foot runs half a cycle behind the left.
+    pub fn local_phase(&self, foot: usize) -> f32 {
+        (self.phase + 0.5 * foot as f32).fract()
+    }
+
+    /// True while both feet are in stance.
+    pub fn double_support(&self) -> bool {
+        self.feet.iter().all(|f| f.phase == FootPhase::Stance)
+    }
+
+    /// The sole-centre foothold of `foot` at `ahead` metres from the current distance.
+    fn foothold_at(&self, body: &CharacterBody, path: &WalkPath, foot: usize, ahead: f32) -> Vec2 {
+        let mut s = self.distance + ahead;
+        if !path.is_looped() {
+            s = s.min(path.length());
+        }
+        let p = path.point_at(s);
+        let right = Vec2::new(-p.heading.y, p.heading.x);
+        let sign = if foot == 0 { -1.0 } else { 1.0 };
+        p.position + right * (sign * body.hip_half_width)
+    }
+
+    /// Sets each foot's phase, target and lift from the cycle phase, planning
+    /// a new foothold at lift-off.
+    fn update_feet(&mut self, body: &CharacterBody, path: &WalkPath) {
+        let GaitParams {
+            duty,
+            stride,
+            clearance,
+            ..
+        } = self.params;
+        for k in 0..2 {
+            let p = self.local_phase(k);
+            let in_stance = p < duty;
+            if !in_stance && self.feet[k].phase == FootPhase::Stance {
+                let next = self.foothold_at(body, path, k, stride * (1.0 + duty / 2.0 - p));
+                let plan = &mut self.feet[k];
+                plan.from = plan.foothold;
+                plan.foothold = next;
+            }
+            let plan = &mut self.feet[k];
+            if in_stance {
+                plan.phase = FootPhase::Stance;
+                plan.swing = 0.0;
+                plan.target = plan.foothold;
+                plan.lift = 0.0;
+            } else {
+                let u = ((p - duty) / (1.0 - duty)).clamp(0.0, 1.0);
+                let eased = u * u * (3.0 - 2.0 * u);
+                plan.phase = if u < 0.5 {
+                    FootPhase::SwingUp
+                } else {
+                    FootPhase::SwingDown
+                };
+                plan.swing = u;
+                plan.target = plan.from.lerp(plan.foothold, eased);
+                plan.lift = clearance * (PI * u).sin();
+            }
+        }
+    }
+
+    /// Pelvis bob and sway and arm swing from the cycle phase (Boulic's curves).
+    fn update_body(&mut self) {
+        let p = &self.params;
+        let phi = self.phase;
+        self.bob = -p.bob_amplitude + p.bob_amplitude * (TAU * (2.0 * phi - 0.35)).sin();
+        self.sway = -p.sway_amplitude * (TAU * (phi - 0.1)).sin();
+        self.arm_swing = p.arm_amplitude * (TAU * (phi - 0.15)).sin();
+    }
+}
+
+/// Stage 1: advances the walk cycle by `dt` (see [`clamp_dt`]) along `path`.
+///
+/// The phase advances with the distance walked (`speed * dt / stride`). At the
+/// end of a path that does not loop the pelvis stops and the phase runs on
+/// until both feet are planted; then the gait is `stopped`.
+pub fn gait_stage(
+    gait: &mut Gait,
+    body: &CharacterBody,
+    path: &WalkPath,
+    modifiers: &GaitModifiers,
+    dt: f32,
+) {
+    let dt = clamp_dt(dt);
+    gait.params = GaitParams::new(body, modifiers);
+    if dt == 0.0 || gait.stopped {
+        gait.velocity = Vec2::ZERO;
+        return;
+    }
+    let finishing = path.is_finished(gait.distance);
+    if finishing && gait.double_support() {
+        gait.stopped = true;
+        gait.velocity = Vec2::ZERO;
+        return;
+    }
+    let step = gait.params.speed * dt;
+    let before = gait.pelvis.position;
+    if !finishing {
+        gait.distance += step;
+        if !path.is_looped() {
+            gait.distance = gait.distance.min(path.length());
+        }
+    }
+    gait.phase = (gait.phase + step / gait.params.stride).fract();
+    gait.pelvis = path.point_at(gait.distance);
+    gait.velocity = (gait.pelvis.position - before) / dt;
+    gait.update_feet(body, path);
+    gait.update_body();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::character::CharacterDesc;
+    use glam::Vec3;
+
+    #[test]
+    fn adult_walk_matches_boulic_figures() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let p = GaitParams::new(&body, &GaitModifiers::default());
+        assert!((1.0..1.4).contains(&p.speed), "speed {}", p.speed);
+        assert!((1.2..1.6).contains(&p.stride), "stride {}", p.stride);
+        assert!((0.55..0.7).contains(&p.duty));
+    }
+
+    #[test]
+    fn dt_is_clamped_and_bad_dt_is_a_no_op() {
+        assert_eq!(clamp_dt(1.0), MAX_STEP_DT);
+        assert_eq!(clamp_dt(f32::NAN), 0.0);
+        assert_eq!(clamp_dt(-1.0), 0.0);
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 5.0).unwrap();
+        let mods = GaitModifiers::default();
+        let mut gait = Gait::new(&body, &path, &mods);
+        let before = gait.clone();
+        gait_stage(&mut gait, &body, &path, &mods, 0.0);
+        assert_eq!(gait.distance, before.distance);
+        gait_stage(&mut gait, &body, &path, &mods, 100.0);
+        assert!((gait.distance - gait.params.speed * MAX_STEP_DT).abs() < 1e-5);
+    }
+
+    #[test]
+    fn walk_stops_at_the_end_with_both_feet_planted() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 3.0).unwrap();
+        let mods = GaitModifiers::default();
+        let mut gait = Gait::new(&body, &path, &mods);
+        for _ in 0..600 {
+            gait_stage(&mut gait, &body, &path, &mods, 1.0 / 60.0);
+        }
+        assert!(gait.stopped);
+        assert!(gait.double_support());
+        for f in &gait.feet {
+            assert!((f.target.y - 3.0).abs() < 0.5 * gait.params.stride);
+        }
+    }
+}

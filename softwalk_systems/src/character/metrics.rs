@@ -1,0 +1,59 @@
+//! What one character step records, for tests, plots and the paper's claims.
+
+use glam::Vec3;
+
+use super::balance::RigidProxy;
+use super::body::CharacterBody;
+use super::foot_ik::FootIK;
+use super::pose::Pose;
+use super::skeleton::Joint;
+use crate::foot::FootState;
+
+/// Measurements of one character after a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CharacterMetrics {
+    /// Whole-body centre of mass of the final pose (world).
+    pub com: Vec3,
+    /// Forward lean of the proxy, radians (positive: towards the walking direction).
+    pub tilt: f32,
+    /// Rate of the forward lean, rad/s.
+    pub tilt_rate: f32,
+    /// Controller torque of eq. 1, forward positive, N·m.
+    pub torque: f32,
+    /// Height of the pelvis (hip centre), metres.
+    pub pelvis_y: f32,
+    /// Sole centre of each foot (left first).
+    pub feet: [Vec3; 2],
+    /// Whether each foot is planted.
+    pub contact: [bool; 2],
+    /// Height of each foot's IK target (sole centre: ground key plus swing lift).
+    pub ik_target_y: [f32; 2],
+    /// Knee flexion of each leg, radians (0 = straight).
+    pub knee_flexion: [f32; 2],
+    /// Ground slope under the pelvis along the walking direction, radians (uphill positive).
+    pub ground_slope: f32,
+}
+
+impl CharacterMetrics {
+    /// Reads the metrics from the outputs of a step.
+    pub fn capture(
+        body: &CharacterBody,
+        pose: &Pose,
+        proxy: &RigidProxy,
+        ik: &FootIK,
+        feet: &[FootState; 2],
+    ) -> Self {
+        CharacterMetrics {
+            com: pose.center_of_mass(body),
+            tilt: proxy.tilt,
+            tilt_rate: proxy.tilt_rate,
+            torque: proxy.torque,
+            pelvis_y: pose.joint(Joint::Pelvis).y,
+            feet: feet.map(|f| f.sole.center()),
+            contact: feet.map(|f| f.contact),
+            ik_target_y: ik.sole_targets.map(|t| t.y),
+            knee_flexion: pose.knee_flexion(),
+            ground_slope: proxy.slope,
+        }
+    }
+}

@@ -1,0 +1,251 @@
+//! The path a character walks: straight runs and circular arcs, optionally looped.
+
+use glam::{Vec2, Vec3};
+
+use super::error::CharacterError;
+
+/// One piece of a [`WalkPath`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PathSegment {
+    /// A straight run of this length (m).
+    Straight {
+        /// Length in metres (> 0).
+        length: f32,
+    },
+    /// A circular arc; positive `angle` turns left (seen from above), negative right.
+    Arc {
+        /// Radius in metres (> 0).
+        radius: f32,
+        /// Turn angle in radians (non-zero).
+        angle: f32,
+    },
+}
+
+impl PathSegment {
+    fn length(&self) -> f32 {
+        match *self {
+            PathSegment::Straight { length } => length,
+            PathSegment::Arc { radius, angle } => radius * angle.abs(),
+        }
+    }
+}
+
+/// A point on the path: position on the XZ plane and unit heading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathPoint {
+    /// Position (x, z).
+    pub position: Vec2,
+    /// Unit walking direction (x, z).
+    pub heading: Vec2,
+}
+
+impl PathPoint {
+    /// The heading as a horizontal 3D vector.
+    pub fn heading3(&self) -> Vec3 {
+        Vec3::new(self.heading.x, 0.0, self.heading.y)
+    }
+
+    /// The character's right, horizontal: heading × up.
+    pub fn right3(&self) -> Vec3 {
+        self.heading3().cross(Vec3::Y)
+    }
+}
+
+/// A walk path on the ground plane, parametrised by distance walked.
+///
+/// Before its start the path extends straight backwards; after its end it
+/// stays at the end point, unless `looped`, when the distance wraps around
+/// (a looped path should end where it starts, heading the same way).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WalkPath {
+    segments: Vec<PathSegment>,
+    starts: Vec<PathPoint>,
+    start_distance: Vec<f32>,
+    length: f32,
+    looped: bool,
+}
+
+impl WalkPath {
+    /// A path from `start` (its y is ignored) heading along `direction` (horizontal part used).
+    pub fn new(
+        start: Vec3,
+        direction: Vec3,
+        segments: Vec<PathSegment>,
+        looped: bool,
+    ) -> Result<Self, CharacterError> {
+        let bad = |field, reason: String| Err(CharacterError::InvalidPath { field, reason });
+        if !start.is_finite() {
+            return bad("start", format!("{start} is not finite"));
+        }
+        let Some(heading) = Vec2::new(direction.x, direction.z).try_normalize() else {
+            return bad(
+                "direction",
+                format!("{direction} has no finite horizontal part"),
+            );
+        };
+        if segments.is_empty() {
+            return bad("segments", "a path needs at least one segment".into());
+        }
+        let mut here = PathPoint {
+            position: Vec2::new(start.x, start.z),
+            heading,
+        };
+        let mut starts = Vec::with_capacity(segments.len());
+        let mut start_distance = Vec::with_capacity(segments.len());
+        let mut length = 0.0;
+        for seg in &segments {
+            let ok = match *seg {
+                PathSegment::Straight { length } => length.is_finite() && length > 0.0,
+                PathSegment::Arc { radius, angle } => {
+                    radius.is_finite() && radius > 0.0 && angle.is_finite() && angle != 0.0
+                }
+            };
+            if !ok {
+                return bad("segments", format!("{seg:?} needs finite positive sizes"));
+            }
+            starts.push(here);
+            start_distance.push(length);
+            here = advance(here, seg, seg.length());
+            length += seg.length();
+        }
+        Ok(WalkPath {
+            segments,
+            starts,
+            start_distance,
+            length,
+            looped,
+        })
+    }
+
+    /// A straight path of `length` metres from `start` along `direction`.
+    pub fn straight(start: Vec3, direction: Vec3, length: f32) -> Result<Self, CharacterError> {
+        Self::new(
+            start,
+            direction,
+            vec![PathSegment::Straight { length }],
+            false,
+        )
+    }
+
+    /// A looped circle of `radius` through `start`, heading along `direction`, turning left.
+    pub fn circle(start: Vec3, direction: Vec3, radius: f32) -> Result<Self, CharacterError> {
+        let arc = PathSegment::Arc {
+            radius,
+            angle: std::f32::consts::TAU,
+        };
+        Self::new(start, direction, vec![arc], true)
+    }
+
+    /// Total length in metres.
+    pub fn length(&self) -> f32 {
+        self.length
+    }
+
+    /// Whether the distance wraps around at the end.
+    pub fn is_looped(&self) -> bool {
+        self.looped
+    }
+
+    /// True when `distance` has reached the end of a path that does not loop.
+    pub fn is_finished(&self, distance: f32) -> bool {
+        !self.looped && distance >= self.length
+    }
+
+    /// Position and heading after walking `distance` metres.
+    pub fn point_at(&self, distance: f32) -> PathPoint {
+        let s = if self.looped {
+            distance.rem_euclid(self.length)
+        } else {
+            distance.min(self.length)
+        };
+        if s < 0.0 {
+            let p = self.starts[0];
+            return PathPoint {
+                position: p.position + p.heading * s,
+                heading: p.heading,
+            };
+        }
+        let k = self.start_distance.partition_point(|&d| d <= s).max(1) - 1;
+        advance(
+            self.starts[k],
+            &self.segments[k],
+            s - self.start_distance[k],
+        )
+    }
+}
+
+/// Walks `along` metres on `seg` from `from`.
+fn advance(from: PathPoint, seg: &PathSegment, along: f32) -> PathPoint {
+    match *seg {
+        PathSegment::Straight { .. } => PathPoint {
+            position: from.position + from.heading * along,
+            heading: from.heading,
+        },
+        PathSegment::Arc { radius, angle } => {
+            // Left of heading (x, z) seen from above with Y up is (z, -x).
+            let left = Vec2::new(from.heading.y, -from.heading.x) * angle.signum();
+            let turn = along / radius;
+            let (s, c) = turn.sin_cos();
+            PathPoint {
+                position: from.position + (from.heading * s + left * (1.0 - c)) * radius,
+                heading: (from.heading * c + left * s).normalize(),
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn straight_path_clamps_and_extends_backwards() {
+        let p = WalkPath::straight(Vec3::ZERO, Vec3::Z, 4.0).unwrap();
+        assert_eq!(p.point_at(2.0).position, Vec2::new(0.0, 2.0));
+        assert_eq!(p.point_at(9.0).position, Vec2::new(0.0, 4.0));
+        assert_eq!(p.point_at(-1.0).position, Vec2::new(0.0, -1.0));
+        assert!(p.is_finished(4.0) && !p.is_finished(3.9));
+    }
+
+    #[test]
+    fn left_arc_turns_towards_the_left() {
+        // Facing +Z with Y up, the character's left is +X.
+        let quarter = PathSegment::Arc {
+            radius: 2.0,
+            angle: std::f32::consts::FRAC_PI_2,
+        };
+        let p = WalkPath::new(Vec3::ZERO, Vec3::Z, vec![quarter], false).unwrap();
+        let end = p.point_at(p.length());
+        assert!((end.position - Vec2::new(2.0, 2.0)).length() < 1e-4);
+        assert!((end.heading - Vec2::X).length() < 1e-4);
+        assert!((p.point_at(0.0).right3() - Vec3::NEG_X).length() < 1e-6);
+    }
+
+    #[test]
+    fn circle_loops_back_to_its_start() {
+        let p = WalkPath::circle(Vec3::new(1.0, 0.0, 0.0), Vec3::Z, 3.0).unwrap();
+        let a = p.point_at(0.5);
+        let b = p.point_at(0.5 + p.length());
+        assert!((a.position - b.position).length() < 1e-3);
+    }
+
+    #[test]
+    fn bad_paths_are_refused_by_field() {
+        let e = WalkPath::straight(Vec3::ZERO, Vec3::Y, 1.0).unwrap_err();
+        assert!(matches!(
+            e,
+            CharacterError::InvalidPath {
+                field: "direction",
+                ..
+            }
+        ));
+        let e = WalkPath::straight(Vec3::ZERO, Vec3::Z, f32::NAN).unwrap_err();
+        assert!(matches!(
+            e,
+            CharacterError::InvalidPath {
+                field: "segments",
+                ..
+            }
+        ));
+    }
+}
