@@ -42,4 +42,3 @@ pub use query::{
 };
 pub use query_iter::{QueryBorrow, QueryIter};
 pub use world::World;
-

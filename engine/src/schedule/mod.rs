@@ -19,4 +19,3 @@ pub use app::App;
 pub use error::{AppError, ScheduleError};
 pub use schedule::{BoxedSystem, Schedule, SetConfig, SystemConfig};
 pub use time::Time;
-
