@@ -144,17 +144,13 @@ impl World {
     /// Adds the components of `bundle` to `entity`; components it already has are replaced.
     pub fn insert<B: Bundle>(&mut self, entity: Entity, bundle: B) -> Result<(), EcsError> {
         let location = self.location(entity)?;
-        let target = self.bundle_target::<B>(location.archetype)?;
-        let row = location.row as usize;
+        let edge = self.add_edge::<B>(location.archetype)?;
+        let (target, row) = (edge.target, location.row as usize);
         if target == location.archetype {
             bundle.overwrite(&mut self.archetypes[target as usize], row);
             return Ok(());
         }
-        let overlaps = self.archetypes[location.archetype as usize]
-            .add_edges
-            .iter()
-            .any(|edge| edge.bundle == TypeId::of::<B>() && edge.overlaps);
-        let replaced: Vec<TypeId> = if overlaps {
+        let replaced: Vec<TypeId> = if edge.overlaps {
             B::component_types().iter().map(|t| t.type_id).collect()
         } else {
             Vec::new()
@@ -177,24 +173,13 @@ impl World {
     /// Fails without change if the entity lacks any of them.
     pub fn remove<B: Bundle>(&mut self, entity: Entity) -> Result<B, EcsError> {
         let location = self.location(entity)?;
-        let source = &self.archetypes[location.archetype as usize];
-        if let Some(missing) = unique_types::<B>()?
-            .into_iter()
-            .find(|t| !source.has(t.type_id))
-        {
-            return Err(EcsError::MissingComponent {
-                entity,
-                type_name: missing.type_name,
-            });
-        }
-        let target = self.remove_target::<B>(location.archetype);
+        let target = self.remove_target::<B>(entity, location.archetype)?;
         let removed = B::take_from(
             &mut self.archetypes[location.archetype as usize],
             location.row as usize,
         );
-        // The bundle's columns are already swap-removed; the rest move.
-        let bundle_types: Vec<TypeId> = B::component_types().iter().map(|t| t.type_id).collect();
-        self.move_remaining(location, target, &bundle_types);
+        // The bundle's columns (absent from the target) are already taken; the rest move.
+        self.move_entity(location, target, |_| false);
         Ok(removed)
     }
 
@@ -398,13 +383,18 @@ impl World {
 
     /// The archetype reached from `source` by adding bundle `B` (cached edge).
     fn bundle_target<B: Bundle>(&mut self, source: u32) -> Result<u32, EcsError> {
+        self.add_edge::<B>(source).map(|edge| edge.target)
+    }
+
+    /// The cached transition from `source` by adding bundle `B`.
+    fn add_edge<B: Bundle>(&mut self, source: u32) -> Result<Edge, EcsError> {
         let bundle = TypeId::of::<B>();
         if let Some(edge) = self.archetypes[source as usize]
             .add_edges
             .iter()
             .find(|e| e.bundle == bundle)
         {
-            return Ok(edge.target);
+            return Ok(*edge);
         }
         let added = unique_types::<B>()?;
         let source_archetype = &self.archetypes[source as usize];
@@ -412,30 +402,40 @@ impl World {
         let mut types: Vec<ComponentType> = source_archetype.columns.iter().map(|c| c.ty).collect();
         types.extend(added.iter().filter(|t| !source_archetype.has(t.type_id)));
         let target = self.archetype_with(types);
-        self.archetypes[source as usize].add_edges.push(Edge {
+        let edge = Edge {
             bundle,
             target,
             overlaps,
-        });
-        Ok(target)
+        };
+        self.archetypes[source as usize].add_edges.push(edge);
+        Ok(edge)
     }
 
-    /// The archetype reached from `source` by removing bundle `B` (cached edge).
-    fn remove_target<B: Bundle>(&mut self, source: u32) -> u32 {
+    /// The archetype reached from `source` by removing bundle `B` (cached
+    /// edge). An edge exists only once `source` was checked to hold every
+    /// type of `B`, so the check runs once per archetype and bundle.
+    fn remove_target<B: Bundle>(&mut self, entity: Entity, source: u32) -> Result<u32, EcsError> {
         let bundle = TypeId::of::<B>();
-        if let Some(edge) = self.archetypes[source as usize]
+        let source_archetype = &self.archetypes[source as usize];
+        if let Some(edge) = source_archetype
             .remove_edges
             .iter()
             .find(|e| e.bundle == bundle)
         {
-            return edge.target;
+            return Ok(edge.target);
         }
-        let removed: Vec<TypeId> = B::component_types().iter().map(|t| t.type_id).collect();
-        let types: Vec<ComponentType> = self.archetypes[source as usize]
+        let removed = unique_types::<B>()?;
+        if let Some(missing) = removed.iter().find(|t| !source_archetype.has(t.type_id)) {
+            return Err(EcsError::MissingComponent {
+                entity,
+                type_name: missing.type_name,
+            });
+        }
+        let types: Vec<ComponentType> = source_archetype
             .columns
             .iter()
             .map(|c| c.ty)
-            .filter(|t| !removed.contains(&t.type_id))
+            .filter(|t| !removed.iter().any(|r| r.type_id == t.type_id))
             .collect();
         let target = self.archetype_with(types);
         self.archetypes[source as usize].remove_edges.push(Edge {
@@ -443,7 +443,7 @@ impl World {
             target,
             overlaps: false,
         });
-        target
+        Ok(target)
     }
 
     /// The archetype with exactly these types, created if needed.
@@ -477,9 +477,11 @@ impl World {
         id
     }
 
-    /// Moves an entity's row from its archetype to `target`: columns for which
-    /// `drop_it` holds are dropped, the others move. The caller then pushes the
-    /// target's remaining columns (the added bundle).
+    /// Moves an entity's row from its archetype to `target`. Columns the
+    /// target lacks must already have been swap-removed by the caller (a
+    /// removed bundle); of the others, those for which `drop_it` holds are
+    /// dropped (replaced by an inserted bundle) and the rest move. The caller
+    /// then pushes any target columns still short of a row.
     fn move_entity(&mut self, from: Location, target: u32, drop_it: impl Fn(TypeId) -> bool) {
         let row = from.row as usize;
         let [source, destination] = self
@@ -487,38 +489,15 @@ impl World {
             .get_disjoint_mut([from.archetype as usize, target as usize])
             .expect("source and target archetypes differ");
         for column in &mut source.columns {
+            let Some(index) = destination.column_index(column.ty.type_id) else {
+                continue;
+            };
             let data = column.data.get_exclusive();
             if drop_it(column.ty.type_id) {
                 data.swap_remove_drop(row);
             } else {
-                let index = destination
-                    .column_index(column.ty.type_id)
-                    .expect("target has the moved type");
                 data.swap_remove_into(row, &mut **destination.columns[index].data.get_exclusive());
             }
-        }
-        self.finish_move(from, target);
-    }
-
-    /// Like [`World::move_entity`] when the columns of `already_taken` were
-    /// swap-removed by the caller.
-    fn move_remaining(&mut self, from: Location, target: u32, already_taken: &[TypeId]) {
-        let row = from.row as usize;
-        let [source, destination] = self
-            .archetypes
-            .get_disjoint_mut([from.archetype as usize, target as usize])
-            .expect("source and target archetypes differ");
-        for column in &mut source.columns {
-            if already_taken.contains(&column.ty.type_id) {
-                continue;
-            }
-            let index = destination
-                .column_index(column.ty.type_id)
-                .expect("target has the moved type");
-            column
-                .data
-                .get_exclusive()
-                .swap_remove_into(row, &mut **destination.columns[index].data.get_exclusive());
         }
         self.finish_move(from, target);
     }
