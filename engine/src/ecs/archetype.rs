@@ -1,0 +1,148 @@
+//! Archetypes: tables holding every entity with exactly one set of component types.
+
+use std::any::{Any, TypeId};
+
+use super::borrow::SharedCell;
+use super::column::Column;
+use super::entity::Entity;
+
+/// Identity of a component type, as listed by a bundle.
+#[derive(Clone, Copy, Debug)]
+pub struct ComponentType {
+    pub(crate) type_id: TypeId,
+    pub(crate) type_name: &'static str,
+    pub(crate) new_column: fn() -> Box<dyn Column>,
+}
+
+impl ComponentType {
+    /// The identity of component type `T`.
+    pub fn of<T: Send + Sync + 'static>() -> Self {
+        ComponentType {
+            type_id: TypeId::of::<T>(),
+            type_name: std::any::type_name::<T>(),
+            new_column: || Box::new(Vec::<T>::new()),
+        }
+    }
+}
+
+pub(crate) struct ArchetypeColumn {
+    pub ty: ComponentType,
+    /// Index of the component type's borrow flag in the world.
+    pub component_id: usize,
+    pub data: SharedCell<Box<dyn Column>>,
+}
+
+/// A cached structural transition: adding or removing one bundle type.
+#[derive(Clone, Copy)]
+pub(crate) struct Edge {
+    pub bundle: TypeId,
+    pub target: u32,
+    /// Adding: the source already has some of the bundle's types.
+    pub overlaps: bool,
+}
+
+/// A table of entities that share exactly one set of component types: one
+/// column per type, one row per entity. Rows are dense; despawning or moving
+/// an entity swaps the last row into the hole.
+pub struct Archetype {
+    /// Sorted by `TypeId`.
+    pub(crate) columns: Vec<ArchetypeColumn>,
+    pub(crate) entities: Vec<Entity>,
+    pub(crate) add_edges: Vec<Edge>,
+    pub(crate) remove_edges: Vec<Edge>,
+}
+
+impl Archetype {
+    /// `columns` must be sorted by type id without duplicates.
+    pub(crate) fn new(columns: Vec<ArchetypeColumn>) -> Self {
+        Archetype {
+            columns,
+            entities: Vec::new(),
+            add_edges: Vec::new(),
+            remove_edges: Vec::new(),
+        }
+    }
+
+    /// Number of rows (entities).
+    pub fn len(&self) -> usize {
+        self.entities.len()
+    }
+
+    /// Whether the archetype has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.entities.is_empty()
+    }
+
+    /// Whether the archetype stores component `type_id`.
+    pub fn has(&self, type_id: TypeId) -> bool {
+        self.column_index(type_id).is_some()
+    }
+
+    /// The entities, in row order.
+    pub fn entities(&self) -> &[Entity] {
+        &self.entities
+    }
+
+    pub(crate) fn column_index(&self, type_id: TypeId) -> Option<usize> {
+        self.columns
+            .binary_search_by_key(&type_id, |c| c.ty.type_id)
+            .ok()
+    }
+
+    pub(crate) fn type_ids(&self) -> impl Iterator<Item = TypeId> + '_ {
+        self.columns.iter().map(|c| c.ty.type_id)
+    }
+
+    /// Typed exclusive access to the column of `T`.
+    pub(crate) fn column_mut<T: 'static>(&mut self) -> Option<&mut Vec<T>> {
+        let index = self.column_index(TypeId::of::<T>())?;
+        let column: &mut dyn Any = &mut **self.columns[index].data.get_exclusive();
+        column.downcast_mut::<Vec<T>>()
+    }
+
+    /// Typed shared access to the column of `T`.
+    ///
+    /// # Safety
+    /// The caller holds a shared borrow of `T`'s flag (or `&World` with no
+    /// mutable borrow possible) for the returned lifetime.
+    pub(crate) unsafe fn column_slice<T: 'static>(&self) -> Option<&[T]> {
+        let index = self.column_index(TypeId::of::<T>())?;
+        // SAFETY: forwarded to the caller: a shared borrow of `T` is held.
+        let column: &dyn Any = unsafe { &**self.columns[index].data.get() };
+        column.downcast_ref::<Vec<T>>().map(Vec::as_slice)
+    }
+
+    /// Typed mutable access to the column of `T` through `&self`.
+    ///
+    /// # Safety
+    /// The caller holds the unique borrow of `T`'s flag (or `&mut World`) for
+    /// the returned lifetime, and takes no other reference to this column.
+    #[allow(clippy::mut_from_ref)] // guarded by the runtime borrow flag, see `# Safety`
+    pub(crate) unsafe fn column_slice_mut<T: 'static>(&self) -> Option<&mut [T]> {
+        let index = self.column_index(TypeId::of::<T>())?;
+        // SAFETY: forwarded to the caller: the unique borrow of `T` is held.
+        let column: &mut dyn Any = unsafe { &mut **self.columns[index].data.get_mut() };
+        column.downcast_mut::<Vec<T>>().map(Vec::as_mut_slice)
+    }
+
+    pub(crate) fn reserve(&mut self, additional: usize) {
+        self.entities.reserve(additional);
+        for column in &mut self.columns {
+            column.data.get_exclusive().reserve(additional);
+        }
+    }
+
+    /// Drops every component of `row`; returns the entity moved into `row`, if any.
+    pub(crate) fn swap_remove_drop(&mut self, row: usize) -> Option<Entity> {
+        for column in &mut self.columns {
+            column.data.get_exclusive().swap_remove_drop(row);
+        }
+        self.swap_remove_entity(row)
+    }
+
+    /// Removes `row` from the entity list; returns the entity moved into `row`, if any.
+    pub(crate) fn swap_remove_entity(&mut self, row: usize) -> Option<Entity> {
+        self.entities.swap_remove(row);
+        self.entities.get(row).copied()
+    }
+}

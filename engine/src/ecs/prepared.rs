@@ -1,0 +1,108 @@
+//! Prepared (cached) queries: the list of matching archetypes is kept and
+//! extended incrementally when new archetypes appear.
+
+use std::marker::PhantomData;
+
+use super::error::EcsError;
+use super::query::{Access, Query, QueryFilter, archetype_matches};
+use super::query_iter::{ArchetypeCursor, QueryBorrow, QueryIter};
+use super::world::World;
+
+/// A query whose matching archetypes are cached between runs.
+///
+/// ```
+/// use engine::ecs::{PreparedQuery, World, With};
+/// struct Speed(f32);
+/// struct Fast;
+/// let mut world = World::new();
+/// world.spawn((Speed(1.0), Fast));
+/// world.spawn((Speed(2.0),));
+/// let mut fast = PreparedQuery::<&mut Speed, With<Fast>>::new();
+/// for speed in fast.query_mut(&mut world) {
+///     speed.0 *= 10.0;
+/// }
+/// let total: f32 = fast.query(&world).iter().map(|s| s.0).sum();
+/// assert_eq!(total, 10.0);
+/// ```
+pub struct PreparedQuery<Q: Query, F: QueryFilter = ()> {
+    world_id: Option<u64>,
+    seen: usize,
+    matching: Vec<u32>,
+    accesses: Vec<Access>,
+    _marker: PhantomData<fn() -> (Q, F)>,
+}
+
+impl<Q: Query, F: QueryFilter> Default for PreparedQuery<Q, F> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<Q: Query, F: QueryFilter> PreparedQuery<Q, F> {
+    /// An empty cache; it fills on first use.
+    pub fn new() -> Self {
+        let mut accesses = Vec::new();
+        Q::access(&mut accesses);
+        PreparedQuery {
+            world_id: None,
+            seen: 0,
+            matching: Vec::new(),
+            accesses,
+            _marker: PhantomData,
+        }
+    }
+
+    /// Scans only archetypes created since the last use (all of them if the world changed).
+    fn update(&mut self, world: &World) {
+        if self.world_id != Some(world.id()) {
+            self.world_id = Some(world.id());
+            self.seen = 0;
+            self.matching.clear();
+        }
+        let archetypes = world.archetypes();
+        for (index, archetype) in archetypes.iter().enumerate().skip(self.seen) {
+            if archetype_matches::<Q, F>(archetype) {
+                self.matching.push(index as u32);
+            }
+        }
+        self.seen = archetypes.len();
+    }
+
+    /// Borrows the components and returns the query; panics with the borrow
+    /// error's message on a conflict (see [`PreparedQuery::try_query`]).
+    pub fn query<'q>(&'q mut self, world: &'q World) -> QueryBorrow<'q, Q, F> {
+        self.try_query(world)
+            .unwrap_or_else(|error| panic!("{error}"))
+    }
+
+    /// Borrows the components and returns the query, or the borrow conflict.
+    pub fn try_query<'q>(
+        &'q mut self,
+        world: &'q World,
+    ) -> Result<QueryBorrow<'q, Q, F>, EcsError> {
+        self.update(world);
+        let guard = world.acquire(&self.accesses)?;
+        Ok(QueryBorrow::new(
+            world.archetypes(),
+            ArchetypeCursor::Cached(self.matching.iter()),
+            guard,
+        ))
+    }
+
+    /// Iterates with exclusive access to the world (no runtime borrow checks).
+    ///
+    /// # Panics
+    /// If `Q` names a component twice with at least one `&mut`.
+    pub fn query_mut<'q>(&'q mut self, world: &'q mut World) -> QueryIter<'q, Q, F> {
+        World::check_aliasing(&self.accesses).unwrap_or_else(|error| panic!("{error}"));
+        self.update(world);
+        // SAFETY: `&mut World` excludes every other borrow, and `Q` does not
+        // alias itself (checked above).
+        unsafe {
+            QueryIter::new(
+                world.archetypes(),
+                ArchetypeCursor::Cached(self.matching.iter()),
+            )
+        }
+    }
+}

@@ -1,0 +1,192 @@
+//! Query borrows and iterators: sequential and parallel walks over matching archetypes.
+
+use std::marker::PhantomData;
+
+use rayon::prelude::*;
+
+use super::archetype::Archetype;
+use super::borrow::BorrowFlag;
+use super::query::{Fetch, Query, QueryFilter, archetype_matches};
+
+/// Runtime borrows held by a live query, released on drop.
+pub(crate) struct BorrowGuard<'w> {
+    pub(crate) held: Vec<(&'w BorrowFlag, bool)>,
+}
+
+impl Drop for BorrowGuard<'_> {
+    fn drop(&mut self) {
+        for (flag, mutable) in &self.held {
+            flag.release(*mutable);
+        }
+    }
+}
+
+/// Which archetypes a query visits.
+#[derive(Clone)]
+pub(crate) enum ArchetypeCursor<'q> {
+    /// Every archetype in the range, checking each against the query.
+    Scan(std::ops::Range<usize>),
+    /// A precomputed list of matching archetypes (from a prepared query).
+    Cached(std::slice::Iter<'q, u32>),
+}
+
+/// A live query on a `&World`: holds the runtime borrows of the components it
+/// accesses until dropped. Iterate with [`QueryBorrow::iter`] or
+/// [`QueryBorrow::par_for_each`].
+pub struct QueryBorrow<'w, Q: Query, F: QueryFilter = ()> {
+    archetypes: &'w [Archetype],
+    cursor: ArchetypeCursor<'w>,
+    _guard: BorrowGuard<'w>,
+    _marker: PhantomData<fn() -> (Q, F)>,
+}
+
+impl<'w, Q: Query, F: QueryFilter> QueryBorrow<'w, Q, F> {
+    /// `guard` must hold every borrow listed by `Q::access`.
+    pub(crate) fn new(
+        archetypes: &'w [Archetype],
+        cursor: ArchetypeCursor<'w>,
+        guard: BorrowGuard<'w>,
+    ) -> Self {
+        QueryBorrow {
+            archetypes,
+            cursor,
+            _guard: guard,
+            _marker: PhantomData,
+        }
+    }
+
+    /// Iterates the matching entities in archetype creation order, then row order.
+    pub fn iter(&mut self) -> QueryIter<'_, Q, F> {
+        // SAFETY: `self` holds the borrows of `Q` and is mutably borrowed for
+        // the iterator's lifetime, so no second iterator can alias its items.
+        unsafe { QueryIter::new(self.archetypes, self.cursor.clone()) }
+    }
+
+    /// Calls `f` on every matching entity, in parallel batches of `batch_size` rows
+    /// (at least 1) on the rayon pool. Batches never span archetypes. The
+    /// result does not depend on the thread count as long as `f` only writes
+    /// through its item.
+    pub fn par_for_each(&mut self, batch_size: usize, f: impl Fn(Q::Item<'_>) + Send + Sync) {
+        self.iter().par_for_each(batch_size, f);
+    }
+}
+
+impl<'a, 'w, Q: Query, F: QueryFilter> IntoIterator for &'a mut QueryBorrow<'w, Q, F> {
+    type Item = Q::Item<'a>;
+    type IntoIter = QueryIter<'a, Q, F>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+/// Iterator over a query's items: archetypes in creation order, rows in order.
+pub struct QueryIter<'q, Q: Query, F: QueryFilter = ()> {
+    archetypes: &'q [Archetype],
+    cursor: ArchetypeCursor<'q>,
+    current: Option<Q::Fetch<'q>>,
+    remaining: usize,
+    _filter: PhantomData<fn() -> F>,
+}
+
+impl<'q, Q: Query, F: QueryFilter> QueryIter<'q, Q, F> {
+    /// # Safety
+    /// The caller holds the borrows listed by `Q::access` (or `&mut World`)
+    /// for `'q`, and no other live iterator or reference aliases what `Q` writes.
+    pub(crate) unsafe fn new(archetypes: &'q [Archetype], cursor: ArchetypeCursor<'q>) -> Self {
+        QueryIter {
+            archetypes,
+            cursor,
+            current: None,
+            remaining: 0,
+            _filter: PhantomData,
+        }
+    }
+
+    fn next_archetype(&mut self) -> Option<&'q Archetype> {
+        loop {
+            let (index, checked) = match &mut self.cursor {
+                ArchetypeCursor::Scan(range) => (range.next()?, false),
+                ArchetypeCursor::Cached(list) => (*list.next()? as usize, true),
+            };
+            let archetype = &self.archetypes[index];
+            if !archetype.is_empty() && (checked || archetype_matches::<Q, F>(archetype)) {
+                return Some(archetype);
+            }
+        }
+    }
+
+    fn fetch(archetype: &'q Archetype) -> Q::Fetch<'q> {
+        // SAFETY: the archetype matches (checked by `next_archetype`), and the
+        // borrows are held for `'q` by the contract of `QueryIter::new`.
+        unsafe { Q::fetch(archetype) }
+    }
+
+    /// Calls `f` on every remaining item, in parallel batches of `batch_size` rows
+    /// (at least 1) on the rayon pool. Batches never span archetypes.
+    pub fn par_for_each(mut self, batch_size: usize, f: impl Fn(Q::Item<'q>) + Send + Sync) {
+        let batch_size = batch_size.max(1);
+        let mut batches: Vec<(Q::Fetch<'q>, usize)> = Vec::new();
+        let mut split = |mut fetch: Q::Fetch<'q>, mut rows: usize| {
+            while rows > batch_size {
+                let (head, tail) = fetch.split_at(batch_size);
+                batches.push((head, batch_size));
+                fetch = tail;
+                rows -= batch_size;
+            }
+            if rows > 0 {
+                batches.push((fetch, rows));
+            }
+        };
+        if let Some(fetch) = self.current.take() {
+            split(fetch, self.remaining);
+        }
+        while let Some(archetype) = self.next_archetype() {
+            split(Self::fetch(archetype), archetype.len());
+        }
+        batches.into_par_iter().for_each(|(mut fetch, rows)| {
+            for _ in 0..rows {
+                f(fetch.next_item());
+            }
+        });
+    }
+}
+
+impl<'q, Q: Query, F: QueryFilter> Iterator for QueryIter<'q, Q, F> {
+    type Item = Q::Item<'q>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            if self.remaining > 0 {
+                self.remaining -= 1;
+                return self.current.as_mut().map(Fetch::next_item);
+            }
+            let archetype = self.next_archetype()?;
+            self.current = Some(Self::fetch(archetype));
+            self.remaining = archetype.len();
+        }
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (self.remaining, None)
+    }
+
+    fn fold<B, G>(mut self, init: B, mut g: G) -> B
+    where
+        G: FnMut(B, Self::Item) -> B,
+    {
+        let mut acc = init;
+        if let Some(mut fetch) = self.current.take() {
+            for _ in 0..self.remaining {
+                acc = g(acc, fetch.next_item());
+            }
+        }
+        while let Some(archetype) = self.next_archetype() {
+            let mut fetch = Self::fetch(archetype);
+            for _ in 0..archetype.len() {
+                acc = g(acc, fetch.next_item());
+            }
+        }
+        acc
+    }
+}
