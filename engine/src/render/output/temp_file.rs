@@ -42,7 +42,12 @@ impl TempFile {
             std::process::id(),
             NEXT_ID.fetch_add(1, Ordering::Relaxed)
         ));
-        let file = File::create(&temp).map_err(io_err)?;
+        let file = fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create_new(true)
+            .open(&temp)
+            .map_err(io_err)?;
         Ok(Self {
             target: target.to_path_buf(),
             temp,
