@@ -73,17 +73,46 @@ fn world_helpers_project_and_skip_unprojectable_ends() {
     let mut img = blank(100, 100);
     {
         let mut overlay = Overlay::new(&mut img);
-        overlay.world_line(&project, Vec3::new(1.0, 5.0, 0.0), Vec3::new(9.0, 5.0, 0.0), RED, 2.0);
-        overlay.world_line(&project, Vec3::new(1.0, 2.0, 0.0), Vec3::new(9.0, 2.0, 1.0), RED, 2.0);
+        overlay.world_line(
+            &project,
+            Vec3::new(1.0, 5.0, 0.0),
+            Vec3::new(9.0, 5.0, 0.0),
+            RED,
+            2.0,
+        );
+        overlay.world_line(
+            &project,
+            Vec3::new(1.0, 2.0, 0.0),
+            Vec3::new(9.0, 2.0, 1.0),
+            RED,
+            2.0,
+        );
         overlay.world_circle(&project, Vec3::new(5.0, 8.0, 0.0), 6.0, BLUE, 1.5);
-        overlay.world_arrow(&project, Vec3::new(5.0, 8.0, 1.0), Vec3::new(9.0, 8.0, 0.0), BLUE, 2.0);
+        overlay.world_arrow(
+            &project,
+            Vec3::new(5.0, 8.0, 1.0),
+            Vec3::new(9.0, 8.0, 0.0),
+            BLUE,
+            2.0,
+        );
     }
     assert_eq!(img.get_pixel(50, 50), &RED, "projected line");
     for x in 15..85 {
-        assert_eq!(img.get_pixel(x, 80), &WHITE, "segment with an unprojectable end is skipped");
+        assert_eq!(
+            img.get_pixel(x, 80),
+            &WHITE,
+            "segment with an unprojectable end is skipped"
+        );
     }
-    assert!(img.get_pixel(56, 20)[2] == 255 && img.get_pixel(56, 20)[0] < 128, "circle");
-    assert_eq!(img.get_pixel(80, 20), &WHITE, "arrow from behind the camera is skipped");
+    assert!(
+        img.get_pixel(56, 20)[2] == 255 && img.get_pixel(56, 20)[0] < 128,
+        "circle"
+    );
+    assert_eq!(
+        img.get_pixel(80, 20),
+        &WHITE,
+        "arrow from behind the camera is skipped"
+    );
 }
 
 #[test]
@@ -99,19 +128,29 @@ fn world_polyline_breaks_at_unprojectable_points() {
     Overlay::new(&mut img).world_polyline(&project, &points, RED, 2.0);
     assert_eq!(img.get_pixel(25, 50), &RED);
     assert_eq!(img.get_pixel(75, 50), &RED);
-    assert_eq!(img.get_pixel(50, 50), &WHITE, "the gap around the unprojectable point");
+    assert_eq!(
+        img.get_pixel(50, 50),
+        &WHITE,
+        "the gap around the unprojectable point"
+    );
 }
 
 #[test]
 fn translucent_frames_survive_the_premultiplied_round_trip() {
-    let original = RgbaImage::from_fn(16, 16, |x, y| Rgba([(x * 16) as u8, (y * 16) as u8, 90, (x * 16 + y) as u8]));
+    let original = RgbaImage::from_fn(16, 16, |x, y| {
+        Rgba([(x * 16) as u8, (y * 16) as u8, 90, (x * 16 + y) as u8])
+    });
     let mut img = original.clone();
     Overlay::new(&mut img).line(Vec2::new(0.0, 8.0), Vec2::new(4.0, 8.0), RED, 1.0);
     for (x, y, p) in original.enumerate_pixels() {
         if x > 6 && p[3] > 64 {
             for c in 0..4 {
                 let d = (i32::from(p[c]) - i32::from(img.get_pixel(x, y)[c])).abs();
-                assert!(d <= 2, "pixel {x},{y}: {p:?} became {:?}", img.get_pixel(x, y));
+                assert!(
+                    d <= 2,
+                    "pixel {x},{y}: {p:?} became {:?}",
+                    img.get_pixel(x, y)
+                );
             }
         }
     }
@@ -123,9 +162,17 @@ fn text_is_drawn_where_asked_and_deterministically() {
     let width = draw_text(&mut a, 10.0, 8.0, 16.0, Rgba([0, 0, 0, 255]), "Soft Walks");
     assert_eq!(width, text_width(16.0, "Soft Walks"));
     assert!(width > 60.0 && width < 110.0, "{width}");
-    let inked: Vec<(u32, u32)> = a.enumerate_pixels().filter(|(_, _, p)| p[0] < 128).map(|(x, y, _)| (x, y)).collect();
+    let inked: Vec<(u32, u32)> = a
+        .enumerate_pixels()
+        .filter(|(_, _, p)| p[0] < 128)
+        .map(|(x, y, _)| (x, y))
+        .collect();
     assert!(inked.len() > 60);
-    assert!(inked.iter().all(|&(x, y)| (10..=10 + width as u32).contains(&x) && (8..28).contains(&y)));
+    assert!(
+        inked
+            .iter()
+            .all(|&(x, y)| (10..=10 + width as u32).contains(&x) && (8..28).contains(&y))
+    );
     let mut b = blank(120, 40);
     draw_text(&mut b, 10.0, 8.0, 16.0, Rgba([0, 0, 0, 255]), "Soft Walks");
     assert_eq!(a, b);
@@ -144,25 +191,37 @@ fn plot(series: Vec<Series>) -> LinePlot {
 }
 
 fn series(name: &str, points: Vec<(f32, f32)>, color: Rgba<u8>) -> Series {
-    Series { name: name.into(), points, color }
+    Series {
+        name: name.into(),
+        points,
+        color,
+    }
 }
 
 #[test]
 fn plot_draws_axes_and_curves() {
-    let ramp = (0..=40).map(|i| (i as f32 * 0.25, i as f32 * 0.1)).collect();
+    let ramp = (0..=40)
+        .map(|i| (i as f32 * 0.25, i as f32 * 0.1))
+        .collect();
     let img = plot(vec![series("ramp", ramp, RED)]).render(320, 200);
     assert!(is_opaque(&img));
     let red = |p: &Rgba<u8>| p[0] > 200 && p[1] < 60 && p[2] < 60;
     assert!(count(&img, red) > 200, "the curve is drawn");
     // The y axis: a dark vertical run in some column of the left third.
-    let axis_column = (0..107).find(|&x| (40..150).filter(|&y| img.get_pixel(x, y)[0] < 90).count() > 100);
+    let axis_column =
+        (0..107).find(|&x| (40..150).filter(|&y| img.get_pixel(x, y)[0] < 90).count() > 100);
     assert!(axis_column.is_some(), "the y axis is drawn");
     // The x axis: a dark horizontal run in some row of the lower third.
-    let axis_row = (133..200).find(|&y| (100..300).filter(|&x| img.get_pixel(x, y)[0] < 90).count() > 180);
+    let axis_row =
+        (133..200).find(|&y| (100..300).filter(|&x| img.get_pixel(x, y)[0] < 90).count() > 180);
     assert!(axis_row.is_some(), "the x axis is drawn");
     // The ramp rises: red pixels on the left sit lower than on the right.
     let mean_red_row = |xs: std::ops::Range<u32>| {
-        let rows: Vec<u32> = xs.flat_map(|x| (0..200).map(move |y| (x, y))).filter(|&(x, y)| red(img.get_pixel(x, y))).map(|(_, y)| y).collect();
+        let rows: Vec<u32> = xs
+            .flat_map(|x| (0..200).map(move |y| (x, y)))
+            .filter(|&(x, y)| red(img.get_pixel(x, y)))
+            .map(|(_, y)| y)
+            .collect();
         rows.iter().sum::<u32>() as f32 / rows.len() as f32
     };
     assert!(mean_red_row(80..100) > mean_red_row(240..260) + 30.0);
@@ -174,10 +233,27 @@ fn plot_edge_cases_render_without_panicking() {
         vec![],
         vec![series("empty", vec![], RED)],
         vec![series("one", vec![(2.0, 3.0)], RED)],
-        vec![series("flat", vec![(0.0, 5.0), (1.0, 5.0), (2.0, 5.0)], RED)],
+        vec![series(
+            "flat",
+            vec![(0.0, 5.0), (1.0, 5.0), (2.0, 5.0)],
+            RED,
+        )],
         vec![series("zero", vec![(0.0, 0.0), (1.0, 0.0)], RED)],
-        vec![series("nan", vec![(0.0, 1.0), (f32::NAN, 2.0), (2.0, f32::NAN), (3.0, 2.0), (4.0, f32::INFINITY)], RED)],
-        vec![series("all nan", vec![(f32::NAN, f32::NAN)], RED), series("", vec![(0.0, 1e9), (1.0, -1e9)], BLUE)],
+        vec![series(
+            "nan",
+            vec![
+                (0.0, 1.0),
+                (f32::NAN, 2.0),
+                (2.0, f32::NAN),
+                (3.0, 2.0),
+                (4.0, f32::INFINITY),
+            ],
+            RED,
+        )],
+        vec![
+            series("all nan", vec![(f32::NAN, f32::NAN)], RED),
+            series("", vec![(0.0, 1e9), (1.0, -1e9)], BLUE),
+        ],
         vec![series("tiny", vec![(0.0, 1e-7), (1.0, 2e-7)], BLUE)],
     ];
     for (i, s) in cases.into_iter().enumerate() {
@@ -189,23 +265,40 @@ fn plot_edge_cases_render_without_panicking() {
         }
     }
     let single = plot(vec![series("one", vec![(2.0, 3.0)], RED)]).render(200, 120);
-    assert!(count(&single, |p| p[0] > 200 && p[1] < 60) > 3, "a lone point is drawn as a dot");
+    assert!(
+        count(&single, |p| p[0] > 200 && p[1] < 60) > 3,
+        "a lone point is drawn as a dot"
+    );
 }
 
 #[test]
 fn plot_onto_a_frame_stays_inside_its_rectangle() {
     let mut frame = RgbaImage::from_pixel(200, 150, Rgba([10, 20, 30, 255]));
-    let rect = PixelRect { x: 100, y: 80, width: 90, height: 60 };
+    let rect = PixelRect {
+        x: 100,
+        y: 80,
+        width: 90,
+        height: 60,
+    };
     plot(vec![series("s", vec![(0.0, 0.0), (1.0, 1.0)], RED)]).draw_onto(&mut frame, rect);
     for (x, y, p) in frame.enumerate_pixels() {
         let inside = (100..190).contains(&x) && (80..140).contains(&y);
         if !inside {
-            assert_eq!(p, &Rgba([10, 20, 30, 255]), "pixel {x},{y} outside the rectangle");
+            assert_eq!(
+                p,
+                &Rgba([10, 20, 30, 255]),
+                "pixel {x},{y} outside the rectangle"
+            );
         }
     }
     assert_eq!(frame.get_pixel(101, 81), &WHITE);
     // A rectangle hanging over the edge is clipped to the frame.
-    let rect = PixelRect { x: 150, y: 120, width: 400, height: 400 };
+    let rect = PixelRect {
+        x: 150,
+        y: 120,
+        width: 400,
+        height: 400,
+    };
     plot(vec![]).draw_onto(&mut frame, rect);
     assert!(is_opaque(&frame));
 }

@@ -10,7 +10,8 @@ pub mod plot;
 pub mod text;
 
 pub use output::{
-    ApngWriter, GifPalette, GifWriter, OutputError, contact_sheet, save_png, save_png_gray16,
+    ApngWriter, GifPalette, GifWriter, OutputError, contact_sheet, encode_png, save_png,
+    save_png_gray16,
 };
 pub use overlay::Overlay;
 pub use plot::{LinePlot, PixelRect, Series};

@@ -57,30 +57,35 @@ pub enum SnapshotError {
         expected: PathBuf,
     },
     /// More pixels differ than the tolerance allows.
-    #[error(
-        "snapshot '{name}': {diff_pixels} pixels differ (allowed {allowed}), {aa_pixels} anti-aliased pixels forgiven, max delta {max_delta:.3} (threshold {threshold})\n  actual:   {actual}\n  expected: {expected}\n  diff:     {diff}\n  (re-run with UPDATE_SNAPSHOTS=1 to accept the actual image)"
-    )]
-    Mismatch {
-        /// Snapshot name.
-        name: String,
-        /// Pixels over the threshold that are not anti-aliasing.
-        diff_pixels: usize,
-        /// The allowed count of differing pixels.
-        allowed: usize,
-        /// Pixels over the threshold forgiven as anti-aliasing.
-        aa_pixels: usize,
-        /// Largest per-pixel delta, on the threshold's 0..=1 scale.
-        max_delta: f32,
-        /// The per-pixel threshold in use.
-        threshold: f32,
-        /// The actual image.
-        actual: PathBuf,
-        /// A copy of the golden.
-        expected: PathBuf,
-        /// The difference image (red: differs, yellow: anti-aliasing forgiven).
-        diff: PathBuf,
-    },
+    #[error(transparent)]
+    Mismatch(Box<Mismatch>),
     /// A golden or an artifact could not be written.
     #[error(transparent)]
     Write(#[from] OutputError),
+}
+
+/// The report of a snapshot that differs from its golden beyond the tolerance.
+#[derive(Debug, Error)]
+#[error(
+    "snapshot '{name}': {diff_pixels} pixels differ (allowed {allowed}), {aa_pixels} anti-aliased pixels forgiven, max delta {max_delta:.3} (threshold {threshold})\n  actual:   {actual}\n  expected: {expected}\n  diff:     {diff}\n  (re-run with UPDATE_SNAPSHOTS=1 to accept the actual image)"
+)]
+pub struct Mismatch {
+    /// Snapshot name.
+    pub name: String,
+    /// Pixels over the threshold that are not anti-aliasing.
+    pub diff_pixels: usize,
+    /// The allowed count of differing pixels.
+    pub allowed: usize,
+    /// Pixels over the threshold forgiven as anti-aliasing.
+    pub aa_pixels: usize,
+    /// Largest per-pixel delta, on the threshold's 0..=1 scale.
+    pub max_delta: f32,
+    /// The per-pixel threshold in use.
+    pub threshold: f32,
+    /// The actual image.
+    pub actual: PathBuf,
+    /// A copy of the golden.
+    pub expected: PathBuf,
+    /// The difference image (red: differs, yellow: anti-aliasing forgiven).
+    pub diff: PathBuf,
 }

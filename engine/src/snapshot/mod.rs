@@ -30,7 +30,7 @@ use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 
-pub use error::SnapshotError;
+pub use error::{Mismatch, SnapshotError};
 
 use crate::render::save_png;
 
@@ -287,7 +287,7 @@ impl Snapshot {
         save_png_creating_dir(&actual_path, actual)?;
         save_png(&expected_path, &expected)?;
         save_png(&diff_path, &comparison.diff_image)?;
-        Err(SnapshotError::Mismatch {
+        Err(SnapshotError::Mismatch(Box::new(Mismatch {
             name: self.name.clone(),
             diff_pixels: comparison.diff_pixels,
             allowed: self.tolerance.max_diff_pixels,
@@ -297,7 +297,7 @@ impl Snapshot {
             actual: actual_path,
             expected: expected_path,
             diff: diff_path,
-        })
+        })))
     }
 
     /// Checks `actual` (see [`Snapshot::check`]) and panics with the failure

@@ -33,7 +33,7 @@ fn over_white(p: &Rgba<u8>) -> [f32; 3] {
 }
 
 fn luma(c: [f32; 3]) -> f32 {
-    c[0] * 0.298_895_3 + c[1] * 0.586_622_47 + c[2] * 0.114_482_23
+    c[0] * 0.298_895_3 + c[1] * 0.586_622_5 + c[2] * 0.114_482_23
 }
 
 /// Squared YIQ distance between two pixels, negative when `b` is brighter.
@@ -42,8 +42,8 @@ fn yiq_delta(a: &Rgba<u8>, b: &Rgba<u8>) -> f32 {
     let y = luma(ca) - luma(cb);
     let i = (ca[0] - cb[0]) * 0.595_977_99
         - (ca[1] - cb[1]) * 0.274_176_1
-        - (ca[2] - cb[2]) * 0.321_801_89;
-    let q = (ca[0] - cb[0]) * 0.211_470_17 - (ca[1] - cb[1]) * 0.522_617_11
+        - (ca[2] - cb[2]) * 0.321_801_9;
+    let q = (ca[0] - cb[0]) * 0.211_470_17 - (ca[1] - cb[1]) * 0.522_617_1
         + (ca[2] - cb[2]) * 0.311_146_94;
     let delta = 0.5053 * y * y + 0.299 * i * i + 0.1957 * q * q;
     if y > 0.0 { -delta } else { delta }
