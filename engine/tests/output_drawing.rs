@@ -302,3 +302,30 @@ fn plot_onto_a_frame_stays_inside_its_rectangle() {
     plot(vec![]).draw_onto(&mut frame, rect);
     assert!(is_opaque(&frame));
 }
+
+#[test]
+fn label_draws_text_on_its_box() {
+    let mut img = RgbaImage::from_pixel(100, 40, Rgba([30, 30, 30, 255]));
+    let size = Overlay::new(&mut img).label(
+        Vec2::new(4.0, 4.0),
+        12.0,
+        Rgba([0, 0, 0, 255]),
+        WHITE,
+        "CoM 1.2",
+    );
+    assert_eq!(size.x, text_width(12.0, "CoM 1.2") + 6.0);
+    assert_eq!(img.get_pixel(5, 5), &WHITE, "box corner");
+    assert_eq!(
+        img.get_pixel(4 + size.x as u32 + 1, 5),
+        &Rgba([30, 30, 30, 255]),
+        "outside the box"
+    );
+    let dark_inside = (10..(size.x as u32)).flat_map(|x| (8..(size.y as u32)).map(move |y| (x, y)));
+    assert!(
+        dark_inside
+            .filter(|&(x, y)| img.get_pixel(x, y)[0] < 60)
+            .count()
+            > 20,
+        "text on the box"
+    );
+}

@@ -243,6 +243,27 @@ impl<'a> Overlay<'a> {
         width
     }
 
+    /// Text on a filled box (padded by a quarter of the text size), readable
+    /// on any background. Returns the box size in pixels.
+    pub fn label(
+        &mut self,
+        top_left: Vec2,
+        size_px: f32,
+        color: Rgba<u8>,
+        background: Rgba<u8>,
+        text: &str,
+    ) -> Vec2 {
+        let pad = (0.25 * size_px).round();
+        let lines = text.split('\n').count() as f32;
+        let size = Vec2::new(
+            text::text_width(size_px, text) + 2.0 * pad,
+            lines * text::line_height(size_px) + 2.0 * pad,
+        );
+        self.fill_rect(top_left, size, background);
+        self.text(top_left + Vec2::splat(pad), size_px, color, text);
+        size
+    }
+
     /// A line between two world points; skipped if either end cannot be projected.
     pub fn world_line(
         &mut self,

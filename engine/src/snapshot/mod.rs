@@ -104,16 +104,16 @@ pub enum Outcome {
     Updated(PathBuf),
 }
 
-/// The workspace root above `manifest_dir`: the highest ancestor whose
-/// `Cargo.toml` declares `[workspace]`, or `manifest_dir` itself.
+/// The workspace root of the crate at `manifest_dir`: the nearest ancestor
+/// (or itself) whose `Cargo.toml` declares `[workspace]`, or `manifest_dir`
+/// itself if there is none.
 pub fn workspace_root(manifest_dir: &Path) -> PathBuf {
     manifest_dir
         .ancestors()
-        .filter(|dir| {
+        .find(|dir| {
             std::fs::read_to_string(dir.join("Cargo.toml"))
                 .is_ok_and(|toml| toml.lines().any(|l| l.trim() == "[workspace]"))
         })
-        .last()
         .unwrap_or(manifest_dir)
         .to_path_buf()
 }
