@@ -1,0 +1,343 @@
+//! Small line plots of time series, rendered alone or onto a frame.
+
+use glam::Vec2;
+use image::{Rgba, RgbaImage};
+
+use super::overlay::Overlay;
+use super::text::{line_height, text_width};
+
+/// A rectangle of pixels: top-left corner and size.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PixelRect {
+    /// Left edge.
+    pub x: u32,
+    /// Top edge.
+    pub y: u32,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+/// One named curve of a [`LinePlot`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Name shown in the legend.
+    pub name: String,
+    /// `(x, y)` samples in drawing order; points with a non-finite coordinate
+    /// are skipped and break the curve.
+    pub points: Vec<(f32, f32)>,
+    /// Curve colour.
+    pub color: Rgba<u8>,
+}
+
+/// A line plot with axes, ticks, grid and legend.
+///
+/// ```
+/// use engine::render::{LinePlot, Series};
+/// use image::Rgba;
+/// let plot = LinePlot {
+///     title: "pelvis height".into(),
+///     x_label: "time (s)".into(),
+///     y_label: "height (m)".into(),
+///     series: vec![Series {
+///         name: "sand".into(),
+///         points: (0..50).map(|i| (i as f32 * 0.1, (i as f32 * 0.3).sin())).collect(),
+///         color: Rgba([200, 80, 20, 255]),
+///     }],
+/// };
+/// let img = plot.render(320, 200);
+/// assert_eq!(img.dimensions(), (320, 200));
+/// ```
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LinePlot {
+    /// Title above the plot.
+    pub title: String,
+    /// Label under the x axis.
+    pub x_label: String,
+    /// Label above the y axis.
+    pub y_label: String,
+    /// The curves.
+    pub series: Vec<Series>,
+}
+
+/// Plot background.
+const BACKGROUND: Rgba<u8> = Rgba([255, 255, 255, 255]);
+/// Axis lines, tick labels and titles.
+const INK: Rgba<u8> = Rgba([40, 40, 48, 255]);
+/// Grid lines.
+const GRID: Rgba<u8> = Rgba([225, 228, 234, 255]);
+/// Legend box fill.
+const LEGEND_FILL: Rgba<u8> = Rgba([255, 255, 255, 220]);
+
+/// An axis range with its tick positions.
+#[derive(Debug, Clone, PartialEq)]
+struct Axis {
+    min: f32,
+    max: f32,
+    ticks: Vec<f32>,
+    decimals: usize,
+}
+
+impl Axis {
+    /// A range covering `values` (finite ones) widened to round tick steps,
+    /// with about `target_ticks` ticks. Empty or constant data get a unit range.
+    fn covering(values: impl Iterator<Item = f32>, target_ticks: usize) -> Self {
+        let (mut lo, mut hi) = values
+            .filter(|v| v.is_finite())
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
+        if lo > hi {
+            (lo, hi) = (0.0, 1.0);
+        } else if hi - lo <= f32::EPSILON * lo.abs().max(hi.abs()).max(1.0) {
+            let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+            (lo, hi) = (lo - pad, hi + pad);
+        }
+        let step = nice_step((hi - lo) / target_ticks.max(1) as f32);
+        let min = (lo / step).floor() * step;
+        let max = (hi / step).ceil() * step;
+        let count = ((max - min) / step).round() as usize;
+        let ticks = (0..=count).map(|i| min + i as f32 * step).collect();
+        let decimals = (-step.log10().floor()).max(0.0) as usize;
+        Self {
+            min,
+            max,
+            ticks,
+            decimals,
+        }
+    }
+
+    /// Position of `v` in the range, 0 at `min` and 1 at `max`.
+    fn fraction(&self, v: f32) -> f32 {
+        (v - self.min) / (self.max - self.min)
+    }
+
+    /// The tick label for `v`.
+    fn label(&self, v: f32) -> String {
+        let v = if v.abs() < 1e-6 * (self.max - self.min) {
+            0.0
+        } else {
+            v
+        };
+        format!("{v:.*}", self.decimals)
+    }
+}
+
+/// The smallest step of the form 1, 2 or 5 times a power of ten not below `raw`.
+fn nice_step(raw: f32) -> f32 {
+    let magnitude = 10f32.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * magnitude)
+        .find(|&s| s >= raw * 0.999)
+        .unwrap_or(10.0 * magnitude)
+}
+
+impl LinePlot {
+    /// Renders the plot alone into a new `width` x `height` image.
+    pub fn render(&self, width: u32, height: u32) -> RgbaImage {
+        let mut image = RgbaImage::from_pixel(width, height, BACKGROUND);
+        self.draw_onto(
+            &mut image,
+            PixelRect {
+                x: 0,
+                y: 0,
+                width,
+                height,
+            },
+        );
+        image
+    }
+
+    /// Draws the plot on an opaque background into `rect` of `image` (clipped
+    /// to the image), for example as an inset on a rendered frame.
+    pub fn draw_onto(&self, image: &mut RgbaImage, rect: PixelRect) {
+        let x0 = rect.x.min(image.width()) as f32;
+        let y0 = rect.y.min(image.height()) as f32;
+        let w = (rect.width.min(image.width().saturating_sub(rect.x))) as f32;
+        let h = (rect.height.min(image.height().saturating_sub(rect.y))) as f32;
+        if w < 2.0 || h < 2.0 {
+            return;
+        }
+        let font = (h.min(w * 0.75) / 18.0).clamp(9.0, 16.0).round();
+        let line = line_height(font);
+        let y_ticks = ((h / (3.0 * line)) as usize).clamp(2, 8);
+        let x_ticks = ((w / 90.0) as usize).clamp(2, 10);
+        let xs = Axis::covering(self.finite_points().map(|p| p.0), x_ticks);
+        let ys = Axis::covering(self.finite_points().map(|p| p.1), y_ticks);
+
+        let pad = (font * 0.6).round();
+        let tick_label_width = ys
+            .ticks
+            .iter()
+            .map(|&t| text_width(font, &ys.label(t)))
+            .fold(0.0, f32::max);
+        let title_height = if self.title.is_empty() {
+            0.0
+        } else {
+            line + pad * 0.5
+        };
+        let y_label_height = if self.y_label.is_empty() { 0.0 } else { line };
+        let x_label_height = if self.x_label.is_empty() { 0.0 } else { line };
+        let left = x0 + pad + tick_label_width + pad * 0.7;
+        let right = x0 + w - pad - 0.5 * text_width(font, &xs.label(xs.max));
+        let top = y0 + pad + title_height + y_label_height + 0.5 * line;
+        let bottom = y0 + h - pad - x_label_height - line - pad * 0.3;
+        let to_px = |x: f32, y: f32| {
+            Vec2::new(
+                left + xs.fraction(x) * (right - left),
+                bottom - ys.fraction(y) * (bottom - top),
+            )
+        };
+
+        let mut overlay = Overlay::new(image);
+        overlay.fill_rect(Vec2::new(x0, y0), Vec2::new(w, h), BACKGROUND);
+        if right - left < 4.0 || bottom - top < 4.0 {
+            return;
+        }
+        // Grid and tick labels.
+        for &t in &xs.ticks {
+            let px = to_px(t, ys.min).x.round() + 0.5;
+            overlay.line(Vec2::new(px, top), Vec2::new(px, bottom), GRID, 1.0);
+            let label = xs.label(t);
+            let lw = text_width(font, &label);
+            overlay.text(
+                Vec2::new(px - 0.5 * lw, bottom + pad * 0.4),
+                font,
+                INK,
+                &label,
+            );
+        }
+        for &t in &ys.ticks {
+            let py = to_px(xs.min, t).y.round() + 0.5;
+            overlay.line(Vec2::new(left, py), Vec2::new(right, py), GRID, 1.0);
+            let label = ys.label(t);
+            let lw = text_width(font, &label);
+            overlay.text(
+                Vec2::new(left - pad * 0.5 - lw, py - 0.55 * line),
+                font,
+                INK,
+                &label,
+            );
+        }
+        // Axes.
+        let (ax, ay) = (left.round() + 0.5, bottom.round() + 0.5);
+        overlay.line(Vec2::new(ax, top), Vec2::new(ax, ay), INK, 1.0);
+        overlay.line(Vec2::new(ax, ay), Vec2::new(right, ay), INK, 1.0);
+        // Titles.
+        if !self.title.is_empty() {
+            let tw = text_width(font, &self.title);
+            overlay.text(
+                Vec2::new(x0 + 0.5 * (w - tw), y0 + pad * 0.5),
+                font,
+                INK,
+                &self.title,
+            );
+        }
+        if !self.y_label.is_empty() {
+            overlay.text(
+                Vec2::new(x0 + pad, top - 0.5 * line - y_label_height),
+                font,
+                INK,
+                &self.y_label,
+            );
+        }
+        if !self.x_label.is_empty() {
+            let tw = text_width(font, &self.x_label);
+            overlay.text(
+                Vec2::new(0.5 * (left + right - tw), y0 + h - pad - line),
+                font,
+                INK,
+                &self.x_label,
+            );
+        }
+        // Curves: runs of finite points; lone points become dots.
+        let curve_width = (font / 6.0).clamp(1.5, 2.5);
+        for series in &self.series {
+            for run in series
+                .points
+                .split(|p| !(p.0.is_finite() && p.1.is_finite()))
+            {
+                let run: Vec<Vec2> = run.iter().map(|&(x, y)| to_px(x, y)).collect();
+                match run.as_slice() {
+                    [] => {}
+                    [single] => overlay.point(*single, series.color, 2.5 * curve_width),
+                    _ => overlay.polyline(&run, series.color, curve_width),
+                }
+            }
+        }
+        self.draw_legend(&mut overlay, font, Vec2::new(right, top));
+    }
+
+    /// The legend box in the top-right corner of the plot area.
+    fn draw_legend(&self, overlay: &mut Overlay<'_>, font: f32, top_right: Vec2) {
+        let named: Vec<&Series> = self.series.iter().filter(|s| !s.name.is_empty()).collect();
+        if named.is_empty() {
+            return;
+        }
+        let line = line_height(font);
+        let swatch = 1.6 * font;
+        let pad = (0.4 * font).round();
+        let name_width = named
+            .iter()
+            .map(|s| text_width(font, &s.name))
+            .fold(0.0, f32::max);
+        let size = Vec2::new(
+            3.0 * pad + swatch + name_width,
+            2.0 * pad + line * named.len() as f32,
+        );
+        let min = top_right + Vec2::new(-size.x - pad, pad);
+        overlay.fill_rect(min, size, LEGEND_FILL);
+        overlay.rect(min, size, GRID, 1.0);
+        for (i, series) in named.iter().enumerate() {
+            let row = min + Vec2::new(pad, pad + i as f32 * line);
+            let mid = row.y + 0.5 * line;
+            overlay.line(
+                Vec2::new(row.x, mid),
+                Vec2::new(row.x + swatch, mid),
+                series.color,
+                2.0,
+            );
+            overlay.text(
+                Vec2::new(row.x + swatch + pad, row.y),
+                font,
+                INK,
+                &series.name,
+            );
+        }
+    }
+
+    /// All points with finite coordinates, over all series.
+    fn finite_points(&self) -> impl Iterator<Item = (f32, f32)> + '_ {
+        self.series
+            .iter()
+            .flat_map(|s| s.points.iter().copied())
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_steps_are_one_two_or_five_times_a_power_of_ten() {
+        assert_eq!(nice_step(0.7), 1.0);
+        assert_eq!(nice_step(1.3), 2.0);
+        assert_eq!(nice_step(3.0), 5.0);
+        assert!((nice_step(0.013) - 0.02).abs() < 1e-6);
+    }
+
+    #[test]
+    fn axis_widens_to_round_ticks_and_handles_degenerate_data() {
+        let axis = Axis::covering([0.3, 9.2].into_iter(), 5);
+        assert_eq!((axis.min, axis.max), (0.0, 10.0));
+        assert_eq!(axis.ticks.len(), 6);
+        let empty = Axis::covering(std::iter::empty(), 5);
+        assert_eq!((empty.min, empty.max), (0.0, 1.0));
+        let constant = Axis::covering([2.0, 2.0, f32::NAN].into_iter(), 4);
+        assert!(constant.min < 2.0 && constant.max > 2.0);
+        assert_eq!(constant.label(2.0), "2.0");
+    }
+}
