@@ -39,6 +39,9 @@ impl XzRect {
 
     /// True when both corners are finite and the area is positive.
     pub fn is_valid(&self) -> bool {
-        self.min.is_finite() && self.max.is_finite() && self.max.x > self.min.x && self.max.y > self.min.y
+        self.min.is_finite()
+            && self.max.is_finite()
+            && self.max.x > self.min.x
+            && self.max.y > self.min.y
     }
 }

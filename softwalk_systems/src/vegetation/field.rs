@@ -91,10 +91,7 @@ mod tests {
     #[test]
     fn direction_is_away_horizontally_and_always_down() {
         let foot = Vec3::ZERO;
-        for p in [
-            Vec3::new(0.1, 0.05, -0.02),
-            Vec3::new(-0.1, -0.05, 0.02),
-        ] {
+        for p in [Vec3::new(0.1, 0.05, -0.02), Vec3::new(-0.1, -0.05, 0.02)] {
             let t = FIELD.at(p, foot);
             assert!(t.y < 0.0, "{p} -> {t}");
             assert!(t.x * p.x > 0.0 && t.z * p.z > 0.0, "{p} -> {t}");

@@ -84,7 +84,11 @@ impl BladeGrid {
     /// Ranges of stored blade indices in the cells overlapping the square
     /// `centre ± radius` (one range per row). Every blade within `radius` of
     /// `centre` is in them; callers filter by exact distance.
-    pub fn ranges_near(&self, centre: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
+    pub fn ranges_near(
+        &self,
+        centre: Vec2,
+        radius: f32,
+    ) -> impl Iterator<Item = Range<usize>> + '_ {
         let (i0, j0) = self.cell_coords(centre - Vec2::splat(radius));
         let (i1, j1) = self.cell_coords(centre + Vec2::splat(radius));
         (j0..=j1).map(move |j| {
@@ -116,7 +120,11 @@ mod tests {
         let stored: Vec<Vec2> = order.iter().map(|&i| positions[i as usize]).collect();
         let mut sorted_order = order.clone();
         sorted_order.sort_unstable();
-        assert_eq!(sorted_order, (0..5000).collect::<Vec<u32>>(), "a permutation");
+        assert_eq!(
+            sorted_order,
+            (0..5000).collect::<Vec<u32>>(),
+            "a permutation"
+        );
         for q in 0..200 {
             // Centres inside, on the edge and outside the area; radii around the cell size.
             let centre = Vec2::new(rng.range(-4.0, 5.0), rng.range(0.0, 7.5));

@@ -68,7 +68,11 @@ pub struct GrassPatch {
 
 impl GrassPatch {
     /// Scatters `density * area` blades over `area`, roots on `ground`.
-    pub fn new(area: XzRect, settings: GrassSettings, ground: &dyn Ground) -> Result<Self, VegetationError> {
+    pub fn new(
+        area: XzRect,
+        settings: GrassSettings,
+        ground: &dyn Ground,
+    ) -> Result<Self, VegetationError> {
         Self::with_height_fn(area, settings, |x, z| {
             ground.cast_down(x, z, f32::MAX).map(|h| h.point.y)
         })
@@ -99,7 +103,7 @@ impl GrassPatch {
             });
         }
         let requested = settings.density as f64 * area.area() as f64;
-        if !(requested <= MAX_BLADES as f64) {
+        if requested.is_nan() || requested > MAX_BLADES as f64 {
             return Err(VegetationError::TooManyBlades {
                 requested,
                 limit: MAX_BLADES,
@@ -126,9 +130,11 @@ impl GrassPatch {
         let xz: Vec<Vec2> = scattered.iter().map(|b| b.root.xz()).collect();
         let (grid, order) = BladeGrid::build(area, settings.field.radius(), &xz);
         let blades: Vec<Blade> = order.iter().map(|&i| scattered[i as usize]).collect();
-        let y_range = blades.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), b| {
-            (lo.min(b.root.y), hi.max(b.root.y + b.height))
-        });
+        let y_range = blades
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), b| {
+                (lo.min(b.root.y), hi.max(b.root.y + b.height))
+            });
         Ok(Self {
             area,
             settings,
@@ -257,7 +263,11 @@ impl GrassPatch {
         let radius = self.settings.field.radius();
         let mut foot_points = std::mem::take(&mut self.foot_points);
         foot_points.clear();
-        foot_points.extend(feet.iter().copied().filter(|p| self.within_reach(*p, radius)));
+        foot_points.extend(
+            feet.iter()
+                .copied()
+                .filter(|p| self.within_reach(*p, radius)),
+        );
         let mut ranges = std::mem::take(&mut self.ranges);
         for foot in &foot_points {
             ranges.clear();
@@ -368,7 +378,10 @@ impl GrassPatch {
 
 /// The vegetation height sensed at `(x, z)` over several patches (the tallest).
 pub fn vegetation_height_at(patches: &[GrassPatch], x: f32, z: f32) -> f32 {
-    patches.iter().map(|p| p.height_at(x, z)).fold(0.0, f32::max)
+    patches
+        .iter()
+        .map(|p| p.height_at(x, z))
+        .fold(0.0, f32::max)
 }
 
 #[cfg(test)]
@@ -422,8 +435,10 @@ mod tests {
             GrassPatch::new(area, dense, &flat),
             Err(VegetationError::TooManyBlades { .. })
         ));
-        let err = GrassPatch::with_height_fn(area, GrassSettings::small(), |x, _| (x < 0.5).then_some(0.0))
-            .unwrap_err();
+        let err = GrassPatch::with_height_fn(area, GrassSettings::small(), |x, _| {
+            (x < 0.5).then_some(0.0)
+        })
+        .unwrap_err();
         assert!(matches!(err, VegetationError::NoGround { x, .. } if x >= 0.5));
     }
 

@@ -62,18 +62,28 @@ impl PlatformSettings {
     /// Checks every field; the error names the first bad one.
     pub fn validate(&self) -> Result<(), VegetationError> {
         let positive = "must be finite and > 0";
-        check("platform.height_fraction", self.height_fraction, "must be finite and in (0, 1]", |v| {
-            v > 0.0 && v <= 1.0
-        })?;
+        check(
+            "platform.height_fraction",
+            self.height_fraction,
+            "must be finite and in (0, 1]",
+            |v| v > 0.0 && v <= 1.0,
+        )?;
         check("platform.rise_time", self.rise_time, positive, |v| v > 0.0)?;
         if let PlatformDrop::Fall { speed } = self.drop {
             check("platform.drop.speed", speed, positive, |v| v > 0.0)?;
         }
-        check("platform.half_size.x", self.half_size.x, positive, |v| v > 0.0)?;
-        check("platform.half_size.y", self.half_size.y, positive, |v| v > 0.0)?;
-        check("platform.contact_tolerance", self.contact_tolerance, "must be finite and >= 0", |v| {
-            v >= 0.0
-        })
+        check("platform.half_size.x", self.half_size.x, positive, |v| {
+            v > 0.0
+        })?;
+        check("platform.half_size.y", self.half_size.y, positive, |v| {
+            v > 0.0
+        })?;
+        check(
+            "platform.contact_tolerance",
+            self.contact_tolerance,
+            "must be finite and >= 0",
+            |v| v >= 0.0,
+        )
     }
 }
 
@@ -138,7 +148,7 @@ impl VirtualPlatform {
 
     /// The platform as the foot ray sees it, or `None` when there is none.
     pub fn top(&self, settings: &PlatformSettings) -> Option<PlatformTop> {
-        (self.phase != PlatformPhase::Idle && self.height > 0.0).then(|| PlatformTop {
+        (self.phase != PlatformPhase::Idle && self.height > 0.0).then_some(PlatformTop {
             centre: self.centre,
             half_size: settings.half_size,
             top_y: self.ground_y + self.height,
@@ -169,7 +179,9 @@ impl VirtualPlatform {
                 self.height = 0.0;
                 PlatformPhase::Rising
             }
-            PlatformPhase::Rising | PlatformPhase::Holding if max_height <= 0.0 => self.drop(settings),
+            PlatformPhase::Rising | PlatformPhase::Holding if max_height <= 0.0 => {
+                self.drop(settings)
+            }
             PlatformPhase::Rising if foot.phase == FootPhase::SwingDown => PlatformPhase::Holding,
             PlatformPhase::Rising if foot.phase == FootPhase::Stance => self.drop(settings),
             PlatformPhase::Holding if reached => self.drop(settings),
@@ -253,7 +265,13 @@ mod tests {
         assert!((p.height() - 0.3).abs() < 1e-6, "{}", p.height());
         p.update(&foot(FootPhase::SwingDown, 0.5), 0.0, 0.9, 0.05, &settings);
         assert_eq!(p.phase(), PlatformPhase::Holding);
-        p.update(&foot(FootPhase::SwingDown, 0.305), 0.0, 0.9, 0.05, &settings);
+        p.update(
+            &foot(FootPhase::SwingDown, 0.305),
+            0.0,
+            0.9,
+            0.05,
+            &settings,
+        );
         assert_eq!(p.phase(), PlatformPhase::Idle);
         assert!(p.top(&settings).is_none());
         let log: Vec<_> = p.phase_log().collect();
@@ -278,11 +296,21 @@ mod tests {
             rise_time: 0.0,
             ..PlatformSettings::default()
         };
-        assert!(s.validate().unwrap_err().to_string().contains("platform.rise_time"));
+        assert!(
+            s.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("platform.rise_time")
+        );
         let s = PlatformSettings {
             drop: PlatformDrop::Fall { speed: -1.0 },
             ..PlatformSettings::default()
         };
-        assert!(s.validate().unwrap_err().to_string().contains("platform.drop.speed"));
+        assert!(
+            s.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("platform.drop.speed")
+        );
     }
 }

@@ -53,7 +53,9 @@ impl<G: Ground + ?Sized> Ground for PlatformGround<'_, G> {
             .iter()
             .filter(|p| p.covers(x, z) && p.top_y <= from_y && p.top_y > floor)
             .map(|p| p.top_y)
-            .fold(None, |best: Option<f32>, y| Some(best.map_or(y, |b| b.max(y))));
+            .fold(None, |best: Option<f32>, y| {
+                Some(best.map_or(y, |b| b.max(y)))
+            });
         match platform_y {
             Some(y) => Some(GroundHit {
                 point: Vec3::new(x, y, z),

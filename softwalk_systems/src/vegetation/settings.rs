@@ -114,9 +114,12 @@ impl GrassSettings {
         check("field.t_max", self.field.t_max, positive, |v| v > 0.0)?;
         check("field.gamma", self.field.gamma, positive, |v| v > 0.0)?;
         check("recovery_omega", self.recovery_omega, positive, |v| v > 0.0)?;
-        check("stiffness_variation", self.stiffness_variation, fraction, |v| {
-            (0.0..1.0).contains(&v)
-        })?;
+        check(
+            "stiffness_variation",
+            self.stiffness_variation,
+            fraction,
+            |v| (0.0..1.0).contains(&v),
+        )?;
         check("break_bend", self.break_bend, positive, |v| v > 0.0)?;
         check("tread_gap", self.tread_gap, positive, |v| v > 0.0)?;
         check("broken_residual", self.broken_residual, unit, |v| {
@@ -174,9 +177,19 @@ mod tests {
         assert!(err.to_string().contains("density"), "{err}");
         let mut s = GrassSettings::small();
         s.field.gamma = f32::NAN;
-        assert!(s.validate().unwrap_err().to_string().contains("field.gamma"));
+        assert!(
+            s.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("field.gamma")
+        );
         let mut s = GrassSettings::small();
         s.treads_to_break = 0;
-        assert!(s.validate().unwrap_err().to_string().contains("treads_to_break"));
+        assert!(
+            s.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("treads_to_break")
+        );
     }
 }
