@@ -5,13 +5,13 @@ use std::collections::VecDeque;
 
 use std::ops::Range;
 
-use glam::{Vec2, Vec3, Vec3Swizzles};
+use glam::{Vec2, Vec3, Vec3Swizzles, Vec4};
 
 use super::area::XzRect;
 use super::blade::{Bend, Blade, BladeState};
 use super::error::VegetationError;
 use super::grid::BladeGrid;
-use super::recovery::time_to_settle;
+use super::recovery::{remaining_fraction, time_to_settle};
 use super::rng::SplitMix64;
 use super::settings::GrassSettings;
 use crate::foot::FootState;
@@ -52,6 +52,9 @@ pub struct GrassPatch {
     area: XzRect,
     settings: GrassSettings,
     blades: Vec<Blade>,
+    /// Hot copy of each blade's root and height `(x, y, z, height)` for the
+    /// candidate test (16 bytes a blade instead of a whole `Blade`).
+    spans: Vec<Vec4>,
     states: Vec<BladeState>,
     grid: BladeGrid,
     /// Lowest root and highest tip, to skip feet far above or below.
@@ -128,7 +131,9 @@ impl GrassPatch {
             });
         }
         let xz: Vec<Vec2> = scattered.iter().map(|b| b.root.xz()).collect();
-        let (grid, order) = BladeGrid::build(area, settings.field.radius(), &xz);
+        // Cells of half the field radius: a foot's query square then wastes
+        // less than with radius-sized cells, and rows stay contiguous slices.
+        let (grid, order) = BladeGrid::build(area, 0.5 * settings.field.radius(), &xz);
         let blades: Vec<Blade> = order.iter().map(|&i| scattered[i as usize]).collect();
         let y_range = blades
             .iter()
@@ -139,6 +144,7 @@ impl GrassPatch {
             area,
             settings,
             states: vec![BladeState::default(); blades.len()],
+            spans: blades.iter().map(|b| b.root.extend(b.height)).collect(),
             blades,
             grid,
             y_range,
@@ -302,10 +308,10 @@ impl GrassPatch {
     /// (or the blade was already handled this step).
     #[inline]
     fn blade_near(&self, i: usize, foot: Vec3, radius: f32) -> bool {
-        let b = &self.blades[i];
-        let dx = b.root.x - foot.x;
-        let dz = b.root.z - foot.z;
-        let dy = (foot.y - b.root.y).clamp(0.0, b.height) + b.root.y - foot.y;
+        let b = self.spans[i];
+        let dx = b.x - foot.x;
+        let dz = b.z - foot.z;
+        let dy = (foot.y - b.y).clamp(0.0, b.w) + b.y - foot.y;
         dx * dx + dz * dz + dy * dy < radius * radius && self.states[i].stamp != self.step
     }
 
@@ -329,11 +335,22 @@ impl GrassPatch {
         }
         state.last_push = now;
         let omega = s.recovery_omega * blade.stiffness;
-        if size >= state.bend_at(now, omega).size() {
+        // Fast path (a planted foot): the same field again on a healthy blade,
+        // whose recovering bend is `held * k <= held`: just re-anchor.
+        // A healthy recovering blade's bend is `held * k`, so its size is
+        // `|held| * k`: no need to rebuild the bend to compare.
+        let same_push = state.active && !state.broken && field == state.held;
+        let current_size = if state.broken || !state.active {
+            state.bend_at(now, omega).size()
+        } else {
+            state.held.size() * remaining_fraction(omega, (now - state.anchor_time) as f32)
+        };
+        if same_push || size >= current_size {
             state.held = field;
             state.anchor_time = now;
         }
-        let bent_too_far = state.held.tip.length() > s.break_bend * blade.stiffness * blade.height;
+        let break_at = s.break_bend * blade.stiffness * blade.height;
+        let bent_too_far = state.held.tip.length_squared() > break_at * break_at;
         if bent_too_far || state.treads >= s.treads_to_break {
             state.broken = true;
         }
