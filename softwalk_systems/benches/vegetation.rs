@@ -62,7 +62,10 @@ fn patch(blades: f32, settings: GrassSettings) -> GrassPatch {
 
 fn walk(c: &mut Criterion) {
     let mut group = c.benchmark_group("grass_deform_step");
-    for (name, settings) in [("small", GrassSettings::small()), ("medium", GrassSettings::medium())] {
+    for (name, settings) in [
+        ("small", GrassSettings::small()),
+        ("medium", GrassSettings::medium()),
+    ] {
         for blades in [100_000.0, 400_000.0] {
             let mut grass = patch(blades, settings);
             let mut step = 0u32;
