@@ -1,0 +1,490 @@
+//! `GrassPatch`: blades scattered over a rectangle, pushed by feet through the
+//! paper's deformation field, recovering in closed form, breaking when trodden.
+
+use std::collections::VecDeque;
+
+use std::ops::Range;
+
+use glam::{Vec2, Vec3, Vec3Swizzles, Vec4};
+
+use super::area::XzRect;
+use super::blade::{Bend, Blade, BladeState};
+use super::error::VegetationError;
+use super::grid::BladeGrid;
+use super::recovery::{remaining_fraction, time_to_settle};
+use super::rng::SplitMix64;
+use super::settings::GrassSettings;
+use crate::foot::FootState;
+use crate::ground::Ground;
+
+/// Most blades one patch may hold.
+pub const MAX_BLADES: usize = 1 << 26;
+
+/// Colour a broken blade fades towards (dry straw, linear RGB).
+const STRAW: [f32; 3] = [0.55, 0.48, 0.25];
+
+/// A blade ready to draw: a thin strip tapering from `width` at the root to a
+/// point at the tip, through the three points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BladePolyline {
+    /// Root, middle and tip (world).
+    pub points: [Vec3; 3],
+    /// Width at the root (metres).
+    pub width: f32,
+    /// Linear RGB colour.
+    pub colour: [f32; 3],
+}
+
+/// What one deformation step did (for tests and benchmarks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DeformStats {
+    /// Blades whose root the grid query returned (candidates).
+    pub visited: usize,
+    /// Blades the field pushed this step.
+    pub pushed: usize,
+    /// Blades that settled and left the active list this step.
+    pub retired: usize,
+}
+
+/// A patch of grass: the component the `grass_deform` system updates.
+#[derive(Debug, Clone)]
+pub struct GrassPatch {
+    area: XzRect,
+    settings: GrassSettings,
+    blades: Vec<Blade>,
+    /// Hot copy of each blade's root and height `(x, y, z, height)` for the
+    /// candidate test (16 bytes a blade instead of a whole `Blade`).
+    spans: Vec<Vec4>,
+    states: Vec<BladeState>,
+    grid: BladeGrid,
+    /// Lowest root and highest tip, to skip feet far above or below.
+    y_range: (f32, f32),
+    clock: f64,
+    step: u32,
+    active_count: usize,
+    /// Recovering blades with the time they may settle (lazy: re-queued when pushed again).
+    retire_queue: VecDeque<(u32, f64)>,
+    foot_points: Vec<Vec3>,
+    /// Scratch list of grid ranges (kept to avoid allocating each step).
+    ranges: Vec<Range<usize>>,
+}
+
+impl GrassPatch {
+    /// Scatters `density * area` blades over `area`, roots on `ground`.
+    pub fn new(
+        area: XzRect,
+        settings: GrassSettings,
+        ground: &dyn Ground,
+    ) -> Result<Self, VegetationError> {
+        Self::with_height_fn(area, settings, |x, z| {
+            ground.cast_down(x, z, f32::MAX).map(|h| h.point.y)
+        })
+    }
+
+    /// Scatters blades over `area` with roots at `ground_height(x, z)`
+    /// (`None` or a non-finite height is an error naming the point).
+    ///
+    /// ```
+    /// use glam::Vec2;
+    /// use softwalk_systems::vegetation::{GrassPatch, GrassSettings, XzRect};
+    /// let area = XzRect::new(Vec2::ZERO, Vec2::splat(2.0));
+    /// let patch = GrassPatch::with_height_fn(area, GrassSettings::small(), |_, _| Some(0.0)).unwrap();
+    /// assert_eq!(patch.blade_count(), 4000);
+    /// assert_eq!(patch.height_at(1.0, 1.0), 0.5);
+    /// assert_eq!(patch.height_at(3.0, 1.0), 0.0);
+    /// ```
+    pub fn with_height_fn(
+        area: XzRect,
+        settings: GrassSettings,
+        ground_height: impl Fn(f32, f32) -> Option<f32>,
+    ) -> Result<Self, VegetationError> {
+        settings.validate()?;
+        if !area.is_valid() {
+            return Err(VegetationError::BadArea {
+                min: area.min.to_array(),
+                max: area.max.to_array(),
+            });
+        }
+        let requested = settings.density as f64 * area.area() as f64;
+        if requested.is_nan() || requested > MAX_BLADES as f64 {
+            return Err(VegetationError::TooManyBlades {
+                requested,
+                limit: MAX_BLADES,
+            });
+        }
+        let count = requested.round() as usize;
+        let mut rng = SplitMix64::new(settings.seed);
+        let mut scattered = Vec::with_capacity(count);
+        for _ in 0..count {
+            let x = rng.range(area.min.x, area.max.x);
+            let z = rng.range(area.min.y, area.max.y);
+            let y = ground_height(x, z)
+                .filter(|y| y.is_finite())
+                .ok_or(VegetationError::NoGround { x, z })?;
+            let shade = rng.range(0.8, 1.1);
+            scattered.push(Blade {
+                root: Vec3::new(x, y, z),
+                height: rng.around(settings.height, settings.height_variation),
+                width: rng.around(settings.blade_width, 0.25),
+                stiffness: rng.around(1.0, settings.stiffness_variation),
+                colour: settings.colour.map(|c| (c * shade).min(1.0)),
+            });
+        }
+        let xz: Vec<Vec2> = scattered.iter().map(|b| b.root.xz()).collect();
+        // Cells of half the field radius: a foot's query square then wastes
+        // less than with radius-sized cells, and rows stay contiguous slices.
+        let (grid, order) = BladeGrid::build(area, 0.5 * settings.field.radius(), &xz);
+        let blades: Vec<Blade> = order.iter().map(|&i| scattered[i as usize]).collect();
+        let y_range = blades
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), b| {
+                (lo.min(b.root.y), hi.max(b.root.y + b.height))
+            });
+        Ok(Self {
+            area,
+            settings,
+            states: vec![BladeState::default(); blades.len()],
+            spans: blades.iter().map(|b| b.root.extend(b.height)).collect(),
+            blades,
+            grid,
+            y_range,
+            clock: 0.0,
+            step: 0,
+            active_count: 0,
+            retire_queue: VecDeque::new(),
+            foot_points: Vec::new(),
+            ranges: Vec::new(),
+        })
+    }
+
+    /// The rectangle the patch covers.
+    pub fn area(&self) -> XzRect {
+        self.area
+    }
+
+    /// The patch's parameters.
+    pub fn settings(&self) -> &GrassSettings {
+        &self.settings
+    }
+
+    /// The paper's `t_max` for this patch.
+    pub fn t_max(&self) -> f32 {
+        self.settings.field.t_max
+    }
+
+    /// The paper's `gamma` for this patch.
+    pub fn gamma(&self) -> f32 {
+        self.settings.field.gamma
+    }
+
+    /// Vegetation height sensed at `(x, z)`: the nominal height inside the
+    /// patch, 0 outside.
+    pub fn height_at(&self, x: f32, z: f32) -> f32 {
+        if self.area.contains(x, z) {
+            self.settings.height
+        } else {
+            0.0
+        }
+    }
+
+    /// Number of blades.
+    pub fn blade_count(&self) -> usize {
+        self.blades.len()
+    }
+
+    /// The blades (sorted by grid cell; the order is fixed at creation).
+    pub fn blades(&self) -> &[Blade] {
+        &self.blades
+    }
+
+    /// The per-blade states, parallel to [`GrassPatch::blades`].
+    pub fn states(&self) -> &[BladeState] {
+        &self.states
+    }
+
+    /// The spatial grid over the blades.
+    pub fn grid(&self) -> &BladeGrid {
+        &self.grid
+    }
+
+    /// The patch clock: seconds of simulated time so far.
+    pub fn time(&self) -> f64 {
+        self.clock
+    }
+
+    /// Blades currently bent and recovering.
+    pub fn active_count(&self) -> usize {
+        self.active_count
+    }
+
+    /// Current bend of blade `index` (displacement of its middle and tip).
+    pub fn bend(&self, index: usize) -> Bend {
+        let omega = self.settings.recovery_omega * self.blades[index].stiffness;
+        self.states[index].bend_at(self.clock, omega)
+    }
+
+    /// Root, middle and tip of blade `index` as it looks now.
+    pub fn blade_points(&self, index: usize) -> [Vec3; 3] {
+        self.blades[index].points(self.bend(index))
+    }
+
+    /// Every blade ready to draw, in storage order.
+    pub fn blade_polylines(&self) -> impl Iterator<Item = BladePolyline> + '_ {
+        (0..self.blades.len()).map(|i| {
+            let blade = &self.blades[i];
+            let colour = if self.states[i].broken {
+                std::array::from_fn(|c| 0.4 * blade.colour[c] + 0.6 * STRAW[c])
+            } else {
+                blade.colour
+            };
+            BladePolyline {
+                points: self.blade_points(i),
+                width: blade.width,
+                colour,
+            }
+        })
+    }
+
+    /// One `grass_deform` step: advances the clock by `dt` and pushes blades
+    /// with every foot. The foot position `p_f` is the sole centre.
+    pub fn deform(&mut self, feet: &[FootState], dt: f32) -> DeformStats {
+        let points: Vec<Vec3> = feet.iter().map(|f| f.sole.center()).collect();
+        self.deform_points(&points, dt)
+    }
+
+    /// One step with explicit foot positions `p_f` (world).
+    ///
+    /// Each blade within reach of a foot gets the combined field of all feet
+    /// at its upright middle and tip. Its bend becomes the larger (by
+    /// `|mid| + |tip|`) of the field and its current recovering bend; a larger
+    /// field re-anchors the recovery at this time. Blades not reached are not
+    /// visited: their recovery is evaluated in closed form when read.
+    pub fn deform_points(&mut self, feet: &[Vec3], dt: f32) -> DeformStats {
+        self.clock += dt as f64;
+        self.step = self.step.wrapping_add(1).max(1);
+        let mut stats = DeformStats {
+            retired: self.retire_settled(),
+            ..DeformStats::default()
+        };
+        let radius = self.settings.field.radius();
+        let mut foot_points = std::mem::take(&mut self.foot_points);
+        foot_points.clear();
+        foot_points.extend(
+            feet.iter()
+                .copied()
+                .filter(|p| self.within_reach(*p, radius)),
+        );
+        let mut ranges = std::mem::take(&mut self.ranges);
+        for foot in &foot_points {
+            ranges.clear();
+            ranges.extend(self.grid.ranges_near(foot.xz(), radius));
+            for range in ranges.drain(..) {
+                stats.visited += range.len();
+                for i in range {
+                    if self.blade_near(i, *foot, radius) && self.push(i, &foot_points) {
+                        stats.pushed += 1;
+                    }
+                }
+            }
+        }
+        self.foot_points = foot_points;
+        self.ranges = ranges;
+        stats
+    }
+
+    /// True when a foot at `p` can reach some blade of the patch.
+    fn within_reach(&self, p: Vec3, radius: f32) -> bool {
+        let (lo, hi) = self.y_range;
+        p.is_finite()
+            && p.y - radius < hi
+            && p.y + radius > lo
+            && p.x + radius > self.area.min.x
+            && p.x - radius < self.area.max.x
+            && p.z + radius > self.area.min.y
+            && p.z - radius < self.area.max.y
+    }
+
+    /// Cheap reject: the blade's vertical segment is farther than `radius` from `foot`
+    /// (or the blade was already handled this step).
+    #[inline]
+    fn blade_near(&self, i: usize, foot: Vec3, radius: f32) -> bool {
+        let b = self.spans[i];
+        let dx = b.x - foot.x;
+        let dz = b.z - foot.z;
+        let dy = (foot.y - b.y).clamp(0.0, b.w) + b.y - foot.y;
+        dx * dx + dz * dz + dy * dy < radius * radius && self.states[i].stamp != self.step
+    }
+
+    /// Applies the combined field of `feet` to blade `i`; true if it was pushed.
+    fn push(&mut self, i: usize, feet: &[Vec3]) -> bool {
+        let blade = self.blades[i];
+        let s = &self.settings;
+        let field = Bend {
+            mid: s.field.combined(blade.rest_mid(), feet),
+            tip: s.field.combined(blade.rest_tip(), feet),
+        };
+        let state = &mut self.states[i];
+        state.stamp = self.step;
+        let size = field.size();
+        if size <= 0.0 {
+            return false;
+        }
+        let now = self.clock;
+        if state.last_push < 0.0 || now - state.last_push > s.tread_gap as f64 {
+            state.treads = state.treads.saturating_add(1);
+        }
+        state.last_push = now;
+        let omega = s.recovery_omega * blade.stiffness;
+        // Fast path (a planted foot): the same field again on a healthy blade,
+        // whose recovering bend is `held * k <= held`: just re-anchor.
+        // A healthy recovering blade's bend is `held * k`, so its size is
+        // `|held| * k`: no need to rebuild the bend to compare.
+        let same_push = state.active && !state.broken && field == state.held;
+        let current_size = if state.broken || !state.active {
+            state.bend_at(now, omega).size()
+        } else {
+            state.held.size() * remaining_fraction(omega, (now - state.anchor_time) as f32)
+        };
+        if same_push || size >= current_size {
+            state.held = field;
+            state.anchor_time = now;
+        }
+        let break_at = s.break_bend * blade.stiffness * blade.height;
+        let bent_too_far = state.held.tip.length_squared() > break_at * break_at;
+        if bent_too_far || state.treads >= s.treads_to_break {
+            state.broken = true;
+        }
+        if state.broken {
+            let residual = state.held.scaled(s.broken_residual);
+            if residual.size() > state.rest.size() {
+                state.rest = residual;
+            }
+        }
+        if !state.active {
+            state.active = true;
+            self.active_count += 1;
+            let deadline = state.anchor_time + time_to_settle(omega) as f64;
+            self.retire_queue.push_back((i as u32, deadline));
+        }
+        true
+    }
+
+    /// Takes settled blades off the active list; returns how many.
+    fn retire_settled(&mut self) -> usize {
+        let mut retired = 0;
+        while let Some(&(i, deadline)) = self.retire_queue.front() {
+            if deadline > self.clock {
+                break;
+            }
+            self.retire_queue.pop_front();
+            let omega = self.settings.recovery_omega * self.blades[i as usize].stiffness;
+            let state = &mut self.states[i as usize];
+            let settle_at = state.anchor_time + time_to_settle(omega) as f64;
+            if settle_at > self.clock {
+                self.retire_queue.push_back((i, settle_at));
+            } else {
+                state.active = false;
+                state.held = state.rest;
+                self.active_count -= 1;
+                retired += 1;
+            }
+        }
+        retired
+    }
+}
+
+/// The vegetation height sensed at `(x, z)` over several patches (the tallest).
+pub fn vegetation_height_at(patches: &[GrassPatch], x: f32, z: f32) -> f32 {
+    patches
+        .iter()
+        .map(|p| p.height_at(x, z))
+        .fold(0.0, f32::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ground::FlatGround;
+
+    fn patch(seed: u64) -> GrassPatch {
+        let settings = GrassSettings {
+            seed,
+            density: 400.0,
+            ..GrassSettings::small()
+        };
+        let area = XzRect::new(Vec2::new(-1.0, -1.0), Vec2::new(2.0, 1.5));
+        GrassPatch::new(area, settings, &FlatGround(0.25)).unwrap()
+    }
+
+    #[test]
+    fn scattering_is_deterministic_and_inside_the_area() {
+        let a = patch(9);
+        let b = patch(9);
+        let c = patch(10);
+        assert_eq!(a.blades(), b.blades());
+        assert_ne!(a.blades(), c.blades());
+        assert_eq!(a.blade_count(), 3000);
+        let s = a.settings();
+        for blade in a.blades() {
+            assert!(a.area().contains(blade.root.x, blade.root.z));
+            assert_eq!(blade.root.y, 0.25);
+            let h = blade.height / s.height;
+            assert!((0.8..1.2).contains(&h), "{h}");
+        }
+        let mean = a.blades().iter().map(|b| b.height).sum::<f32>() / 3000.0;
+        assert!((mean - 0.5).abs() < 0.01, "{mean}");
+    }
+
+    #[test]
+    fn bad_inputs_are_typed_errors() {
+        let area = XzRect::new(Vec2::ZERO, Vec2::ONE);
+        let flat = FlatGround(0.0);
+        let empty = XzRect::new(Vec2::ZERO, Vec2::new(1.0, 0.0));
+        assert!(matches!(
+            GrassPatch::new(empty, GrassSettings::small(), &flat),
+            Err(VegetationError::BadArea { .. })
+        ));
+        let dense = GrassSettings {
+            density: 1e12,
+            ..GrassSettings::small()
+        };
+        assert!(matches!(
+            GrassPatch::new(area, dense, &flat),
+            Err(VegetationError::TooManyBlades { .. })
+        ));
+        let err = GrassPatch::with_height_fn(area, GrassSettings::small(), |x, _| {
+            (x < 0.5).then_some(0.0)
+        })
+        .unwrap_err();
+        assert!(matches!(err, VegetationError::NoGround { x, .. } if x >= 0.5));
+    }
+
+    #[test]
+    fn foot_far_above_touches_nothing_and_no_nan() {
+        let mut p = patch(3);
+        let stats = p.deform_points(&[Vec3::new(0.0, 5.0, 0.0)], 0.1);
+        assert_eq!(stats, DeformStats::default());
+        // A foot exactly at a blade's middle point: finite result.
+        let mid = p.blades()[10].rest_mid();
+        p.deform_points(&[mid], 0.1);
+        for i in 0..p.blade_count() {
+            assert!(p.blade_points(i).iter().all(|v| v.is_finite()));
+        }
+        assert!(p.active_count() > 0);
+    }
+
+    #[test]
+    fn sensed_height_takes_the_tallest_patch() {
+        let small = patch(1);
+        let medium = GrassPatch::with_height_fn(
+            XzRect::new(Vec2::ZERO, Vec2::ONE),
+            GrassSettings::medium(),
+            |_, _| Some(0.0),
+        )
+        .unwrap();
+        let patches = [small, medium];
+        assert_eq!(vegetation_height_at(&patches, 0.5, 0.5), 0.9);
+        assert_eq!(vegetation_height_at(&patches, -0.5, 0.5), 0.5);
+        assert_eq!(vegetation_height_at(&patches, 5.0, 5.0), 0.0);
+    }
+}
