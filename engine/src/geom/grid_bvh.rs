@@ -96,18 +96,19 @@ impl GridBvh {
         }
         let mut best: Option<Hit> = None;
         let mut hit = RayHit::none();
-        self.bvh.ray_traverse(to_obvhs(ray, max_t), &mut hit, |r, slot| {
-            let tile = self.bvh.primitive_indices[slot] as usize;
-            match grid.intersect_ray_in_cells(ray, self.tiling.walk_cells(tile), r.tmax) {
-                Some(h) => {
-                    if best.is_none_or(|b| closer(&h, &b)) {
-                        best = Some(h);
+        self.bvh
+            .ray_traverse(to_obvhs(ray, max_t), &mut hit, |r, slot| {
+                let tile = self.bvh.primitive_indices[slot] as usize;
+                match grid.intersect_ray_in_cells(ray, self.tiling.walk_cells(tile), r.tmax) {
+                    Some(h) => {
+                        if best.is_none_or(|b| closer(&h, &b)) {
+                            best = Some(h);
+                        }
+                        h.distance
                     }
-                    h.distance
+                    None => f32::INFINITY,
                 }
-                None => f32::INFINITY,
-            }
-        });
+            });
         best
     }
 

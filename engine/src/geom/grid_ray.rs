@@ -225,8 +225,7 @@ impl CellWalk<'_> {
     #[inline]
     fn diagonal_crossing(&self, i: usize, j: usize) -> Option<f32> {
         let slope = self.gd.x - self.gd.y;
-        (slope != 0.0)
-            .then(|| ((self.g0.y - j as f32) - (self.g0.x - i as f32)) / slope)
+        (slope != 0.0).then(|| ((self.g0.y - j as f32) - (self.g0.x - i as f32)) / slope)
     }
 
     fn hit(&self, ray: &Ray, t: f32, i: usize, j: usize) -> Hit {

@@ -75,8 +75,7 @@ impl GridTiling {
 
     /// The cells a tile's ray walk covers: its own plus a one-cell apron, clipped.
     pub fn walk_cells(&self, index: usize) -> GridRect {
-        self.own_cells(index)
-            .expand(1, self.cells_x, self.cells_z)
+        self.own_cells(index).expand(1, self.cells_x, self.cells_z)
     }
 
     /// The samples under [`GridTiling::walk_cells`]: the ones its bounds cover.

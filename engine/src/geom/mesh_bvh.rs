@@ -2,10 +2,10 @@ use std::time::Duration;
 
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
+use obvhs::aabb::Aabb as ObAabb;
 use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::ray::RayHit;
-use obvhs::triangle::Triangle;
 
 use super::grid_bvh::to_obvhs;
 use super::{Aabb, GeomError, Hit, HitTarget, MeshId, Ray, TriMesh, ray_triangle};
@@ -35,12 +35,17 @@ impl MeshBvh {
             .iter()
             .map(|t| t.map(|v| Vec3A::from(mesh.positions[v as usize])))
             .collect();
-        let tris: Vec<Triangle> = corners
+        let bounds = Aabb::from_points(&mesh.positions);
+        // Boxes padded so that a ray lying exactly in a box face (an axis-aligned
+        // ray on a shared edge or on the mesh's outer face) is never rejected.
+        let scale = bounds.min.abs().max(bounds.max.abs()).max_element();
+        let pad = Vec3A::splat(1e-5 * scale.max(1e-3));
+        let boxes: Vec<ObAabb> = corners
             .iter()
-            .map(|&[v0, v1, v2]| Triangle { v0, v1, v2 })
+            .map(|&[a, b, c]| ObAabb::new(a.min(b).min(c) - pad, a.max(b).max(c) + pad))
             .collect();
-        let bvh = build_cwbvh_from_tris(
-            &tris,
+        let bvh = build_cwbvh(
+            &boxes,
             BvhBuildParams::medium_build(),
             &mut Duration::default(),
         );
@@ -50,7 +55,7 @@ impl MeshBvh {
             bvh,
             triangles,
             source,
-            bounds: Aabb::from_points(&mesh.positions),
+            bounds,
             id: MeshId(0),
         })
     }
@@ -83,9 +88,11 @@ impl MeshBvh {
         }
         let (o, d) = (Vec3A::from(ray.origin()), Vec3A::from(ray.dir()));
         let mut hit = RayHit::none();
-        let found = self.bvh.ray_traverse(to_obvhs(ray, max_t), &mut hit, |r, slot| {
-            ray_triangle(o, d, self.triangles[slot], r.tmax).unwrap_or(f32::INFINITY)
-        });
+        let found = self
+            .bvh
+            .ray_traverse(to_obvhs(ray, max_t), &mut hit, |r, slot| {
+                ray_triangle(o, d, self.triangles[slot], r.tmax).unwrap_or(f32::INFINITY)
+            });
         found.then(|| {
             let slot = hit.primitive_id as usize;
             let [a, b, c] = self.triangles[slot];

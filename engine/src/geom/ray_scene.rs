@@ -101,20 +101,15 @@ impl RayScene {
             (None, _) => false,
         };
         ground
-            || self.meshes.iter().any(|m| {
-                m.bounds().ray_interval(ray, max_t).is_some() && m.any_hit(ray, max_t)
-            })
+            || self
+                .meshes
+                .iter()
+                .any(|m| m.bounds().ray_interval(ray, max_t).is_some() && m.any_hit(ray, max_t))
     }
 
     /// The closest hit of a ray going straight down from `(x, from_y, z)`:
     /// the ground through its vertical fast path, meshes through their BVHs.
-    pub fn cast_down(
-        &self,
-        grid: Option<&HeightGrid>,
-        x: f32,
-        z: f32,
-        from_y: f32,
-    ) -> Option<Hit> {
+    pub fn cast_down(&self, grid: Option<&HeightGrid>, x: f32, z: f32, from_y: f32) -> Option<Hit> {
         let mut best = grid.and_then(|g| match &self.grid {
             Some(bvh) => bvh.cast_down(g, x, z, from_y),
             None => g.cast_down(x, z, from_y),

@@ -10,12 +10,7 @@ const EDGE_SLACK: f32 = 1e-6;
 /// Edges and corners count as inside (with a tiny slack), so watertight
 /// neighbours never let a ray slip between them.
 #[inline]
-pub fn ray_triangle(
-    origin: Vec3A,
-    dir: Vec3A,
-    [a, b, c]: [Vec3A; 3],
-    max_t: f32,
-) -> Option<f32> {
+pub fn ray_triangle(origin: Vec3A, dir: Vec3A, [a, b, c]: [Vec3A; 3], max_t: f32) -> Option<f32> {
     let e1 = b - a;
     let e2 = c - a;
     let p = dir.cross(e2);
@@ -46,11 +41,29 @@ mod tests {
     fn hits_inside_and_on_edges_misses_outside() {
         let tri = [Vec3A::ZERO, Vec3A::X, Vec3A::Z];
         let down = Vec3A::NEG_Y;
-        assert_eq!(ray_triangle(Vec3A::new(0.2, 1.0, 0.2), down, tri, 9.0), Some(1.0));
-        assert_eq!(ray_triangle(Vec3A::new(0.5, 1.0, 0.5), down, tri, 9.0), Some(1.0));
-        assert_eq!(ray_triangle(Vec3A::new(0.0, 1.0, 0.0), down, tri, 9.0), Some(1.0));
-        assert_eq!(ray_triangle(Vec3A::new(0.6, 1.0, 0.6), down, tri, 9.0), None);
-        assert_eq!(ray_triangle(Vec3A::new(0.2, 1.0, 0.2), down, tri, 0.5), None);
-        assert_eq!(ray_triangle(Vec3A::new(0.2, -1.0, 0.2), -down, tri, 9.0), Some(1.0));
+        assert_eq!(
+            ray_triangle(Vec3A::new(0.2, 1.0, 0.2), down, tri, 9.0),
+            Some(1.0)
+        );
+        assert_eq!(
+            ray_triangle(Vec3A::new(0.5, 1.0, 0.5), down, tri, 9.0),
+            Some(1.0)
+        );
+        assert_eq!(
+            ray_triangle(Vec3A::new(0.0, 1.0, 0.0), down, tri, 9.0),
+            Some(1.0)
+        );
+        assert_eq!(
+            ray_triangle(Vec3A::new(0.6, 1.0, 0.6), down, tri, 9.0),
+            None
+        );
+        assert_eq!(
+            ray_triangle(Vec3A::new(0.2, 1.0, 0.2), down, tri, 0.5),
+            None
+        );
+        assert_eq!(
+            ray_triangle(Vec3A::new(0.2, -1.0, 0.2), -down, tri, 9.0),
+            Some(1.0)
+        );
     }
 }
