@@ -183,9 +183,13 @@ fn obj_text(mesh: &TriMesh) -> String {
     let mut covered = vec![false; n];
     for part in &mesh.parts {
         let _ = writeln!(s, "o {}", part.name);
-        for k in part.triangles.start.min(n)..part.triangles.end.min(n) {
-            covered[k] = true;
-            face(&mut s, mesh.triangles[k]);
+        let range = part.triangles.start.min(n)..part.triangles.end.min(n);
+        for (seen, &t) in covered[range.clone()]
+            .iter_mut()
+            .zip(&mesh.triangles[range])
+        {
+            *seen = true;
+            face(&mut s, t);
         }
     }
     if covered.iter().any(|c| !c) {

@@ -7,6 +7,7 @@ use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::builder::build_bvh2;
 use obvhs::ray::{Ray as ObRay, RayHit};
 
+use super::ray::usable_max_t;
 use super::{GeomError, GridRect, GridTiling, HeightGrid, Hit, HitTarget, Ray};
 
 /// A BVH over the tiles of a [`HeightGrid`] for fast ray casts on deformable ground.
@@ -91,7 +92,7 @@ impl GridBvh {
     /// The closest hit of `ray` on the grid surface within `max_t`.
     pub fn cast(&self, grid: &HeightGrid, ray: &Ray, max_t: f32) -> Option<Hit> {
         self.check_shape(grid);
-        if !(max_t >= 0.0) {
+        if !usable_max_t(max_t) {
             return None;
         }
         let mut best: Option<Hit> = None;
@@ -115,7 +116,7 @@ impl GridBvh {
     /// True when `ray` meets the grid surface within `max_t`.
     pub fn any_hit(&self, grid: &HeightGrid, ray: &Ray, max_t: f32) -> bool {
         self.check_shape(grid);
-        if !(max_t >= 0.0) {
+        if !usable_max_t(max_t) {
             return false;
         }
         !self.bvh.ray_traverse_miss(to_obvhs(ray, max_t), |r, slot| {

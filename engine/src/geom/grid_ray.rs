@@ -10,6 +10,7 @@
 use glam::{Vec2, Vec3};
 
 use super::aabb::slab;
+use super::ray::usable_max_t;
 use super::{GridRect, HeightGrid, Hit, HitTarget, MeshPart, Ray, TriMesh};
 
 impl HeightGrid {
@@ -56,7 +57,7 @@ impl HeightGrid {
         cells: GridRect,
         max_t: f32,
     ) -> Option<Hit> {
-        if cells.is_empty() || !(max_t >= 0.0) {
+        if cells.is_empty() || !usable_max_t(max_t) {
             return None;
         }
         let cell = self.cell_size();
@@ -70,7 +71,7 @@ impl HeightGrid {
         let (az, bz) = slab(g0.y, gd.y, cells.j0 as f32, cells.j1 as f32)?;
         let t_lo = ax.max(az).max(0.0);
         let t_hi = bx.min(bz).min(max_t);
-        if !(t_lo <= t_hi) {
+        if t_lo > t_hi {
             return None;
         }
         let walk = CellWalk {

@@ -8,6 +8,7 @@ use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::ray::RayHit;
 
 use super::grid_bvh::to_obvhs;
+use super::ray::usable_max_t;
 use super::{Aabb, GeomError, Hit, HitTarget, MeshId, Ray, TriMesh, ray_triangle};
 
 /// A BVH over a static [`TriMesh`] (an obvhs compressed wide BVH).
@@ -83,7 +84,7 @@ impl MeshBvh {
 
     /// The closest hit of `ray` within `max_t` (triangles are two-sided).
     pub fn cast(&self, ray: &Ray, max_t: f32) -> Option<Hit> {
-        if !(max_t >= 0.0) {
+        if !usable_max_t(max_t) {
             return None;
         }
         let (o, d) = (Vec3A::from(ray.origin()), Vec3A::from(ray.dir()));
@@ -110,7 +111,7 @@ impl MeshBvh {
 
     /// True when `ray` meets the mesh within `max_t`.
     pub fn any_hit(&self, ray: &Ray, max_t: f32) -> bool {
-        if !(max_t >= 0.0) {
+        if !usable_max_t(max_t) {
             return false;
         }
         let (o, d) = (Vec3A::from(ray.origin()), Vec3A::from(ray.dir()));

@@ -104,3 +104,9 @@ pub struct Hit {
     /// The grid cell or mesh triangle hit.
     pub target: HitTarget,
 }
+
+/// True for a distance limit a query can honour: zero, positive or infinite (not NaN).
+#[inline]
+pub(crate) fn usable_max_t(max_t: f32) -> bool {
+    max_t >= 0.0
+}
