@@ -428,3 +428,18 @@ fn scene_returns_the_closest_of_ground_and_meshes() {
     assert_eq!(hit.point.y, p.y);
     let _ = rng.below(2);
 }
+
+#[test]
+fn invalid_meshes_and_tile_sizes_are_refused_not_panicked_on() {
+    let mut scene = RayScene::new();
+    let bad = TriMesh {
+        positions: vec![Vec3::ZERO, Vec3::X],
+        normals: vec![],
+        triangles: vec![[0, 1, 5]],
+        parts: vec![],
+    };
+    assert!(scene.add_mesh(bad).is_err());
+    assert!(MeshBvh::build(&TriMesh::default()).is_err());
+    assert!(GridBvh::build_with_tiles(&flat(), 0).is_err());
+    assert_eq!(scene.mesh_count(), 0);
+}

@@ -334,9 +334,14 @@ impl HeightGrid {
         let mut hi = f32::NEG_INFINITY;
         for j in rect.j0..rect.j1 {
             let row = &self.heights[j * self.nx + rect.i0..j * self.nx + rect.i1];
+            // Plain comparisons (heights are finite) let the compiler vectorise.
             for &h in row {
-                lo = lo.min(h);
-                hi = hi.max(h);
+                if h < lo {
+                    lo = h;
+                }
+                if h > hi {
+                    hi = h;
+                }
             }
         }
         (lo, hi)

@@ -35,7 +35,10 @@ impl Ray {
                 reason: format!("{dir} is not finite"),
             });
         }
-        match dir.try_normalize() {
+        // Scale by the largest component first, so that a tiny direction does
+        // not underflow to zero length.
+        let largest = dir.abs().max_element();
+        match (largest > 0.0).then(|| (dir / largest).try_normalize()).flatten() {
             Some(dir) => Ok(Ray { origin, dir }),
             None => Err(GeomError::InvalidParameter {
                 name: "dir",
@@ -109,4 +112,37 @@ pub struct Hit {
 #[inline]
 pub(crate) fn usable_max_t(max_t: f32) -> bool {
     max_t >= 0.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refuses_non_finite_and_zero_input() {
+        let ok = Vec3::new(1.0, 2.0, 3.0);
+        for bad in [
+            Vec3::NAN,
+            Vec3::INFINITY,
+            Vec3::new(0.0, f32::NEG_INFINITY, 0.0),
+        ] {
+            assert!(matches!(
+                Ray::new(bad, ok),
+                Err(GeomError::InvalidParameter { name: "origin", .. })
+            ));
+            assert!(matches!(
+                Ray::new(ok, bad),
+                Err(GeomError::InvalidParameter { name: "dir", .. })
+            ));
+        }
+        assert!(Ray::new(ok, Vec3::ZERO).is_err());
+        // A tiny but usable direction is normalised, not refused.
+        assert_eq!(
+            Ray::new(ok, Vec3::new(0.0, 1e-30, 0.0)).unwrap().dir(),
+            Vec3::Y
+        );
+        let r = Ray::new(ok, Vec3::new(0.0, 0.0, -2.0)).unwrap();
+        assert_eq!(r.at(1.5), Vec3::new(1.0, 2.0, 1.5));
+        assert!(!usable_max_t(f32::NAN) && !usable_max_t(-1.0) && usable_max_t(f32::INFINITY));
+    }
 }
