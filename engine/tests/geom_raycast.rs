@@ -221,6 +221,9 @@ fn vertical_rays_hit_height_at_exactly_also_on_cell_edges_and_tile_borders() {
     let h = g.height_at(0.1, 5.0).unwrap();
     assert_eq!(bvh.cast_down(&g, 0.1, 5.0, h - 0.01), None);
     assert_eq!(bvh.cast_down(&g, f32::NAN, 5.0, 3.0), None);
+    assert_eq!(bvh.cast_down(&g, 0.1, f32::INFINITY, 3.0), None);
+    assert_eq!(bvh.cast_down(&g, 0.1, 5.0, f32::INFINITY), None);
+    assert_eq!(bvh.cast_down(&g, 0.1, 5.0, f32::NAN), None);
     assert_eq!(
         bvh.cast_down(&g, 0.1, 5.0, h).map(|hit| hit.distance),
         Some(0.0)

@@ -45,8 +45,16 @@ impl HeightGrid {
     /// [`HeightGrid::height_at`] when it is not above `from_y`, else `None`.
     /// Agrees exactly with [`HeightGrid::intersect_ray`] on the same ray.
     pub fn cast_down(&self, x: f32, z: f32, from_y: f32) -> Option<Hit> {
-        let ray = Ray::down(x, from_y, z).ok()?;
-        self.vertical_hit(&ray, self.full_cell_rect(), f32::INFINITY)
+        // No `Ray` needed: a non-finite x or z misses in `locate_cell`.
+        if !from_y.is_finite() {
+            return None;
+        }
+        self.vertical_hit(
+            Vec3::new(x, from_y, z),
+            -1.0,
+            self.full_cell_rect(),
+            f32::INFINITY,
+        )
     }
 
     /// Like [`HeightGrid::intersect_ray`] but only over the cells in `cells`
@@ -65,7 +73,7 @@ impl HeightGrid {
         let g0 = self.to_grid(o.x, o.z);
         let gd = Vec2::new(d.x / cell, d.z / cell);
         if gd == Vec2::ZERO {
-            return self.vertical_hit(ray, cells, max_t);
+            return self.vertical_hit(o, d.y, cells, max_t);
         }
         let (ax, bx) = slab(g0.x, gd.x, cells.i0 as f32, cells.i1 as f32)?;
         let (az, bz) = slab(g0.y, gd.y, cells.j0 as f32, cells.j1 as f32)?;
@@ -120,14 +128,14 @@ impl HeightGrid {
     }
 
     /// A vertical ray: straight to the cell [`HeightGrid::height_at`] uses.
-    fn vertical_hit(&self, ray: &Ray, cells: GridRect, max_t: f32) -> Option<Hit> {
-        let o = ray.origin();
+    /// `dy` is the direction's Y component: exactly `1` or `-1`.
+    fn vertical_hit(&self, o: Vec3, dy: f32, cells: GridRect, max_t: f32) -> Option<Hit> {
         let (i, j, fx, fz) = self.locate_cell(o.x, o.z)?;
         if !cells.contains(i, j) {
             return None;
         }
         let h = self.cell_surface_height(i, j, fx, fz);
-        let t = (h - o.y) / ray.dir().y;
+        let t = (h - o.y) / dy;
         (t >= 0.0 && t <= max_t).then(|| Hit {
             point: Vec3::new(o.x, h, o.z),
             normal: self.cell_triangle_normal(i, j, fx >= fz),

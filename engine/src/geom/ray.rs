@@ -38,7 +38,10 @@ impl Ray {
         // Scale by the largest component first, so that a tiny direction does
         // not underflow to zero length.
         let largest = dir.abs().max_element();
-        match (largest > 0.0).then(|| (dir / largest).try_normalize()).flatten() {
+        match (largest > 0.0)
+            .then(|| (dir / largest).try_normalize())
+            .flatten()
+        {
             Some(dir) => Ok(Ray { origin, dir }),
             None => Err(GeomError::InvalidParameter {
                 name: "dir",
