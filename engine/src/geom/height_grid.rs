@@ -246,16 +246,31 @@ impl HeightGrid {
     /// or `None` off the grid.
     pub fn height_at(&self, x: f32, z: f32) -> Option<f32> {
         let (i, j, fx, fz) = self.locate(x, z)?;
+        Some(self.cell_surface_height(i, j, fx, fz))
+    }
+
+    /// Height of the triangulated surface inside cell `(i, j)` at fractions
+    /// `(fx, fz)`. The one formula shared by [`HeightGrid::height_at`] and ray casts,
+    /// so that a vertical ray hits exactly `height_at`.
+    #[inline]
+    pub(crate) fn cell_surface_height(&self, i: usize, j: usize, fx: f32, fz: f32) -> f32 {
         let h00 = self.height(i, j);
         let h10 = self.height(i + 1, j);
         let h01 = self.height(i, j + 1);
         let h11 = self.height(i + 1, j + 1);
         // Diagonal (i, j) -> (i + 1, j + 1): the lower-right triangle has fx >= fz.
-        Some(if fx >= fz {
+        if fx >= fz {
             h00 + (h10 - h00) * fx + (h11 - h10) * fz
         } else {
             h00 + (h01 - h00) * fz + (h11 - h01) * fx
-        })
+        }
+    }
+
+    /// Cell `(i, j)` and fractions `(fx, fz)` holding world `(x, z)`, exactly as
+    /// [`HeightGrid::height_at`] chooses them, or `None` off the grid.
+    #[inline]
+    pub(crate) fn locate_cell(&self, x: f32, z: f32) -> Option<(usize, usize, f32, f32)> {
+        self.locate(x, z)
     }
 
     /// Bilinear height at world `(x, z)`, or `None` off the grid.
@@ -319,9 +334,14 @@ impl HeightGrid {
         let mut hi = f32::NEG_INFINITY;
         for j in rect.j0..rect.j1 {
             let row = &self.heights[j * self.nx + rect.i0..j * self.nx + rect.i1];
+            // Plain comparisons (heights are finite) let the compiler vectorise.
             for &h in row {
-                lo = lo.min(h);
-                hi = hi.max(h);
+                if h < lo {
+                    lo = h;
+                }
+                if h > hi {
+                    hi = h;
+                }
             }
         }
         (lo, hi)

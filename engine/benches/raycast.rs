@@ -1,0 +1,242 @@
+//! Ray-cast benchmarks (single thread):
+//! vertical foot rays on 512² and 4096² grids, arbitrary rays on a 100k-triangle
+//! mesh and on the grid per tile size, and the refit after a 40x40-cell edit.
+//!
+//! `cargo bench -p engine --bench raycast`
+
+use std::hint::black_box;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use engine::geom::{GridBvh, GridRect, HeightGrid, MeshBvh, Ray, TriMesh};
+use engine::glam::{Vec2, Vec3};
+
+/// SplitMix64: seeded, so every run measures the same rays.
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+/// The paper's terrain resolution: 512 samples over 10 m.
+const CELL: f32 = 10.0 / 511.0;
+const RAYS: usize = 4096;
+
+fn terrain(n: usize) -> HeightGrid {
+    HeightGrid::from_fn(Vec2::ZERO, CELL, n, n, |x, z| {
+        0.3 * (0.9 * x).sin() * (0.7 * z).cos() + 0.05 * (4.0 * x + 3.0 * z).sin()
+    })
+    .unwrap()
+}
+
+/// Foot rays: a walking character's feet stay in a 2 m x 2 m window per step.
+fn foot_points(rng: &mut Rng) -> Vec<(f32, f32)> {
+    (0..RAYS)
+        .map(|_| (rng.range(4.0, 6.0), rng.range(4.0, 6.0)))
+        .collect()
+}
+
+fn vertical(c: &mut Criterion) {
+    let mut group = c.benchmark_group("vertical_rays");
+    group.throughput(Throughput::Elements(RAYS as u64));
+    let points = foot_points(&mut Rng(1));
+    for n in [512usize, 4096] {
+        let grid = terrain(n);
+        let bvh = GridBvh::build(&grid);
+        group.bench_function(format!("cast_down_{n}"), |b| {
+            b.iter(|| {
+                let mut sum = 0.0;
+                for &(x, z) in &points {
+                    if let Some(h) = bvh.cast_down(&grid, x, z, 5.0) {
+                        sum += h.point.y;
+                    }
+                }
+                black_box(sum)
+            })
+        });
+        let rays: Vec<Ray> = points
+            .iter()
+            .map(|&(x, z)| Ray::down(x, 5.0, z).unwrap())
+            .collect();
+        group.bench_function(format!("bvh_cast_{n}"), |b| {
+            b.iter(|| {
+                let mut sum = 0.0;
+                for ray in &rays {
+                    if let Some(h) = bvh.cast(&grid, ray, f32::INFINITY) {
+                        sum += h.distance;
+                    }
+                }
+                black_box(sum)
+            })
+        });
+    }
+    group.finish();
+}
+
+/// A closed bumpy sphere of `2 * n * n` triangles.
+fn blob(n: usize) -> TriMesh {
+    let mut positions = Vec::new();
+    for a in 0..=n {
+        for b in 0..n {
+            let theta = std::f32::consts::PI * a as f32 / n as f32;
+            let phi = std::f32::consts::TAU * b as f32 / n as f32;
+            let r = 1.0 + 0.1 * (7.0 * phi).sin() * (5.0 * theta).sin();
+            positions.push(
+                r * Vec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    theta.sin() * phi.sin(),
+                ),
+            );
+        }
+    }
+    let n32 = n as u32;
+    let mut triangles = Vec::new();
+    for a in 0..n32 {
+        for b in 0..n32 {
+            let (p, q) = (a * n32 + b, a * n32 + (b + 1) % n32);
+            triangles.push([p, q, q + n32]);
+            triangles.push([p, q + n32, p + n32]);
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+/// Rays from random points around the object towards random points inside it.
+fn arbitrary_rays(rng: &mut Rng, centre: Vec3, radius: f32) -> Vec<Ray> {
+    (0..RAYS)
+        .map(|_| {
+            let o = centre
+                + Vec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                ) * radius
+                    * 3.0;
+            let target = centre
+                + Vec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                ) * radius
+                    * 0.5;
+            Ray::new(o, target - o).unwrap()
+        })
+        .collect()
+}
+
+fn mesh(c: &mut Criterion) {
+    let mesh = blob(224);
+    assert!(mesh.triangles.len() >= 100_000);
+    let bvh = MeshBvh::build(&mesh).unwrap();
+    let rays = arbitrary_rays(&mut Rng(2), Vec3::ZERO, 1.0);
+    let mut group = c.benchmark_group("mesh_100k");
+    group.throughput(Throughput::Elements(RAYS as u64));
+    group.bench_function("arbitrary_rays", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            for ray in &rays {
+                if let Some(h) = bvh.cast(ray, f32::INFINITY) {
+                    sum += h.distance;
+                }
+            }
+            black_box(sum)
+        })
+    });
+    group.finish();
+}
+
+/// Arbitrary rays on the 512² grid for several tile sizes (how the default was chosen).
+fn grid_tiles(c: &mut Criterion) {
+    let grid = terrain(512);
+    let mut rng = Rng(3);
+    let rays: Vec<Ray> = (0..RAYS)
+        .map(|_| {
+            let o = Vec3::new(
+                rng.range(0.0, 10.0),
+                rng.range(1.0, 3.0),
+                rng.range(0.0, 10.0),
+            );
+            let d = Vec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, -0.1),
+                rng.range(-1.0, 1.0),
+            );
+            Ray::new(o, d).unwrap()
+        })
+        .collect();
+    let mut group = c.benchmark_group("grid_arbitrary_rays_512");
+    group.throughput(Throughput::Elements(RAYS as u64));
+    for tile in [8usize, 16, 32] {
+        let bvh = GridBvh::build_with_tiles(&grid, tile).unwrap();
+        group.bench_function(format!("tile_{tile}"), |b| {
+            b.iter(|| {
+                let mut sum = 0.0;
+                for ray in &rays {
+                    if let Some(h) = bvh.cast(&grid, ray, f32::INFINITY) {
+                        sum += h.distance;
+                    }
+                }
+                black_box(sum)
+            })
+        });
+    }
+    group.finish();
+}
+
+/// A foot-sized edit (40x40 cells) and the refit that follows it.
+fn refit(c: &mut Criterion) {
+    let mut grid = terrain(512);
+    let mut group = c.benchmark_group("refit_40x40");
+    for tile in [8usize, 16, 32] {
+        let mut bvh = GridBvh::build_with_tiles(&grid, tile).unwrap();
+        let rect = GridRect::new(200, 230, 241, 271);
+        let mut depth = 0.001;
+        group.bench_function(format!("tile_{tile}"), |b| {
+            b.iter(|| {
+                depth = -depth;
+                for (i, j) in rect.iter() {
+                    let h = grid.height(i, j) + depth;
+                    grid.set_height(i, j, h);
+                }
+                bvh.refit(&grid, rect);
+            })
+        });
+    }
+    group.finish();
+}
+
+/// The edit alone, to subtract from `refit_40x40`.
+fn edit_only(c: &mut Criterion) {
+    let mut grid = terrain(512);
+    let rect = GridRect::new(200, 230, 241, 271);
+    let mut depth = 0.001;
+    c.bench_function("edit_40x40_only", |b| {
+        b.iter(|| {
+            depth = -depth;
+            for (i, j) in rect.iter() {
+                let h = grid.height(i, j) + depth;
+                grid.set_height(i, j, h);
+            }
+            black_box(grid.height(200, 230))
+        })
+    });
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .sample_size(20)
+        .warm_up_time(std::time::Duration::from_millis(500))
+        .measurement_time(std::time::Duration::from_secs(2));
+    targets = vertical, mesh, grid_tiles, refit, edit_only
+}
+criterion_main!(benches);
