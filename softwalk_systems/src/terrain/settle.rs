@@ -1,0 +1,111 @@
+//! Settling (beyond the paper): disturbed ground steeper than its angle of
+//! repose slides down, by pairwise mass-conserving transfers (Sumner 1999's erosion).
+
+use engine::geom::GridRect;
+
+use super::heightfield::{DISTURBED_SLUMPED, Heightfield};
+
+/// Settling stops when no slope exceeds the repose slope by more than this (m/m).
+pub const SETTLE_TOLERANCE: f32 = 1e-3;
+/// Upper bound on relaxation sweeps per call.
+pub const SETTLE_MAX_SWEEPS: usize = 256;
+
+/// Lets steep disturbed slopes inside `window` slump; returns the rectangle of
+/// samples that changed (empty when already stable).
+///
+/// Sweeps run over the 8-neighbour edges in row-major order (Gauss-Seidel,
+/// deterministic). When the higher sample of an edge is steeper than the
+/// repose slope of its material by `excess` metres, half the excess moves to
+/// the lower sample, which puts the pair exactly at the angle of repose. The
+/// next sweep only revisits the changed samples grown by one; sweeps stop
+/// when nothing moves (within [`SETTLE_TOLERANCE`]) or after
+/// [`SETTLE_MAX_SWEEPS`].
+///
+/// Guards against creeping over natural terrain:
+/// - only edges with a disturbed sample move (a natural slope steeper than
+///   repose, such as a dune's lee face, stays as it was; a sample that slumps
+///   becomes disturbed, so a slump can propagate);
+/// - nothing crosses the border of `window`, which never grows: a slump on a
+///   steep dune stops at the window (the carve rectangle grown by the
+///   smoothing radius in the usual chain);
+/// - samples held by a sole this step (see [`super::StepChanges::held`]) do
+///   not move: the foot supports the walls, as Sumner's steeper in-contact angle.
+pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
+    let w = window.intersect(&hf.grid().full_rect());
+    if w.is_empty() {
+        return GridRect::EMPTY;
+    }
+    let cell = hf.grid().cell_size();
+    let parts = hf.parts_mut();
+    let nx = parts.nx;
+    let ww = w.width();
+    let mut held = vec![false; w.area()];
+    for &k in &parts.changes.held {
+        let (i, j) = (k % nx, k / nx);
+        if w.contains(i, j) {
+            held[(j - w.j0) * ww + (i - w.i0)] = true;
+        }
+    }
+    let is_held = |k: usize| held[(k / nx - w.j0) * ww + (k % nx - w.i0)];
+    let diagonal = cell * std::f32::consts::SQRT_2;
+    let mut changed = GridRect::EMPTY;
+    let mut active = w;
+    let mut transfers = 0;
+    for _ in 0..SETTLE_MAX_SWEEPS {
+        let mut sweep_changed = GridRect::EMPTY;
+        for j in active.j0..active.j1 {
+            for i in active.i0..active.i1 {
+                let k = j * nx + i;
+                let right = i + 1 < w.i1;
+                let down = j + 1 < w.j1;
+                let left = i > w.i0;
+                let neighbours = [
+                    (right, k + 1, i + 1, j, cell),
+                    (down, k + nx, i, j + 1, cell),
+                    (right && down, k + nx + 1, i + 1, j + 1, diagonal),
+                    (
+                        left && down,
+                        (k + nx).wrapping_sub(1),
+                        i.wrapping_sub(1),
+                        j + 1,
+                        diagonal,
+                    ),
+                ];
+                for (inside, kb, ib, jb, dist) in neighbours {
+                    if !inside
+                        || (parts.disturbed[k] == 0 && parts.disturbed[kb] == 0)
+                        || is_held(k)
+                        || is_held(kb)
+                    {
+                        continue;
+                    }
+                    let (hi, lo) = if parts.heights[k] >= parts.heights[kb] {
+                        (k, kb)
+                    } else {
+                        (kb, k)
+                    };
+                    let limit = (parts.material(hi).repose_slope() + SETTLE_TOLERANCE) * dist;
+                    let excess = parts.heights[hi] - parts.heights[lo] - limit;
+                    if excess > 0.0 {
+                        let moved = 0.5 * (excess + SETTLE_TOLERANCE * dist);
+                        parts.heights[hi] -= moved;
+                        parts.heights[lo] += moved;
+                        parts.disturbed[k] = parts.disturbed[k].max(DISTURBED_SLUMPED);
+                        parts.disturbed[kb] = parts.disturbed[kb].max(DISTURBED_SLUMPED);
+                        let pair = GridRect::new(i.min(ib), j, i.max(ib) + 1, jb + 1);
+                        sweep_changed = sweep_changed.union(&pair);
+                        transfers += 1;
+                    }
+                }
+            }
+        }
+        if sweep_changed.is_empty() {
+            break;
+        }
+        changed = changed.union(&sweep_changed);
+        active = sweep_changed.expand(1, nx, usize::MAX).intersect(&w);
+    }
+    parts.changes.settle_transfers += transfers;
+    hf.mark_dirty(changed);
+    changed
+}

@@ -1,0 +1,115 @@
+//! The three terrain stages chained for one foot, and a synthetic planted foot
+//! (for tests, benchmarks and demos without a character).
+
+use engine::geom::GridRect;
+use glam::{Vec2, Vec3};
+
+use super::carve::{FootPrint, carve};
+use super::error::TerrainError;
+use super::heightfield::Heightfield;
+use super::settle::settle;
+use super::smooth::smooth;
+use crate::foot::FootSole;
+
+/// Carve, smooth and settle for one foot; returns the rectangle that may have
+/// changed (the carve rectangle grown by the smoothing radius, or empty).
+///
+/// The usual chain of the carve, smooth and settle systems, for one foot:
+/// `settle(hf, smooth(hf, carve(hf, print, sole, contact, dt)?))`.
+pub fn step_foot(
+    hf: &mut Heightfield,
+    print: &mut FootPrint,
+    sole: &FootSole,
+    contact: bool,
+    dt: f32,
+) -> Result<GridRect, TerrainError> {
+    let carved = carve(hf, print, sole, contact, dt)?;
+    if carved.is_empty() {
+        return Ok(GridRect::EMPTY);
+    }
+    let window = smooth(hf, carved);
+    settle(hf, window);
+    Ok(window)
+}
+
+/// Size of a synthetic foot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FootSize {
+    /// Heel to toe, metres.
+    pub length: f32,
+    /// Sole width, metres.
+    pub width: f32,
+}
+
+impl Default for FootSize {
+    /// An adult foot: 26 cm by 10 cm.
+    fn default() -> Self {
+        FootSize {
+            length: 0.26,
+            width: 0.10,
+        }
+    }
+}
+
+/// A sole of `size` centred at `center` (XZ), pointing along `heading`, laid
+/// on the current ground as a foot ray and IK would place it: heel and toe
+/// heights are read under the centres of the sole's rounded ends (clamped
+/// onto the grid when off it).
+pub fn sole_on_ground(
+    hf: &Heightfield,
+    center: Vec2,
+    heading: Vec2,
+    size: FootSize,
+) -> Result<FootSole, TerrainError> {
+    let dir = heading
+        .try_normalize()
+        .ok_or(TerrainError::InvalidParameter {
+            name: "heading",
+            reason: format!("{heading} is not a finite non-zero direction"),
+        })?;
+    if !center.is_finite() {
+        return Err(TerrainError::InvalidParameter {
+            name: "center",
+            reason: format!("{center} is not finite"),
+        });
+    }
+    let grid = hf.grid();
+    let (lo, hi) = (grid.origin(), grid.origin() + grid.extent());
+    let ground = |p: Vec2| {
+        let q = p.clamp(lo, hi);
+        grid.height_at(q.x, q.y).unwrap_or(0.0)
+    };
+    let half = 0.5 * size.length;
+    let inset = (half - 0.5 * size.width).max(0.0);
+    let heel = center - dir * half;
+    let toe = center + dir * half;
+    Ok(FootSole {
+        heel: Vec3::new(heel.x, ground(center - dir * inset), heel.y),
+        toe: Vec3::new(toe.x, ground(center + dir * inset), toe.y),
+        width: size.width,
+    })
+}
+
+/// Plants a synthetic foot at `center` for `steps` steps of `dt`, re-laying
+/// the sole on the ground each step (the ray -> carve -> lower foot feedback),
+/// then lifts it (one release step). Each step starts with
+/// [`Heightfield::begin_step`]. Returns the union of the changed rectangles.
+pub fn plant_foothold(
+    hf: &mut Heightfield,
+    print: &mut FootPrint,
+    center: Vec2,
+    heading: Vec2,
+    size: FootSize,
+    steps: usize,
+    dt: f32,
+) -> Result<GridRect, TerrainError> {
+    let mut changed = GridRect::EMPTY;
+    for _ in 0..steps {
+        hf.begin_step();
+        let sole = sole_on_ground(hf, center, heading, size)?;
+        changed = changed.union(&step_foot(hf, print, &sole, true, dt)?);
+    }
+    hf.begin_step();
+    let sole = sole_on_ground(hf, center, heading, size)?;
+    Ok(changed.union(&step_foot(hf, print, &sole, false, dt)?))
+}
