@@ -231,6 +231,36 @@ impl<'a> TerrainParts<'a> {
     }
 }
 
+/// The samples held by a sole this step, as a mask over a window.
+pub(crate) struct HeldMask {
+    window: GridRect,
+    nx: usize,
+    mask: Vec<bool>,
+}
+
+/// Builds the mask of `held` sample indices (row-major in a grid `nx` wide) inside `window`.
+pub(crate) fn held_mask(held: &[usize], nx: usize, window: GridRect) -> HeldMask {
+    let mut mask = vec![false; if held.is_empty() { 0 } else { window.area() }];
+    for &k in held {
+        let (i, j) = (k % nx, k / nx);
+        if window.contains(i, j) {
+            mask[(j - window.j0) * window.width() + (i - window.i0)] = true;
+        }
+    }
+    HeldMask { window, nx, mask }
+}
+
+impl HeldMask {
+    /// True when sample index `k` (inside the window) is held.
+    #[inline]
+    pub fn contains(&self, k: usize) -> bool {
+        !self.mask.is_empty() && {
+            let (i, j) = (k % self.nx, k / self.nx);
+            self.mask[(j - self.window.j0) * self.window.width() + (i - self.window.i0)]
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -46,6 +46,6 @@ pub use heightfield::{
 };
 pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
 pub use material_table::{MaterialId, MaterialTable};
-pub use settle::{SETTLE_MAX_SWEEPS, SETTLE_TOLERANCE, settle};
+pub use settle::{SETTLE_MARGIN_CELLS, SETTLE_MAX_SWEEPS, SETTLE_TOLERANCE, settle, stage_window};
 pub use smooth::{DIFFUSION_RATE, smooth, smoothing_radius};
-pub use step::{FootSize, plant_foothold, sole_on_ground, step_foot};
+pub use step::{FootSize, FootholdReport, plant_foothold, sole_on_ground, step_foot};

@@ -3,12 +3,28 @@
 
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_SLUMPED, Heightfield};
+use super::heightfield::{DISTURBED_SLUMPED, Heightfield, held_mask};
+use super::smooth::smoothing_radius;
 
 /// Settling stops when no slope exceeds the repose slope by more than this (m/m).
 pub const SETTLE_TOLERANCE: f32 = 1e-3;
+/// How far beyond the carve rectangle settling may move material, in samples:
+/// room for a slump's runout on a slope (16 cm at the paper's 2 cm spacing).
+pub const SETTLE_MARGIN_CELLS: usize = 8;
+
 /// Upper bound on relaxation sweeps per call.
 pub const SETTLE_MAX_SWEEPS: usize = 256;
+
+/// The window the smoothing and settling stages of one step may change
+/// around a carve rectangle: grown by the larger of the smoothing radius and
+/// [`SETTLE_MARGIN_CELLS`], clipped to the grid (empty for an empty rectangle).
+pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
+    let g = hf.grid();
+    let margin = smoothing_radius(hf).max(SETTLE_MARGIN_CELLS);
+    carved
+        .intersect(&g.full_rect())
+        .expand(margin, g.nx(), g.nz())
+}
 
 /// Lets steep disturbed slopes inside `window` slump; returns the rectangle of
 /// samples that changed (empty when already stable).
@@ -26,8 +42,8 @@ pub const SETTLE_MAX_SWEEPS: usize = 256;
 ///   repose, such as a dune's lee face, stays as it was; a sample that slumps
 ///   becomes disturbed, so a slump can propagate);
 /// - nothing crosses the border of `window`, which never grows: a slump on a
-///   steep dune stops at the window (the carve rectangle grown by the
-///   smoothing radius in the usual chain);
+///   steep dune stops at the window (in the usual chain, [`stage_window`]:
+///   the carve rectangle grown by a fixed margin);
 /// - samples held by a sole this step (see [`super::StepChanges::held`]) do
 ///   not move: the foot supports the walls, as Sumner's steeper in-contact angle.
 pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
@@ -38,15 +54,7 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
     let cell = hf.grid().cell_size();
     let parts = hf.parts_mut();
     let nx = parts.nx;
-    let ww = w.width();
-    let mut held = vec![false; w.area()];
-    for &k in &parts.changes.held {
-        let (i, j) = (k % nx, k / nx);
-        if w.contains(i, j) {
-            held[(j - w.j0) * ww + (i - w.i0)] = true;
-        }
-    }
-    let is_held = |k: usize| held[(k / nx - w.j0) * ww + (k % nx - w.i0)];
+    let held = held_mask(&parts.changes.held, nx, w);
     let diagonal = cell * std::f32::consts::SQRT_2;
     let mut changed = GridRect::EMPTY;
     let mut active = w;
@@ -74,8 +82,8 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
                 for (inside, kb, ib, jb, dist) in neighbours {
                     if !inside
                         || (parts.disturbed[k] == 0 && parts.disturbed[kb] == 0)
-                        || is_held(k)
-                        || is_held(kb)
+                        || held.contains(k)
+                        || held.contains(kb)
                     {
                         continue;
                     }

@@ -3,7 +3,7 @@
 
 use engine::geom::GridRect;
 
-use super::heightfield::Heightfield;
+use super::heightfield::{DISTURBED_SLUMPED, Heightfield, held_mask};
 
 /// Diffusion rate per pass (stable below 0.25; each pass adds a Gaussian
 /// variance of `2 * DIFFUSION_RATE` = 0.4 cell² per axis).
@@ -15,6 +15,13 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
     hf.table().max_smoothness().ceil() as usize
 }
 
+/// Marks both samples of an edge that carried flux as (at least slightly) disturbed.
+#[inline]
+fn touch(disturbed: &mut [u8], ka: usize, kb: usize) {
+    disturbed[ka] = disturbed[ka].max(DISTURBED_SLUMPED);
+    disturbed[kb] = disturbed[kb].max(DISTURBED_SLUMPED);
+}
+
 /// Smooths the heights around `window`; returns the rectangle it worked in
 /// (`window` grown by [`smoothing_radius`], clipped), which may have changed.
 ///
@@ -23,7 +30,9 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
 /// taken from the other, so the volume is conserved (to float rounding); no
 /// flux crosses the rectangle's border. An edge carries flux only if one of
 /// its samples is disturbed (pressed or rim), so natural terrain is never
-/// flattened. The edge between materials of smoothness s_a and s_b runs
+/// flattened (samples that change become slightly disturbed, so settling
+/// can relax them), and not if one of its samples is held by a sole this step
+/// (the foot occupies the print; its walls are smoothed once it lifts). The edge between materials of smoothness s_a and s_b runs
 /// `(s_a + s_b) / 2` passes (the last one fractional).
 pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
     let full = hf.grid().full_rect();
@@ -36,13 +45,17 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
     }
     let parts = hf.parts_mut();
     let (ww, wh) = (w.width(), w.height());
+    let held = held_mask(&parts.changes.held, parts.nx, w);
     let mut flux_x = vec![0.0f32; ww * wh];
     let mut flux_z = vec![0.0f32; ww * wh];
     let mut moved = false;
     for pass in 0..passes {
         let pass = pass as f32;
         let conductance = |ka: usize, kb: usize| {
-            if parts.disturbed[ka] == 0 && parts.disturbed[kb] == 0 {
+            if (parts.disturbed[ka] == 0 && parts.disturbed[kb] == 0)
+                || held.contains(ka)
+                || held.contains(kb)
+            {
                 return 0.0;
             }
             let s = 0.5 * (parts.material(ka).smoothness + parts.material(kb).smoothness);
@@ -73,11 +86,13 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
                 if fx != 0.0 {
                     parts.heights[k] += fx;
                     parts.heights[k + 1] -= fx;
+                    touch(parts.disturbed, k, k + 1);
                     moved = true;
                 }
                 if fz != 0.0 {
                     parts.heights[k] += fz;
                     parts.heights[k + parts.nx] -= fz;
+                    touch(parts.disturbed, k, k + parts.nx);
                     moved = true;
                 }
             }

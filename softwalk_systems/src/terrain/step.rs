@@ -6,16 +6,16 @@ use glam::{Vec2, Vec3};
 
 use super::carve::{FootPrint, carve};
 use super::error::TerrainError;
-use super::heightfield::Heightfield;
-use super::settle::settle;
+use super::heightfield::{Heightfield, StepChanges};
+use super::settle::{settle, stage_window};
 use super::smooth::smooth;
 use crate::foot::FootSole;
 
 /// Carve, smooth and settle for one foot; returns the rectangle that may have
-/// changed (the carve rectangle grown by the smoothing radius, or empty).
+/// changed ([`stage_window`] of the carve rectangle, or empty).
 ///
 /// The usual chain of the carve, smooth and settle systems, for one foot:
-/// `settle(hf, smooth(hf, carve(hf, print, sole, contact, dt)?))`.
+/// `let r = carve(..)?; smooth(hf, r); settle(hf, stage_window(hf, r))`.
 pub fn step_foot(
     hf: &mut Heightfield,
     print: &mut FootPrint,
@@ -27,7 +27,8 @@ pub fn step_foot(
     if carved.is_empty() {
         return Ok(GridRect::EMPTY);
     }
-    let window = smooth(hf, carved);
+    smooth(hf, carved);
+    let window = stage_window(hf, carved);
     settle(hf, window);
     Ok(window)
 }
@@ -90,10 +91,33 @@ pub fn sole_on_ground(
     })
 }
 
+/// What planting one foothold did: the changed rectangle and the volumes
+/// (cubic metres) summed over its steps.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FootholdReport {
+    /// Union of the rectangles that may have changed.
+    pub rect: GridRect,
+    /// Volume removed by carving.
+    pub carved_volume: f64,
+    /// Part of it compacted (lost).
+    pub compacted_volume: f64,
+    /// Part of it pushed onto the rim.
+    pub rim_volume: f64,
+}
+
+impl FootholdReport {
+    fn add(&mut self, rect: GridRect, changes: &StepChanges) {
+        self.rect = self.rect.union(&rect);
+        self.carved_volume += changes.carved_volume;
+        self.compacted_volume += changes.compacted_volume;
+        self.rim_volume += changes.rim_volume;
+    }
+}
+
 /// Plants a synthetic foot at `center` for `steps` steps of `dt`, re-laying
 /// the sole on the ground each step (the ray -> carve -> lower foot feedback),
 /// then lifts it (one release step). Each step starts with
-/// [`Heightfield::begin_step`]. Returns the union of the changed rectangles.
+/// [`Heightfield::begin_step`].
 pub fn plant_foothold(
     hf: &mut Heightfield,
     print: &mut FootPrint,
@@ -102,14 +126,13 @@ pub fn plant_foothold(
     size: FootSize,
     steps: usize,
     dt: f32,
-) -> Result<GridRect, TerrainError> {
-    let mut changed = GridRect::EMPTY;
-    for _ in 0..steps {
+) -> Result<FootholdReport, TerrainError> {
+    let mut report = FootholdReport::default();
+    for k in 0..=steps {
         hf.begin_step();
         let sole = sole_on_ground(hf, center, heading, size)?;
-        changed = changed.union(&step_foot(hf, print, &sole, true, dt)?);
+        let rect = step_foot(hf, print, &sole, k < steps, dt)?;
+        report.add(rect, hf.changes());
     }
-    hf.begin_step();
-    let sole = sole_on_ground(hf, center, heading, size)?;
-    Ok(changed.union(&step_foot(hf, print, &sole, false, dt)?))
+    Ok(report)
 }
