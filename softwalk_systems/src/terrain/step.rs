@@ -53,9 +53,9 @@ impl Default for FootSize {
 }
 
 /// A sole of `size` centred at `center` (XZ), pointing along `heading`, laid
-/// on the current ground as a foot ray and IK would place it: heel and toe
-/// heights are read under the centres of the sole's rounded ends (clamped
-/// onto the grid when off it).
+/// on the current ground as a foot ray and IK would place it: the sole is the
+/// line through the ground heights under the centres of its rounded ends
+/// (points off the grid read the nearest edge of the grid).
 pub fn sole_on_ground(
     hf: &Heightfield,
     center: Vec2,
@@ -82,11 +82,19 @@ pub fn sole_on_ground(
     };
     let half = 0.5 * size.length;
     let inset = (half - 0.5 * size.width).max(0.0);
+    let (back, front) = (ground(center - dir * inset), ground(center + dir * inset));
+    // Extend the line through the two ground samples to the heel and the toe.
+    let grade = if inset > 0.0 {
+        (front - back) / (2.0 * inset)
+    } else {
+        0.0
+    };
     let heel = center - dir * half;
     let toe = center + dir * half;
+    let rise = grade * (half - inset);
     Ok(FootSole {
-        heel: Vec3::new(heel.x, ground(center - dir * inset), heel.y),
-        toe: Vec3::new(toe.x, ground(center + dir * inset), toe.y),
+        heel: Vec3::new(heel.x, back - rise, heel.y),
+        toe: Vec3::new(toe.x, front + rise, toe.y),
         width: size.width,
     })
 }
