@@ -231,33 +231,36 @@ impl<'a> TerrainParts<'a> {
     }
 }
 
-/// The samples held by a sole this step, as a mask over a window.
+/// The samples held by a sole this step, as a mask over a window, indexed by
+/// window-local index `(j - j0) * width + (i - i0)`.
 pub(crate) struct HeldMask {
-    window: GridRect,
-    nx: usize,
     mask: Vec<bool>,
 }
 
 /// Builds the mask of `held` sample indices (row-major in a grid `nx` wide) inside `window`.
 pub(crate) fn held_mask(held: &[usize], nx: usize, window: GridRect) -> HeldMask {
-    let mut mask = vec![false; if held.is_empty() { 0 } else { window.area() }];
+    let mut mask = vec![false; window.area()];
     for &k in held {
         let (i, j) = (k % nx, k / nx);
         if window.contains(i, j) {
             mask[(j - window.j0) * window.width() + (i - window.i0)] = true;
         }
     }
-    HeldMask { window, nx, mask }
+    HeldMask { mask }
 }
 
 impl HeldMask {
-    /// True when sample index `k` (inside the window) is held.
+    /// True when the sample at window-local index `l` is held.
     #[inline]
-    pub fn contains(&self, k: usize) -> bool {
-        !self.mask.is_empty() && {
-            let (i, j) = (k % self.nx, k / self.nx);
-            self.mask[(j - self.window.j0) * self.window.width() + (i - self.window.i0)]
-        }
+    pub fn contains(&self, l: usize) -> bool {
+        self.mask[l]
+    }
+}
+
+impl MaterialTable {
+    /// One value per material id, for fast per-sample lookups in the stages.
+    pub(crate) fn per_material(&self, f: impl Fn(&TerrainMaterial) -> f32) -> Vec<f32> {
+        self.materials().iter().map(f).collect()
     }
 }
 

@@ -54,36 +54,43 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
     let cell = hf.grid().cell_size();
     let parts = hf.parts_mut();
     let nx = parts.nx;
+    let ww = w.width();
     let held = held_mask(&parts.changes.held, nx, w);
-    let diagonal = cell * std::f32::consts::SQRT_2;
+    // Steepest stable height difference per material over a side and a diagonal.
+    let side = parts
+        .table
+        .per_material(|m| (m.repose_slope() + SETTLE_TOLERANCE) * cell);
+    let diagonal = std::f32::consts::SQRT_2;
+    let settle_to = SETTLE_TOLERANCE * cell;
     let mut changed = GridRect::EMPTY;
     let mut active = w;
     let mut transfers = 0;
     for _ in 0..SETTLE_MAX_SWEEPS {
         let mut sweep_changed = GridRect::EMPTY;
         for j in active.j0..active.j1 {
+            let down = j + 1 < w.j1;
             for i in active.i0..active.i1 {
                 let k = j * nx + i;
+                let l = (j - w.j0) * ww + (i - w.i0);
+                if held.contains(l) {
+                    continue;
+                }
                 let right = i + 1 < w.i1;
-                let down = j + 1 < w.j1;
                 let left = i > w.i0;
+                // (inside, grid offset, local offset, column of the neighbour, length factor)
                 let neighbours = [
-                    (right, k + 1, i + 1, j, cell),
-                    (down, k + nx, i, j + 1, cell),
-                    (right && down, k + nx + 1, i + 1, j + 1, diagonal),
-                    (
-                        left && down,
-                        (k + nx).wrapping_sub(1),
-                        i.wrapping_sub(1),
-                        j + 1,
-                        diagonal,
-                    ),
+                    (right, 1, 1, i + 1, 1.0),
+                    (down, nx, ww, i, 1.0),
+                    (right && down, nx + 1, ww + 1, i + 1, diagonal),
+                    (left && down, nx - 1, ww - 1, i.wrapping_sub(1), diagonal),
                 ];
-                for (inside, kb, ib, jb, dist) in neighbours {
-                    if !inside
-                        || (parts.disturbed[k] == 0 && parts.disturbed[kb] == 0)
-                        || held.contains(k)
-                        || held.contains(kb)
+                for (inside, dk, dl, ib, factor) in neighbours {
+                    if !inside {
+                        continue;
+                    }
+                    let kb = k + dk;
+                    if (parts.disturbed[k] == 0 && parts.disturbed[kb] == 0)
+                        || held.contains(l + dl)
                     {
                         continue;
                     }
@@ -92,14 +99,15 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
                     } else {
                         (kb, k)
                     };
-                    let limit = (parts.material(hi).repose_slope() + SETTLE_TOLERANCE) * dist;
+                    let limit = side[parts.material[hi] as usize] * factor;
                     let excess = parts.heights[hi] - parts.heights[lo] - limit;
                     if excess > 0.0 {
-                        let moved = 0.5 * (excess + SETTLE_TOLERANCE * dist);
+                        let moved = 0.5 * (excess + settle_to * factor);
                         parts.heights[hi] -= moved;
                         parts.heights[lo] += moved;
                         parts.disturbed[k] = parts.disturbed[k].max(DISTURBED_SLUMPED);
                         parts.disturbed[kb] = parts.disturbed[kb].max(DISTURBED_SLUMPED);
+                        let jb = if dk == 1 { j } else { j + 1 };
                         let pair = GridRect::new(i.min(ib), j, i.max(ib) + 1, jb + 1);
                         sweep_changed = sweep_changed.union(&pair);
                         transfers += 1;

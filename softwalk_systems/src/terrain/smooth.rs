@@ -32,7 +32,8 @@ fn touch(disturbed: &mut [u8], ka: usize, kb: usize) {
 /// its samples is disturbed (pressed or rim), so natural terrain is never
 /// flattened (samples that change become slightly disturbed, so settling
 /// can relax them), and not if one of its samples is held by a sole this step
-/// (the foot occupies the print; its walls are smoothed once it lifts). The edge between materials of smoothness s_a and s_b runs
+/// (the foot occupies the print; its walls are smoothed once it lifts).
+/// The edge between materials of smoothness s_a and s_b runs
 /// `(s_a + s_b) / 2` passes (the last one fractional).
 pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
     let full = hf.grid().full_rect();
@@ -44,44 +45,49 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
         return w;
     }
     let parts = hf.parts_mut();
-    let (ww, wh) = (w.width(), w.height());
-    let held = held_mask(&parts.changes.held, parts.nx, w);
+    let smoothness = parts.table.per_material(|m| m.smoothness);
+    let (nx, ww, wh) = (parts.nx, w.width(), w.height());
+    let held = held_mask(&parts.changes.held, nx, w);
     let mut flux_x = vec![0.0f32; ww * wh];
     let mut flux_z = vec![0.0f32; ww * wh];
     let mut moved = false;
     for pass in 0..passes {
         let pass = pass as f32;
-        let conductance = |ka: usize, kb: usize| {
+        let heights = &*parts.heights;
+        let conductance = |ka: usize, la: usize, kb: usize, lb: usize| {
             if (parts.disturbed[ka] == 0 && parts.disturbed[kb] == 0)
-                || held.contains(ka)
-                || held.contains(kb)
+                || held.contains(la)
+                || held.contains(lb)
             {
                 return 0.0;
             }
-            let s = 0.5 * (parts.material(ka).smoothness + parts.material(kb).smoothness);
+            let s = 0.5
+                * (smoothness[parts.material[ka] as usize]
+                    + smoothness[parts.material[kb] as usize]);
             DIFFUSION_RATE * (s - pass).clamp(0.0, 1.0)
         };
         for j in w.j0..w.j1 {
+            let row_k = j * nx;
+            let row_l = (j - w.j0) * ww;
             for i in w.i0..w.i1 {
-                let k = j * parts.nx + i;
-                let l = (j - w.j0) * ww + (i - w.i0);
+                let (k, l) = (row_k + i, row_l + i - w.i0);
                 flux_x[l] = if i + 1 < w.i1 {
-                    conductance(k, k + 1) * (parts.heights[k + 1] - parts.heights[k])
+                    conductance(k, l, k + 1, l + 1) * (heights[k + 1] - heights[k])
                 } else {
                     0.0
                 };
                 flux_z[l] = if j + 1 < w.j1 {
-                    let kb = k + parts.nx;
-                    conductance(k, kb) * (parts.heights[kb] - parts.heights[k])
+                    conductance(k, l, k + nx, l + ww) * (heights[k + nx] - heights[k])
                 } else {
                     0.0
                 };
             }
         }
         for j in w.j0..w.j1 {
+            let row_k = j * nx;
+            let row_l = (j - w.j0) * ww;
             for i in w.i0..w.i1 {
-                let k = j * parts.nx + i;
-                let l = (j - w.j0) * ww + (i - w.i0);
+                let (k, l) = (row_k + i, row_l + i - w.i0);
                 let (fx, fz) = (flux_x[l], flux_z[l]);
                 if fx != 0.0 {
                     parts.heights[k] += fx;
@@ -91,8 +97,8 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
                 }
                 if fz != 0.0 {
                     parts.heights[k] += fz;
-                    parts.heights[k + parts.nx] -= fz;
-                    touch(parts.disturbed, k, k + parts.nx);
+                    parts.heights[k + nx] -= fz;
+                    touch(parts.disturbed, k, k + nx);
                     moved = true;
                 }
             }
