@@ -1,1 +1,51 @@
-//! (module under construction)
+//! Loose grounds (paper §3.2 and §4): a deformable [`Heightfield`] with a
+//! material per sample, and the stages a stance foot drives each step:
+//!
+//! 1. [`carve`]: the sole presses its footprint in, up to the material's
+//!    print depth; c_t of the volume is compacted, the rest goes to the rim;
+//! 2. [`smooth`]: the paper's Gaussian filter of strength s_t, as
+//!    conservative diffusion in the dirty window;
+//! 3. [`settle`] (beyond the paper): disturbed slopes steeper than the angle
+//!    of repose slump (Sumner 1999), mass-conserving.
+//!
+//! Each stage returns the rectangle it may have changed and reports it with
+//! [`Heightfield::mark_dirty`]; the BVH refit reads [`Heightfield::take_dirty`].
+//!
+//! ```
+//! use glam::Vec2;
+//! use softwalk_systems::terrain::*;
+//!
+//! let table = MaterialTable::with_presets();
+//! let sand = table.id("sand").unwrap();
+//! let grid = generate::flat(generate::GridSpec::square(2.0, 101), 1.0).unwrap();
+//! let mut hf = Heightfield::from_grid(grid, table, sand).unwrap();
+//! let mut print = FootPrint::new();
+//! let size = FootSize::default();
+//! plant_foothold(&mut hf, &mut print, Vec2::splat(1.0), Vec2::X, size, 18, 1.0 / 60.0).unwrap();
+//! let floor = hf.lowest_in(Vec2::splat(0.95), Vec2::splat(1.05)).unwrap();
+//! assert!(floor < 1.0 - 0.03);
+//! ```
+
+mod carve;
+mod error;
+mod footprint;
+pub mod generate;
+mod heightfield;
+mod material;
+mod material_table;
+pub mod noise;
+mod settle;
+mod smooth;
+mod step;
+
+pub use carve::{CONTACT_TOLERANCE, FootPrint, RIM_MIN_CELLS, RIM_WIDTH_FRACTION, carve};
+pub use error::TerrainError;
+pub use footprint::Footprint;
+pub use heightfield::{
+    DISTURBED_PRESSED, DISTURBED_RIM, DISTURBED_SLUMPED, Heightfield, StepChanges,
+};
+pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
+pub use material_table::{MaterialId, MaterialTable};
+pub use settle::{SETTLE_MARGIN_CELLS, SETTLE_MAX_SWEEPS, SETTLE_TOLERANCE, settle, stage_window};
+pub use smooth::{DIFFUSION_RATE, smooth, smoothing_radius};
+pub use step::{FootSize, FootholdReport, plant_foothold, sole_on_ground, step_foot};

@@ -1,0 +1,201 @@
+//! Carving: a stance foot in contact presses its sole into the ground and
+//! pushes the displaced material that is not compacted onto the rim.
+
+use engine::geom::GridRect;
+use glam::Vec2;
+
+use super::error::TerrainError;
+use super::footprint::Footprint;
+use super::heightfield::{DISTURBED_PRESSED, DISTURBED_RIM, Heightfield};
+use crate::foot::FootSole;
+
+/// Width of the rim ring as a fraction of the sole half-width.
+pub const RIM_WIDTH_FRACTION: f32 = 0.6;
+/// The rim ring is at least this many cells wide.
+pub const RIM_MIN_CELLS: f32 = 1.5;
+/// A sample counts as pressed (held) when the sole is at most this high above it, metres.
+pub const CONTACT_TOLERANCE: f32 = 0.005;
+
+/// Per-foot carving state: the surface each sample had when this contact first
+/// touched it, so a planted foot stops at the print depth instead of sinking
+/// forever through the ray -> carve -> lower foot feedback.
+#[derive(Debug, Clone, Default)]
+pub struct FootPrint {
+    active: bool,
+    window: GridRect,
+    reference: Vec<f32>,
+    touched: GridRect,
+    rim: Vec<(usize, f32)>,
+}
+
+impl FootPrint {
+    /// A foot not in contact.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// True while the foot is in a contact (between first touch and release).
+    pub fn is_active(&self) -> bool {
+        self.active
+    }
+
+    /// Every sample rectangle this contact has touched so far (print and rim).
+    pub fn touched(&self) -> GridRect {
+        self.touched
+    }
+
+    /// The surface height sample `(i, j)` had when this contact first pressed it.
+    pub fn reference_height(&self, i: usize, j: usize) -> Option<f32> {
+        if !self.active || !self.window.contains(i, j) {
+            return None;
+        }
+        let h = self.reference[self.local(i, j)];
+        (!h.is_nan()).then_some(h)
+    }
+
+    #[inline]
+    fn local(&self, i: usize, j: usize) -> usize {
+        (j - self.window.j0) * self.window.width() + (i - self.window.i0)
+    }
+
+    /// Makes the reference window hold `rect` (grows it, keeping known references).
+    fn cover(&mut self, rect: GridRect, nx: usize, nz: usize) {
+        if self.active && self.window.intersect(&rect) == rect {
+            return;
+        }
+        let grown = if self.active {
+            self.window.union(&rect)
+        } else {
+            rect.expand(rect.width().max(rect.height()) / 2, nx, nz)
+        };
+        let mut reference = vec![f32::NAN; grown.area()];
+        if self.active {
+            for (i, j) in self.window.iter() {
+                let k = (j - grown.j0) * grown.width() + (i - grown.i0);
+                reference[k] = self.reference[self.local(i, j)];
+            }
+        } else {
+            self.touched = GridRect::EMPTY;
+        }
+        self.window = grown;
+        self.reference = reference;
+        self.active = true;
+    }
+
+    /// Ends the contact; returns what it touched (smooth and settle it once more).
+    fn release(&mut self) -> GridRect {
+        if !self.active {
+            return GridRect::EMPTY;
+        }
+        self.active = false;
+        self.reference.clear();
+        std::mem::replace(&mut self.touched, GridRect::EMPTY)
+    }
+}
+
+/// One step of carving by one foot; returns the rectangle to smooth and settle.
+///
+/// With `contact`, each sample under the [`Footprint`] sinks by the
+/// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below
+/// `sole - sink step` (the foot pushes the ground one step ahead of itself,
+/// so the print takes the sole's tilt; samples under a raised toe are left
+/// alone) and never below the print depth under the surface this contact first
+/// touched. Of the removed volume, c_t is compacted and 1 - c_t is spread over
+/// the rim ring just outside the footprint, weighted linearly from 1 at the
+/// print's edge to 0 at the ring's outer edge (samples off the grid get none;
+/// with no rim sample on the grid the volume counts as compacted).
+///
+/// Without `contact`, a foot that was in contact is released: nothing is
+/// carved and the whole touched rectangle is returned so that smoothing and
+/// settling run once more without the foot holding the walls.
+///
+/// A footprint partly off the grid carves what exists; fully off, nothing.
+pub fn carve(
+    hf: &mut Heightfield,
+    print: &mut FootPrint,
+    sole: &FootSole,
+    contact: bool,
+    dt: f32,
+) -> Result<GridRect, TerrainError> {
+    if !(dt.is_finite() && dt >= 0.0) {
+        return Err(TerrainError::InvalidParameter {
+            name: "dt",
+            reason: format!("{dt} must be finite and >= 0"),
+        });
+    }
+    let foot = Footprint::from_sole(sole)?;
+    if !contact {
+        return Ok(print.release());
+    }
+    let grid = hf.grid();
+    let (origin, cell, nx, nz) = (grid.origin(), grid.cell_size(), grid.nx(), grid.nz());
+    let rim_width = (RIM_WIDTH_FRACTION * foot.radius).max(RIM_MIN_CELLS * cell);
+    let (lo, hi) = foot.bounds(rim_width);
+    let rect = grid.rect_covering(lo, hi);
+    if rect.is_empty() {
+        return Ok(GridRect::EMPTY);
+    }
+    print.cover(rect, nx, nz);
+
+    let parts = hf.parts_mut();
+    let mut removed = 0.0f64;
+    let mut compacted = 0.0f64;
+    let mut weight_sum = 0.0f64;
+    print.rim.clear();
+    for j in rect.j0..rect.j1 {
+        for i in rect.i0..rect.i1 {
+            let p = origin + Vec2::new(i as f32, j as f32) * cell;
+            let d = foot.axis_distance(p);
+            let k = j * nx + i;
+            if d > foot.radius {
+                if d <= foot.radius + rim_width {
+                    let w = 1.0 - (d - foot.radius) / rim_width;
+                    print.rim.push((k, w));
+                    weight_sum += w as f64;
+                }
+                continue;
+            }
+            let h = parts.heights[k];
+            let sole_y = foot.sole_height(p);
+            if sole_y > h + CONTACT_TOLERANCE {
+                continue;
+            }
+            let local = print.local(i, j);
+            if print.reference[local].is_nan() {
+                print.reference[local] = h;
+            }
+            let material = parts.material(k);
+            let step = material.sink_speed() * dt;
+            let floor = (print.reference[local] - material.print_depth()).max(sole_y - step);
+            let new_h = (h - step).max(floor);
+            parts.changes.held.push(k);
+            parts.disturbed[k] = DISTURBED_PRESSED;
+            if new_h < h {
+                parts.heights[k] = new_h;
+                let dh = (h - new_h) as f64;
+                removed += dh;
+                compacted += material.compression as f64 * dh;
+            }
+        }
+    }
+    if removed == 0.0 {
+        return Ok(GridRect::EMPTY);
+    }
+    let mut to_rim = removed - compacted;
+    if weight_sum > 0.0 {
+        for &(k, w) in &print.rim {
+            parts.heights[k] += (to_rim * w as f64 / weight_sum) as f32;
+            parts.disturbed[k] = parts.disturbed[k].max(DISTURBED_RIM);
+        }
+    } else {
+        compacted += to_rim;
+        to_rim = 0.0;
+    }
+    let area = (cell as f64) * (cell as f64);
+    parts.changes.carved_volume += removed * area;
+    parts.changes.compacted_volume += compacted * area;
+    parts.changes.rim_volume += to_rim * area;
+    print.touched = print.touched.union(&rect);
+    hf.mark_dirty(rect);
+    Ok(rect)
+}

@@ -1,0 +1,334 @@
+//! The `Heightfield` component: a height grid with a material per sample,
+//! a trodden-ground mask, dirty-window tracking and a per-step change record.
+
+use engine::geom::{GridRect, HeightGrid};
+use glam::Vec2;
+
+use super::error::TerrainError;
+use super::material::TerrainMaterial;
+use super::material_table::{MaterialId, MaterialTable};
+
+/// `disturbed` value of a sample pressed by a sole.
+pub const DISTURBED_PRESSED: u8 = 255;
+/// `disturbed` value of a sample in a print's rim.
+pub const DISTURBED_RIM: u8 = 128;
+/// `disturbed` value of a sample moved by settling.
+pub const DISTURBED_SLUMPED: u8 = 32;
+
+/// What the terrain stages changed since [`Heightfield::begin_step`].
+///
+/// Volumes are in cubic metres, accumulated in `f64`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StepChanges {
+    /// Union of every rectangle whose samples changed.
+    pub rect: GridRect,
+    /// Volume removed from contact samples by carving.
+    pub carved_volume: f64,
+    /// Part of the carved volume compacted (lost): c_t of it.
+    pub compacted_volume: f64,
+    /// Part of the carved volume pushed onto the rims: 1 - c_t of it.
+    pub rim_volume: f64,
+    /// Samples a sole pressed on (held by the foot; settling leaves them alone).
+    pub held: Vec<usize>,
+    /// Pairwise transfers made by settling.
+    pub settle_transfers: usize,
+}
+
+/// A deformable loose ground: heights, a material per sample and the trodden mask.
+///
+/// Every stage that edits heights reports the edited rectangle through
+/// [`Heightfield::mark_dirty`]; consumers (BVH refit, render patches) read it
+/// with [`Heightfield::take_dirty`].
+#[derive(Debug, Clone)]
+pub struct Heightfield {
+    grid: HeightGrid,
+    table: MaterialTable,
+    material: Vec<u8>,
+    disturbed: Vec<u8>,
+    dirty: GridRect,
+    changes: StepChanges,
+}
+
+impl Heightfield {
+    /// A terrain over `grid`, every sample of material `fill` from `table`.
+    pub fn from_grid(
+        grid: HeightGrid,
+        table: MaterialTable,
+        fill: MaterialId,
+    ) -> Result<Self, TerrainError> {
+        table.get(fill)?;
+        let n = grid.nx() * grid.nz();
+        Ok(Heightfield {
+            grid,
+            table,
+            material: vec![fill.0; n],
+            disturbed: vec![0; n],
+            dirty: GridRect::EMPTY,
+            changes: StepChanges::default(),
+        })
+    }
+
+    /// The heights.
+    pub fn grid(&self) -> &HeightGrid {
+        &self.grid
+    }
+
+    /// The heights, writable. Report what you edit with [`Heightfield::mark_dirty`].
+    pub fn grid_mut(&mut self) -> &mut HeightGrid {
+        &mut self.grid
+    }
+
+    /// The material table the material map indexes.
+    pub fn table(&self) -> &MaterialTable {
+        &self.table
+    }
+
+    /// Per-sample material ids, row-major like the heights.
+    pub fn material_map(&self) -> &[u8] {
+        &self.material
+    }
+
+    /// Per-sample trodden amount, row-major: 0 untouched, [`DISTURBED_SLUMPED`]
+    /// slumped, [`DISTURBED_RIM`] rim, [`DISTURBED_PRESSED`] pressed by a sole.
+    pub fn disturbed(&self) -> &[u8] {
+        &self.disturbed
+    }
+
+    /// The material of sample index `k` (row-major).
+    #[inline]
+    pub fn material_of(&self, k: usize) -> &TerrainMaterial {
+        &self.table.materials()[self.material[k] as usize]
+    }
+
+    /// The material of the sample nearest to world `(x, z)`, or `None` off the grid.
+    pub fn material_at(&self, x: f32, z: f32) -> Option<&TerrainMaterial> {
+        if !self.grid.contains_xz(x, z) {
+            return None;
+        }
+        let g = self.grid.to_grid(x, z).round();
+        let k = self.grid.index(g.x as usize, g.y as usize);
+        Some(self.material_of(k))
+    }
+
+    /// Print depth in metres of the material under world `(x, z)`.
+    pub fn print_depth_at(&self, x: f32, z: f32) -> Option<f32> {
+        self.material_at(x, z).map(TerrainMaterial::print_depth)
+    }
+
+    /// Lowest height among the samples inside the world XZ box `[min, max]`,
+    /// or `None` when the box holds no sample (for measuring prints).
+    pub fn lowest_in(&self, min: Vec2, max: Vec2) -> Option<f32> {
+        let rect = self.grid.rect_covering(min, max);
+        (!rect.is_empty()).then(|| self.grid.min_max_in(&rect).0)
+    }
+
+    /// Sets every sample inside `rect` (clipped to the grid) to material `id`.
+    pub fn paint_rect(&mut self, rect: GridRect, id: MaterialId) -> Result<(), TerrainError> {
+        self.table.get(id)?;
+        let rect = rect.intersect(&self.grid.full_rect());
+        let nx = self.grid.nx();
+        for j in rect.j0..rect.j1 {
+            self.material[j * nx + rect.i0..j * nx + rect.i1].fill(id.0);
+        }
+        Ok(())
+    }
+
+    /// Sets each sample's material to `f(x, z)` (world position); the map is
+    /// left unchanged if `f` returns an id not in the table.
+    pub fn paint_fn(
+        &mut self,
+        mut f: impl FnMut(f32, f32) -> MaterialId,
+    ) -> Result<(), TerrainError> {
+        let (nx, nz) = (self.grid.nx(), self.grid.nz());
+        let mut map = Vec::with_capacity(nx * nz);
+        for j in 0..nz {
+            for i in 0..nx {
+                let p = self.grid.sample_position(i, j);
+                let id = f(p.x, p.z);
+                self.table.get(id)?;
+                map.push(id.0);
+            }
+        }
+        self.material = map;
+        Ok(())
+    }
+
+    /// Splits the terrain into `ids.len()` equal bands along X, the first band
+    /// at the smallest X.
+    pub fn paint_bands_x(&mut self, ids: &[MaterialId]) -> Result<(), TerrainError> {
+        if ids.is_empty() {
+            return Err(TerrainError::InvalidParameter {
+                name: "ids",
+                reason: "no material given for the bands".into(),
+            });
+        }
+        let nx = self.grid.nx();
+        for (b, &id) in ids.iter().enumerate() {
+            let i0 = b * nx / ids.len();
+            let i1 = (b + 1) * nx / ids.len();
+            self.paint_rect(GridRect::new(i0, 0, i1, self.grid.nz()), id)?;
+        }
+        Ok(())
+    }
+
+    /// Adds `rect` to the dirty window (what caches must redo).
+    pub fn mark_dirty(&mut self, rect: GridRect) {
+        self.dirty = self.dirty.union(&rect);
+        self.changes.rect = self.changes.rect.union(&rect);
+    }
+
+    /// The dirty window accumulated since the last [`Heightfield::take_dirty`].
+    pub fn dirty(&self) -> GridRect {
+        self.dirty
+    }
+
+    /// Returns the dirty window and clears it (hand it to the BVH refit).
+    pub fn take_dirty(&mut self) -> GridRect {
+        std::mem::replace(&mut self.dirty, GridRect::EMPTY)
+    }
+
+    /// What changed since the last [`Heightfield::begin_step`].
+    pub fn changes(&self) -> &StepChanges {
+        &self.changes
+    }
+
+    /// Starts a new step record; returns the previous one. Call it once at the
+    /// start of every fixed step, before carving (the held samples of the last
+    /// step are released).
+    pub fn begin_step(&mut self) -> StepChanges {
+        std::mem::take(&mut self.changes)
+    }
+
+    /// Mutable access for the stages: heights, materials, disturbed mask, step record.
+    pub(crate) fn parts_mut(&mut self) -> TerrainParts<'_> {
+        let nx = self.grid.nx();
+        TerrainParts {
+            heights: self.grid.heights_mut(),
+            nx,
+            table: &self.table,
+            material: &self.material,
+            disturbed: &mut self.disturbed,
+            changes: &mut self.changes,
+        }
+    }
+}
+
+/// Split borrows of a [`Heightfield`] for the carving, smoothing and settling stages.
+pub(crate) struct TerrainParts<'a> {
+    pub heights: &'a mut [f32],
+    pub nx: usize,
+    pub table: &'a MaterialTable,
+    pub material: &'a [u8],
+    pub disturbed: &'a mut [u8],
+    pub changes: &'a mut StepChanges,
+}
+
+impl<'a> TerrainParts<'a> {
+    /// The material of sample index `k`.
+    #[inline]
+    pub fn material(&self, k: usize) -> &'a TerrainMaterial {
+        &self.table.materials()[self.material[k] as usize]
+    }
+}
+
+/// The samples held by a sole this step, as a mask over a window, indexed by
+/// window-local index `(j - j0) * width + (i - i0)`.
+pub(crate) struct HeldMask {
+    mask: Vec<bool>,
+}
+
+/// Builds the mask of `held` sample indices (row-major in a grid `nx` wide) inside `window`.
+pub(crate) fn held_mask(held: &[usize], nx: usize, window: GridRect) -> HeldMask {
+    let mut mask = vec![false; window.area()];
+    for &k in held {
+        let (i, j) = (k % nx, k / nx);
+        if window.contains(i, j) {
+            mask[(j - window.j0) * window.width() + (i - window.i0)] = true;
+        }
+    }
+    HeldMask { mask }
+}
+
+impl HeldMask {
+    /// True when the sample at window-local index `l` is held.
+    #[inline]
+    pub fn contains(&self, l: usize) -> bool {
+        self.mask[l]
+    }
+}
+
+impl MaterialTable {
+    /// One value per material id, for fast per-sample lookups in the stages.
+    pub(crate) fn per_material(&self, f: impl Fn(&TerrainMaterial) -> f32) -> Vec<f32> {
+        self.materials().iter().map(f).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::generate::{GridSpec, flat};
+
+    fn field() -> Heightfield {
+        let grid = flat(GridSpec::square(4.0, 41), 1.0).unwrap();
+        Heightfield::from_grid(grid, MaterialTable::with_presets(), MaterialId(0)).unwrap()
+    }
+
+    #[test]
+    fn materials_paint_and_lookup() {
+        let mut hf = field();
+        assert_eq!(hf.material_at(1.0, 1.0).unwrap().name, "sand");
+        let snow = hf.table().id("snow").unwrap();
+        hf.paint_rect(GridRect::new(0, 0, 10, 41), snow).unwrap();
+        assert_eq!(hf.material_at(0.5, 3.0).unwrap().name, "snow");
+        assert_eq!(hf.material_at(2.0, 3.0).unwrap().name, "sand");
+        assert!(hf.material_at(-1.0, 0.0).is_none());
+        assert!(
+            hf.paint_rect(GridRect::new(0, 0, 1, 1), MaterialId(7))
+                .is_err()
+        );
+        let ids = [MaterialId(1), MaterialId(2)];
+        hf.paint_bands_x(&ids).unwrap();
+        assert_eq!(hf.material_at(0.1, 2.0).unwrap().name, "soil");
+        assert_eq!(hf.material_at(3.9, 2.0).unwrap().name, "mud");
+        hf.paint_fn(|_, z| {
+            if z < 2.0 {
+                MaterialId(3)
+            } else {
+                MaterialId(1)
+            }
+        })
+        .unwrap();
+        assert_eq!(
+            hf.print_depth_at(1.0, 1.0),
+            Some(TerrainMaterial::snow().print_depth())
+        );
+        assert!(hf.paint_fn(|_, _| MaterialId(200)).is_err());
+        assert_eq!(hf.material_at(1.0, 3.0).unwrap().name, "soil");
+        assert!(
+            Heightfield::from_grid(hf.grid().clone(), MaterialTable::new(), MaterialId(0)).is_err()
+        );
+    }
+
+    #[test]
+    fn dirty_window_accumulates_and_clears() {
+        let mut hf = field();
+        assert!(hf.dirty().is_empty());
+        hf.mark_dirty(GridRect::new(1, 1, 3, 3));
+        hf.mark_dirty(GridRect::new(5, 0, 6, 2));
+        assert_eq!(hf.dirty(), GridRect::new(1, 0, 6, 3));
+        assert_eq!(hf.take_dirty(), GridRect::new(1, 0, 6, 3));
+        assert!(hf.dirty().is_empty());
+        assert_eq!(hf.begin_step().rect, GridRect::new(1, 0, 6, 3));
+        assert!(hf.changes().rect.is_empty());
+    }
+
+    #[test]
+    fn lowest_in_box() {
+        let mut hf = field();
+        hf.grid_mut().set_height(20, 20, 0.25);
+        assert_eq!(hf.lowest_in(Vec2::splat(1.5), Vec2::splat(2.5)), Some(0.25));
+        assert_eq!(hf.lowest_in(Vec2::splat(2.5), Vec2::splat(3.0)), Some(1.0));
+        assert_eq!(hf.lowest_in(Vec2::splat(9.0), Vec2::splat(10.0)), None);
+    }
+}

@@ -1,0 +1,146 @@
+//! The three terrain stages chained for one foot, and a synthetic planted foot
+//! (for tests, benchmarks and demos without a character).
+
+use engine::geom::GridRect;
+use glam::{Vec2, Vec3};
+
+use super::carve::{FootPrint, carve};
+use super::error::TerrainError;
+use super::heightfield::{Heightfield, StepChanges};
+use super::settle::{settle, stage_window};
+use super::smooth::smooth;
+use crate::foot::FootSole;
+
+/// Carve, smooth and settle for one foot; returns the rectangle that may have
+/// changed ([`stage_window`] of the carve rectangle, or empty).
+///
+/// The usual chain of the carve, smooth and settle systems, for one foot:
+/// `let r = carve(..)?; smooth(hf, r); settle(hf, stage_window(hf, r))`.
+pub fn step_foot(
+    hf: &mut Heightfield,
+    print: &mut FootPrint,
+    sole: &FootSole,
+    contact: bool,
+    dt: f32,
+) -> Result<GridRect, TerrainError> {
+    let carved = carve(hf, print, sole, contact, dt)?;
+    if carved.is_empty() {
+        return Ok(GridRect::EMPTY);
+    }
+    smooth(hf, carved);
+    let window = stage_window(hf, carved);
+    settle(hf, window);
+    Ok(window)
+}
+
+/// Size of a synthetic foot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FootSize {
+    /// Heel to toe, metres.
+    pub length: f32,
+    /// Sole width, metres.
+    pub width: f32,
+}
+
+impl Default for FootSize {
+    /// An adult foot: 26 cm by 10 cm.
+    fn default() -> Self {
+        FootSize {
+            length: 0.26,
+            width: 0.10,
+        }
+    }
+}
+
+/// A sole of `size` centred at `center` (XZ), pointing along `heading`, laid
+/// on the current ground as a foot ray and IK would place it: the sole is the
+/// line through the ground heights under the centres of its rounded ends
+/// (points off the grid read the nearest edge of the grid).
+pub fn sole_on_ground(
+    hf: &Heightfield,
+    center: Vec2,
+    heading: Vec2,
+    size: FootSize,
+) -> Result<FootSole, TerrainError> {
+    let dir = heading
+        .try_normalize()
+        .ok_or(TerrainError::InvalidParameter {
+            name: "heading",
+            reason: format!("{heading} is not a finite non-zero direction"),
+        })?;
+    if !center.is_finite() {
+        return Err(TerrainError::InvalidParameter {
+            name: "center",
+            reason: format!("{center} is not finite"),
+        });
+    }
+    let grid = hf.grid();
+    let (lo, hi) = (grid.origin(), grid.origin() + grid.extent());
+    let ground = |p: Vec2| {
+        let q = p.clamp(lo, hi);
+        grid.height_at(q.x, q.y).unwrap_or(0.0)
+    };
+    let half = 0.5 * size.length;
+    let inset = (half - 0.5 * size.width).max(0.0);
+    let (back, front) = (ground(center - dir * inset), ground(center + dir * inset));
+    // Extend the line through the two ground samples to the heel and the toe.
+    let grade = if inset > 0.0 {
+        (front - back) / (2.0 * inset)
+    } else {
+        0.0
+    };
+    let heel = center - dir * half;
+    let toe = center + dir * half;
+    let rise = grade * (half - inset);
+    Ok(FootSole {
+        heel: Vec3::new(heel.x, back - rise, heel.y),
+        toe: Vec3::new(toe.x, front + rise, toe.y),
+        width: size.width,
+    })
+}
+
+/// What planting one foothold did: the changed rectangle and the volumes
+/// (cubic metres) summed over its steps.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FootholdReport {
+    /// Union of the rectangles that may have changed.
+    pub rect: GridRect,
+    /// Volume removed by carving.
+    pub carved_volume: f64,
+    /// Part of it compacted (lost).
+    pub compacted_volume: f64,
+    /// Part of it pushed onto the rim.
+    pub rim_volume: f64,
+}
+
+impl FootholdReport {
+    fn add(&mut self, rect: GridRect, changes: &StepChanges) {
+        self.rect = self.rect.union(&rect);
+        self.carved_volume += changes.carved_volume;
+        self.compacted_volume += changes.compacted_volume;
+        self.rim_volume += changes.rim_volume;
+    }
+}
+
+/// Plants a synthetic foot at `center` for `steps` steps of `dt`, re-laying
+/// the sole on the ground each step (the ray -> carve -> lower foot feedback),
+/// then lifts it (one release step). Each step starts with
+/// [`Heightfield::begin_step`].
+pub fn plant_foothold(
+    hf: &mut Heightfield,
+    print: &mut FootPrint,
+    center: Vec2,
+    heading: Vec2,
+    size: FootSize,
+    steps: usize,
+    dt: f32,
+) -> Result<FootholdReport, TerrainError> {
+    let mut report = FootholdReport::default();
+    for k in 0..=steps {
+        hf.begin_step();
+        let sole = sole_on_ground(hf, center, heading, size)?;
+        let rect = step_foot(hf, print, &sole, k < steps, dt)?;
+        report.add(rect, hf.changes());
+    }
+    Ok(report)
+}
