@@ -9,5 +9,6 @@
 pub mod character;
 pub mod foot;
 pub mod ground;
+pub mod sim;
 pub mod terrain;
 pub mod vegetation;

@@ -140,6 +140,11 @@ impl VirtualPlatform {
         self.height
     }
 
+    /// Centre of the platform's top (world X, Z), where the foot was last seen above it.
+    pub fn centre(&self) -> Vec2 {
+        self.centre
+    }
+
     /// The last phases entered, oldest first (at most [`PHASE_LOG_LEN`]),
     /// starting with the initial `Idle`.
     pub fn phase_log(&self) -> impl Iterator<Item = PlatformPhase> + '_ {

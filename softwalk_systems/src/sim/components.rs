@@ -1,0 +1,79 @@
+//! Components and resources the pipeline adds beside the paper's own types.
+
+use glam::Vec3;
+
+use crate::character::CharacterMetrics;
+use crate::foot::FootState;
+use crate::terrain::FootPrint;
+use crate::vegetation::VirtualPlatform;
+
+/// A character's display name (metrics rows and overlays use it).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CharacterName(pub String);
+
+/// Each foot's state after the last IK step (left first).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Feet(pub [FootState; 2]);
+
+/// Each foot's print in progress on the ground (left first).
+#[derive(Debug, Clone, Default)]
+pub struct FootPrints(pub [FootPrint; 2]);
+
+/// Each foot's virtual platform (left first); idle outside vegetation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Platforms(pub [VirtualPlatform; 2]);
+
+/// The gains a character was given; vegetation scales `beta` from these each step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BaseGains {
+    /// The paper's alpha.
+    pub alpha: f32,
+    /// The paper's beta with no vegetation.
+    pub beta: f32,
+}
+
+/// Everything one character recorded this step: the character's own metrics
+/// plus what the ground and vegetation add.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WalkerMetrics {
+    /// The character's own metrics (COM, tilt, torque, feet, knees, ...).
+    pub character: CharacterMetrics,
+    /// Top of each foot's virtual platform, when one stands.
+    pub platform_y: [Option<f32>; 2],
+    /// Vegetation height sensed under the character's centre of mass.
+    pub grass_height: f32,
+    /// Ground height under the pelvis.
+    pub ground_y: f32,
+    /// Velocity of the centre of mass over the path (world XZ, y = 0).
+    pub velocity: Vec3,
+}
+
+/// Resource: the terrain's total volume, kept up to date from what each step
+/// carved and compacted (not by summing the grid every step).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TerrainVolume(pub f64);
+
+/// Resource: the first fault a system reported; [`crate::sim::step`] turns it into an error.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SystemFault(pub Option<(&'static str, String)>);
+
+impl SystemFault {
+    /// Records a fault unless one is already recorded.
+    pub fn report(&mut self, system: &'static str, message: impl Into<String>) {
+        if self.0.is_none() {
+            self.0 = Some((system, message.into()));
+        }
+    }
+}
+
+/// Resource: the union of the terrain rectangles changed since a consumer (the
+/// renderer) last took it with [`TerrainDirty::take`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TerrainDirty(pub engine::geom::GridRect);
+
+impl TerrainDirty {
+    /// Returns the accumulated rectangle and clears it.
+    pub fn take(&mut self) -> engine::geom::GridRect {
+        std::mem::take(&mut self.0)
+    }
+}

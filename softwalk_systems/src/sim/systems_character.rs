@@ -1,0 +1,158 @@
+//! The character systems: ground response, gait, foot rays, balance, foot IK, metrics.
+
+use engine::ecs::World;
+use engine::geom::RayScene;
+use engine::schedule::Time;
+
+use super::components::{BaseGains, Feet, Platforms, SystemFault, WalkerMetrics};
+use super::ground_view::SceneGround;
+use super::labels;
+use crate::character::{
+    Balance, CharacterBody, CharacterMetrics, FootIK, FootRays, Gait, GaitModifiers, Pose,
+    RigidProxy, WalkPath, balance_stage, foot_ik_stage, foot_raycast_stage, gait_stage,
+};
+use crate::terrain::{GaitResponse, Heightfield};
+use crate::vegetation::{GrassPatch, PlatformSettings, VegetationFriction};
+
+/// The fixed step of the current run.
+pub(crate) fn step_dt(world: &World) -> f32 {
+    world.get_resource::<Time>().map_or(0.0, |t| t.dt)
+}
+
+/// Vegetation height at `(x, z)`: the tallest patch there, 0 outside every patch.
+pub(crate) fn sensed_vegetation(patches: &[&GrassPatch], x: f32, z: f32) -> f32 {
+    patches
+        .iter()
+        .map(|p| p.height_at(x, z))
+        .fold(0.0, f32::max)
+}
+
+/// Platform settings of the tallest patch at `(x, z)`, or the defaults outside vegetation.
+pub(crate) fn platform_settings_at(patches: &[&GrassPatch], x: f32, z: f32) -> PlatformSettings {
+    patches
+        .iter()
+        .filter(|p| p.height_at(x, z) > 0.0)
+        .max_by(|a, b| a.height_at(x, z).total_cmp(&b.height_at(x, z)))
+        .map_or_else(PlatformSettings::default, |p| p.settings().platform)
+}
+
+/// System `ground_response`: the material under the pelvis sets the gait
+/// modifiers (data of [`crate::terrain::TerrainMaterial::gait`]); the vegetation
+/// height under it scales `beta` by the paper's law (6 bare -> 4 at 0.9 m).
+pub fn ground_response_system(world: &mut World) {
+    let friction = world
+        .get_resource::<VegetationFriction>()
+        .map(|f| *f)
+        .unwrap_or_default();
+    let mut terrains = world.query::<&Heightfield>();
+    let terrain = terrains.iter().next();
+    let mut patch_query = world.query::<&GrassPatch>();
+    let patches: Vec<&GrassPatch> = patch_query.iter().collect();
+    let mut walkers = world.query::<(&Gait, &mut GaitModifiers, &mut Balance, &BaseGains)>();
+    for (gait, modifiers, balance, base) in walkers.iter() {
+        let p = gait.pelvis.position;
+        let response = terrain
+            .and_then(|t| t.material_at(p.x, p.y))
+            .map_or(GaitResponse::NEUTRAL, |m| m.gait);
+        *modifiers = GaitModifiers {
+            speed_scale: response.speed_scale,
+            step_length_scale: response.step_length_scale,
+            extra_clearance: response.extra_clearance,
+        };
+        let h = sensed_vegetation(&patches, p.x, p.y);
+        let beta = base.beta * friction.beta(h) / friction.beta_bare;
+        if let Err(e) = balance.set_gains(base.alpha, beta) {
+            world
+                .resource_mut::<SystemFault>()
+                .report(labels::GROUND_RESPONSE, e.to_string());
+        }
+    }
+}
+
+/// System `gait`: advances every character's walk cycle.
+pub fn gait_system(world: &mut World) {
+    let dt = step_dt(world);
+    for (gait, body, path, modifiers) in
+        world.query_mut::<(&mut Gait, &CharacterBody, &WalkPath, &GaitModifiers)>()
+    {
+        gait_stage(gait, body, path, modifiers, dt);
+    }
+}
+
+/// System `foot_raycast`: vertical rays through the ground BVH (terrain and meshes).
+pub fn foot_raycast_system(world: &mut World) {
+    let scene = world.get_resource::<RayScene>();
+    let Some(scene) = scene.as_deref() else {
+        return;
+    };
+    let mut terrains = world.query::<&Heightfield>();
+    let grid = terrains.iter().next().map(|t| t.grid());
+    let ground = SceneGround { scene, grid };
+    for (rays, gait, body) in world
+        .query::<(&mut FootRays, &Gait, &CharacterBody)>()
+        .iter()
+    {
+        foot_raycast_stage(rays, gait, body, &ground);
+    }
+}
+
+/// System `balance`: eq. 1 on each character's rigid proxy.
+pub fn balance_system(world: &mut World) {
+    let dt = step_dt(world);
+    for (proxy, balance, body, gait, rays) in
+        world.query_mut::<(&mut RigidProxy, &Balance, &CharacterBody, &Gait, &FootRays)>()
+    {
+        balance_stage(proxy, balance, body, gait, rays, dt);
+    }
+}
+
+/// System `foot_ik`: legs to the keys, pelvis drop, tilt; writes [`Feet`].
+pub fn foot_ik_system(world: &mut World) {
+    let dt = step_dt(world);
+    for (ik, pose, body, gait, rays, proxy, feet) in world.query_mut::<(
+        &mut FootIK,
+        &mut Pose,
+        &CharacterBody,
+        &Gait,
+        &FootRays,
+        &RigidProxy,
+        &mut Feet,
+    )>() {
+        feet.0 = foot_ik_stage(ik, pose, body, gait, rays, proxy, dt);
+    }
+}
+
+/// System `metrics`: records each character's [`WalkerMetrics`] for this step.
+pub fn metrics_system(world: &mut World) {
+    let mut patch_query = world.query::<&GrassPatch>();
+    let patches: Vec<&GrassPatch> = patch_query.iter().collect();
+    let mut walkers = world.query::<(
+        &CharacterBody,
+        &Pose,
+        &RigidProxy,
+        &FootIK,
+        &Feet,
+        &Gait,
+        &FootRays,
+        Option<&Platforms>,
+        &mut WalkerMetrics,
+    )>();
+    for (body, pose, proxy, ik, feet, gait, rays, platforms, out) in walkers.iter() {
+        let character = CharacterMetrics::capture(body, pose, proxy, ik, &feet.0);
+        let platform_y = match platforms {
+            Some(p) => p.0.each_ref().map(|pl| {
+                let at = pl.centre();
+                pl.top(&platform_settings_at(&patches, at.x, at.y))
+                    .map(|t| t.top_y)
+            }),
+            None => [None, None],
+        };
+        *out = WalkerMetrics {
+            character,
+            platform_y,
+            grass_height: sensed_vegetation(&patches, character.com.x, character.com.z),
+            ground_y: rays.body.point.y,
+            velocity: glam::Vec3::new(gait.velocity.x, 0.0, gait.velocity.y),
+        };
+    }
+}
