@@ -30,8 +30,8 @@ pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
 /// Lets steep disturbed slopes inside `window` slump; returns the rectangle of
 /// samples that changed (empty when already stable).
 ///
-/// Sweeps run over the 8-neighbour edges in row-major order, alternately
-/// forward and backward (symmetric Gauss-Seidel, deterministic). When the higher sample of an edge is steeper than the
+/// Sweeps run over the 8-neighbour edges in row-major order (Gauss-Seidel,
+/// deterministic). When the higher sample of an edge is steeper than the
 /// repose slope of its material by `excess` metres, half the excess moves to
 /// the lower sample, which puts the pair exactly at the angle of repose. The
 /// next sweep only revisits the samples changed by the last one, grown by
@@ -87,25 +87,12 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
     let mut active = seeds;
     let mut transfers = 0;
     let mut visits = 0;
-    for sweep in 0..SETTLE_MAX_SWEEPS {
+    for _ in 0..SETTLE_MAX_SWEEPS {
         let mut sweep_changed = GridRect::EMPTY;
-        // Alternate forward and backward sweeps so slumps travel both ways fast.
-        let backward = sweep % 2 == 1;
-        let (width, height) = (active.width(), active.height());
         visits += active.area();
-        for row in 0..height {
-            let r = if backward {
-                active.j1 - 1 - row
-            } else {
-                active.j0 + row
-            };
+        for r in active.j0..active.j1 {
             let down = r + 1 < wh;
-            for col in 0..width {
-                let c = if backward {
-                    active.i1 - 1 - col
-                } else {
-                    active.i0 + col
-                };
+            for c in active.i0..active.i1 {
                 let l = r * ww + c;
                 if p.held[l] {
                     continue;
