@@ -155,3 +155,70 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
     hf.mark_dirty(changed);
     changed
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::generate::{GridSpec, flat};
+    use crate::terrain::{MaterialId, MaterialTable};
+
+    fn pillar(material: u8) -> Heightfield {
+        let grid = flat(GridSpec::square(1.0, 41), 1.0).unwrap();
+        let mut hf =
+            Heightfield::from_grid(grid, MaterialTable::with_presets(), MaterialId(material))
+                .unwrap();
+        hf.grid_mut().set_height(20, 20, 1.2);
+        let k = hf.grid().index(20, 20);
+        hf.parts_mut().disturbed[k] = 255;
+        hf
+    }
+
+    #[test]
+    fn a_sand_pillar_slumps_to_its_angle_of_repose_conserving_volume() {
+        let mut hf = pillar(0);
+        let before = hf.grid().volume();
+        let changed = settle(&mut hf, GridRect::new(5, 5, 36, 36));
+        assert!(!changed.is_empty());
+        assert!(((hf.grid().volume() - before) / before).abs() < 1e-7);
+        let g = hf.grid();
+        let tan = 34f32.to_radians().tan();
+        for (i, j) in GridRect::new(5, 5, 35, 35).iter() {
+            let dx = (g.height(i + 1, j) - g.height(i, j)).abs() / g.cell_size();
+            let dz = (g.height(i, j + 1) - g.height(i, j)).abs() / g.cell_size();
+            assert!(
+                dx <= tan + 2e-3 && dz <= tan + 2e-3,
+                "({i}, {j}): {dx} {dz}"
+            );
+        }
+        assert!(hf.changes().settle_transfers > 0);
+    }
+
+    #[test]
+    fn snow_holds_a_steep_wall_and_held_samples_do_not_move() {
+        let mut hf = pillar(3);
+        hf.grid_mut().set_height(20, 20, 1.1);
+        let snow = hf.grid().clone();
+        // 0.1 m over one 2.5 cm cell is 76 degrees: below snow's 84.
+        assert!(settle(&mut hf, GridRect::new(5, 5, 36, 36)).is_empty());
+        assert_eq!(hf.grid(), &snow);
+        let mut hf = pillar(0);
+        let k = hf.grid().index(20, 20);
+        hf.parts_mut().changes.held.push(k);
+        let held = hf.grid().clone();
+        assert!(settle(&mut hf, GridRect::new(5, 5, 36, 36)).is_empty());
+        assert_eq!(hf.grid(), &held);
+    }
+
+    #[test]
+    fn nothing_moves_outside_the_window() {
+        let mut hf = pillar(0);
+        let w = GridRect::new(19, 19, 22, 22);
+        let changed = settle(&mut hf, w);
+        assert_eq!(changed.intersect(&w), changed);
+        for (i, j) in hf.grid().full_rect().iter() {
+            if !w.contains(i, j) {
+                assert_eq!(hf.grid().height(i, j), 1.0);
+            }
+        }
+    }
+}

@@ -116,3 +116,44 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
     }
     w
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::generate::{GridSpec, flat, slope};
+    use crate::terrain::{MaterialId, MaterialTable};
+    use glam::Vec2;
+
+    fn field(grid: engine::geom::HeightGrid) -> Heightfield {
+        Heightfield::from_grid(grid, MaterialTable::with_presets(), MaterialId(0)).unwrap()
+    }
+
+    #[test]
+    fn natural_terrain_is_left_alone() {
+        let grid = slope(GridSpec::square(1.0, 41), 1.0, 30.0, Vec2::X).unwrap();
+        let mut hf = field(grid.clone());
+        smooth(&mut hf, GridRect::new(10, 10, 20, 20));
+        assert_eq!(hf.grid(), &grid);
+        assert!(hf.dirty().is_empty());
+    }
+
+    #[test]
+    fn a_disturbed_spike_spreads_within_the_window_and_keeps_its_volume() {
+        let mut hf = field(flat(GridSpec::square(1.0, 41), 1.0).unwrap());
+        let before = hf.grid().volume();
+        hf.grid_mut().set_height(20, 20, 1.1);
+        let k = hf.grid().index(20, 20);
+        hf.parts_mut().disturbed[k] = 255;
+        let spiked = hf.grid().volume();
+        let w = smooth(&mut hf, GridRect::new(20, 20, 21, 21));
+        assert_eq!(w, GridRect::new(16, 16, 25, 25));
+        assert!(hf.grid().height(20, 20) < 1.1 && hf.grid().height(21, 20) > 1.0);
+        assert!(((hf.grid().volume() - spiked) / spiked).abs() < 1e-7);
+        for (i, j) in hf.grid().full_rect().iter() {
+            if !w.contains(i, j) {
+                assert_eq!(hf.grid().height(i, j), 1.0);
+            }
+        }
+        assert!(spiked > before);
+    }
+}
