@@ -190,11 +190,7 @@ fn steepest_slope(hf: &Heightfield, rect: GridRect) -> f32 {
 
 #[test]
 fn claim3_no_slope_in_the_dirty_window_exceeds_the_angle_of_repose() {
-    for m in [
-        TerrainMaterial::dry_sand(),
-        TerrainMaterial::soil(),
-        TerrainMaterial::mud(),
-    ] {
+    for m in TerrainMaterial::presets() {
         let mut hf = flat_patch(m.clone());
         let report = walk(&mut hf, &footholds());
         let worst = steepest_slope(&hf, report.rect);

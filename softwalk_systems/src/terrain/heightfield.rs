@@ -32,6 +32,8 @@ pub struct StepChanges {
     pub held: Vec<usize>,
     /// Pairwise transfers made by settling.
     pub settle_transfers: usize,
+    /// Samples visited by settling sweeps (its work).
+    pub settle_visits: usize,
 }
 
 /// A deformable loose ground: heights, a material per sample and the trodden mask.
@@ -250,10 +252,9 @@ pub(crate) fn held_mask(held: &[usize], nx: usize, window: GridRect) -> HeldMask
 }
 
 impl HeldMask {
-    /// True when the sample at window-local index `l` is held.
-    #[inline]
-    pub fn contains(&self, l: usize) -> bool {
-        self.mask[l]
+    /// The flags, one per window sample.
+    pub fn into_vec(self) -> Vec<bool> {
+        self.mask
     }
 }
 

@@ -10,9 +10,32 @@ use super::material::TerrainMaterial;
 pub struct MaterialId(pub u8);
 
 /// Up to 256 validated materials with unique names, in insertion order.
+///
+/// Serialised as a list of materials; deserialising validates every entry
+/// like [`MaterialTable::add`].
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(try_from = "Vec<TerrainMaterial>", into = "Vec<TerrainMaterial>")]
 pub struct MaterialTable {
     materials: Vec<TerrainMaterial>,
+}
+
+impl TryFrom<Vec<TerrainMaterial>> for MaterialTable {
+    type Error = TerrainError;
+
+    /// A table of `materials` in order, each validated (ids follow the order).
+    fn try_from(materials: Vec<TerrainMaterial>) -> Result<Self, TerrainError> {
+        let mut table = MaterialTable::new();
+        for m in materials {
+            table.add(m)?;
+        }
+        Ok(table)
+    }
+}
+
+impl From<MaterialTable> for Vec<TerrainMaterial> {
+    fn from(table: MaterialTable) -> Self {
+        table.materials
+    }
 }
 
 impl MaterialTable {
@@ -98,6 +121,7 @@ impl MaterialTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::terrain::GaitResponse;
 
     #[test]
     fn lookup_by_name_and_errors() {
@@ -118,6 +142,22 @@ mod tests {
         assert_eq!(t.add(gravel).unwrap(), MaterialId(4));
         assert!(t.get(MaterialId(9)).is_err());
         assert_eq!(t.max_smoothness(), 4.0);
+    }
+
+    #[test]
+    fn tables_load_from_data_and_are_validated() {
+        let json = serde_json::to_string(&MaterialTable::with_presets()).unwrap();
+        let back: MaterialTable = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, MaterialTable::with_presets());
+        let custom = r#"[{"name": "gravel", "depth": 0.2, "compression": 0.5,
+            "smoothness": 1.0, "repose_deg": 40.0}]"#;
+        let t: MaterialTable = serde_json::from_str(custom).unwrap();
+        assert_eq!(t.by_name("gravel").unwrap().gait, GaitResponse::NEUTRAL);
+        let bad = custom.replace("0.5", "2.5");
+        let e = serde_json::from_str::<MaterialTable>(&bad).unwrap_err();
+        assert!(e.to_string().contains("compression"), "{e}");
+        let twice = format!("[{0}, {0}]", &custom[1..custom.len() - 1]);
+        assert!(serde_json::from_str::<MaterialTable>(&twice).is_err());
     }
 
     #[test]

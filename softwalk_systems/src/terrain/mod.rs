@@ -34,6 +34,7 @@ mod heightfield;
 mod material;
 mod material_table;
 pub mod noise;
+mod patch;
 mod settle;
 mod smooth;
 mod step;
@@ -46,6 +47,8 @@ pub use heightfield::{
 };
 pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
 pub use material_table::{MaterialId, MaterialTable};
-pub use settle::{SETTLE_MARGIN_CELLS, SETTLE_MAX_SWEEPS, SETTLE_TOLERANCE, settle, stage_window};
+pub use settle::{
+    SETTLE_MARGIN_CELLS, SETTLE_MAX_SWEEPS, SETTLE_TOLERANCE, settle, settle_from, stage_window,
+};
 pub use smooth::{DIFFUSION_RATE, smooth, smoothing_radius};
 pub use step::{FootSize, FootholdReport, plant_foothold, sole_on_ground, step_foot};

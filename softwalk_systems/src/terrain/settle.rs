@@ -3,7 +3,8 @@
 
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_SLUMPED, Heightfield, held_mask};
+use super::heightfield::{DISTURBED_SLUMPED, Heightfield};
+use super::patch::Patch;
 use super::smooth::smoothing_radius;
 
 /// Settling stops when no slope exceeds the repose slope by more than this (m/m).
@@ -33,9 +34,9 @@ pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
 /// deterministic). When the higher sample of an edge is steeper than the
 /// repose slope of its material by `excess` metres, half the excess moves to
 /// the lower sample, which puts the pair exactly at the angle of repose. The
-/// next sweep only revisits the changed samples grown by one; sweeps stop
-/// when nothing moves (within [`SETTLE_TOLERANCE`]) or after
-/// [`SETTLE_MAX_SWEEPS`].
+/// next sweep only revisits the samples changed by the last one, grown by
+/// one; sweeps stop when nothing moves (no slope above repose by more than
+/// [`SETTLE_TOLERANCE`]) or after [`SETTLE_MAX_SWEEPS`].
 ///
 /// Guards against creeping over natural terrain:
 /// - only edges with a disturbed sample move (a natural slope steeper than
@@ -47,68 +48,91 @@ pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
 /// - samples held by a sole this step (see [`super::StepChanges::held`]) do
 ///   not move: the foot supports the walls, as Sumner's steeper in-contact angle.
 pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
+    settle_from(hf, window, window)
+}
+
+/// [`settle`] inside `window`, with the first sweep only over `seeds` (grown
+/// by one sample): the samples that changed since the window was last stable,
+/// e.g. the rectangles carving and smoothing report. Everything else in the
+/// window is assumed stable; slumps still spread anywhere in `window`.
+pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
     let w = window.intersect(&hf.grid().full_rect());
     if w.is_empty() {
         return GridRect::EMPTY;
     }
     let cell = hf.grid().cell_size();
-    let parts = hf.parts_mut();
-    let nx = parts.nx;
-    let ww = w.width();
-    let held = held_mask(&parts.changes.held, nx, w);
-    // Steepest stable height difference per material over a side and a diagonal.
+    let mut parts = hf.parts_mut();
+    let mut patch = Patch::load(&parts, w);
+    // Steepest stable height difference across a side, per sample (from its material).
     let side = parts
         .table
         .per_material(|m| (m.repose_slope() + SETTLE_TOLERANCE) * cell);
-    let diagonal = std::f32::consts::SQRT_2;
+    let limit: Vec<f32> = patch.material.iter().map(|&m| side[m as usize]).collect();
+    let (ww, wh) = (w.width(), w.height());
+    let seeds = seeds.intersect(&w);
+    if seeds.is_empty() {
+        return GridRect::EMPTY;
+    }
+    let seeds = GridRect::new(
+        seeds.i0 - w.i0,
+        seeds.j0 - w.j0,
+        seeds.i1 - w.i0,
+        seeds.j1 - w.j0,
+    )
+    .expand(1, ww, wh);
     let settle_to = SETTLE_TOLERANCE * cell;
+    let diagonal = std::f32::consts::SQRT_2;
+    let p = &mut patch;
     let mut changed = GridRect::EMPTY;
-    let mut active = w;
+    let mut active = seeds;
     let mut transfers = 0;
+    let mut visits = 0;
     for _ in 0..SETTLE_MAX_SWEEPS {
         let mut sweep_changed = GridRect::EMPTY;
-        for j in active.j0..active.j1 {
-            let down = j + 1 < w.j1;
-            for i in active.i0..active.i1 {
-                let k = j * nx + i;
-                let l = (j - w.j0) * ww + (i - w.i0);
-                if held.contains(l) {
+        visits += active.area();
+        for r in active.j0..active.j1 {
+            let down = r + 1 < wh;
+            for c in active.i0..active.i1 {
+                let l = r * ww + c;
+                if p.held[l] {
                     continue;
                 }
-                let right = i + 1 < w.i1;
-                let left = i > w.i0;
-                // (inside, grid offset, local offset, column of the neighbour, length factor)
+                let right = c + 1 < ww;
+                let left = c > 0;
+                // (inside, local offset, neighbour column, neighbour row, length factor)
                 let neighbours = [
-                    (right, 1, 1, i + 1, 1.0),
-                    (down, nx, ww, i, 1.0),
-                    (right && down, nx + 1, ww + 1, i + 1, diagonal),
-                    (left && down, nx - 1, ww - 1, i.wrapping_sub(1), diagonal),
+                    (right, 1, c + 1, r, 1.0),
+                    (down, ww, c, r + 1, 1.0),
+                    (right && down, ww + 1, c + 1, r + 1, diagonal),
+                    (
+                        left && down,
+                        ww.wrapping_sub(1),
+                        c.wrapping_sub(1),
+                        r + 1,
+                        diagonal,
+                    ),
                 ];
-                for (inside, dk, dl, ib, factor) in neighbours {
+                for (inside, dl, cb, rb, factor) in neighbours {
                     if !inside {
                         continue;
                     }
-                    let kb = k + dk;
-                    if (parts.disturbed[k] == 0 && parts.disturbed[kb] == 0)
-                        || held.contains(l + dl)
-                    {
+                    let lb = l + dl;
+                    if (p.disturbed[l] == 0 && p.disturbed[lb] == 0) || p.held[lb] {
                         continue;
                     }
-                    let (hi, lo) = if parts.heights[k] >= parts.heights[kb] {
-                        (k, kb)
+                    let (hi, lo) = if p.heights[l] >= p.heights[lb] {
+                        (l, lb)
                     } else {
-                        (kb, k)
+                        (lb, l)
                     };
-                    let limit = side[parts.material[hi] as usize] * factor;
-                    let excess = parts.heights[hi] - parts.heights[lo] - limit;
+                    let excess = p.heights[hi] - p.heights[lo] - limit[hi] * factor;
                     if excess > 0.0 {
                         let moved = 0.5 * (excess + settle_to * factor);
-                        parts.heights[hi] -= moved;
-                        parts.heights[lo] += moved;
-                        parts.disturbed[k] = parts.disturbed[k].max(DISTURBED_SLUMPED);
-                        parts.disturbed[kb] = parts.disturbed[kb].max(DISTURBED_SLUMPED);
-                        let jb = if dk == 1 { j } else { j + 1 };
-                        let pair = GridRect::new(i.min(ib), j, i.max(ib) + 1, jb + 1);
+                        p.heights[hi] -= moved;
+                        p.heights[lo] += moved;
+                        p.disturbed[l] = p.disturbed[l].max(DISTURBED_SLUMPED);
+                        p.disturbed[lb] = p.disturbed[lb].max(DISTURBED_SLUMPED);
+                        let pair = GridRect::new(c.min(cb), r, c.max(cb) + 1, rb + 1);
                         sweep_changed = sweep_changed.union(&pair);
                         transfers += 1;
                     }
@@ -119,9 +143,82 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
             break;
         }
         changed = changed.union(&sweep_changed);
-        active = sweep_changed.expand(1, nx, usize::MAX).intersect(&w);
+        active = sweep_changed.expand(1, ww, wh);
     }
     parts.changes.settle_transfers += transfers;
+    parts.changes.settle_visits += visits;
+    if changed.is_empty() {
+        return GridRect::EMPTY;
+    }
+    patch.store(&mut parts);
+    let changed = patch.to_grid(changed);
     hf.mark_dirty(changed);
     changed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::generate::{GridSpec, flat};
+    use crate::terrain::{MaterialId, MaterialTable};
+
+    fn pillar(material: u8) -> Heightfield {
+        let grid = flat(GridSpec::square(1.0, 41), 1.0).unwrap();
+        let mut hf =
+            Heightfield::from_grid(grid, MaterialTable::with_presets(), MaterialId(material))
+                .unwrap();
+        hf.grid_mut().set_height(20, 20, 1.2);
+        let k = hf.grid().index(20, 20);
+        hf.parts_mut().disturbed[k] = 255;
+        hf
+    }
+
+    #[test]
+    fn a_sand_pillar_slumps_to_its_angle_of_repose_conserving_volume() {
+        let mut hf = pillar(0);
+        let before = hf.grid().volume();
+        let changed = settle(&mut hf, GridRect::new(5, 5, 36, 36));
+        assert!(!changed.is_empty());
+        assert!(((hf.grid().volume() - before) / before).abs() < 1e-7);
+        let g = hf.grid();
+        let tan = 34f32.to_radians().tan();
+        for (i, j) in GridRect::new(5, 5, 35, 35).iter() {
+            let dx = (g.height(i + 1, j) - g.height(i, j)).abs() / g.cell_size();
+            let dz = (g.height(i, j + 1) - g.height(i, j)).abs() / g.cell_size();
+            assert!(
+                dx <= tan + 2e-3 && dz <= tan + 2e-3,
+                "({i}, {j}): {dx} {dz}"
+            );
+        }
+        assert!(hf.changes().settle_transfers > 0);
+    }
+
+    #[test]
+    fn snow_holds_a_steep_wall_and_held_samples_do_not_move() {
+        let mut hf = pillar(3);
+        hf.grid_mut().set_height(20, 20, 1.1);
+        let snow = hf.grid().clone();
+        // 0.1 m over one 2.5 cm cell is 76 degrees: below snow's 84.
+        assert!(settle(&mut hf, GridRect::new(5, 5, 36, 36)).is_empty());
+        assert_eq!(hf.grid(), &snow);
+        let mut hf = pillar(0);
+        let k = hf.grid().index(20, 20);
+        hf.parts_mut().changes.held.push(k);
+        let held = hf.grid().clone();
+        assert!(settle(&mut hf, GridRect::new(5, 5, 36, 36)).is_empty());
+        assert_eq!(hf.grid(), &held);
+    }
+
+    #[test]
+    fn nothing_moves_outside_the_window() {
+        let mut hf = pillar(0);
+        let w = GridRect::new(19, 19, 22, 22);
+        let changed = settle(&mut hf, w);
+        assert_eq!(changed.intersect(&w), changed);
+        for (i, j) in hf.grid().full_rect().iter() {
+            if !w.contains(i, j) {
+                assert_eq!(hf.grid().height(i, j), 1.0);
+            }
+        }
+    }
 }

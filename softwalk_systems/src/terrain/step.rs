@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use super::carve::{FootPrint, carve};
 use super::error::TerrainError;
 use super::heightfield::{Heightfield, StepChanges};
-use super::settle::{settle, stage_window};
+use super::settle::{settle_from, stage_window};
 use super::smooth::smooth;
 use crate::foot::FootSole;
 
@@ -15,7 +15,7 @@ use crate::foot::FootSole;
 /// changed ([`stage_window`] of the carve rectangle, or empty).
 ///
 /// The usual chain of the carve, smooth and settle systems, for one foot:
-/// `let r = carve(..)?; smooth(hf, r); settle(hf, stage_window(hf, r))`.
+/// `let r = carve(..)?; let s = smooth(hf, r); settle_from(hf, stage_window(hf, r), s)`.
 pub fn step_foot(
     hf: &mut Heightfield,
     print: &mut FootPrint,
@@ -27,9 +27,9 @@ pub fn step_foot(
     if carved.is_empty() {
         return Ok(GridRect::EMPTY);
     }
-    smooth(hf, carved);
+    let smoothed = smooth(hf, carved);
     let window = stage_window(hf, carved);
-    settle(hf, window);
+    settle_from(hf, window, smoothed);
     Ok(window)
 }
 
