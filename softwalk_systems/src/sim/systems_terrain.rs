@@ -7,7 +7,7 @@ use engine::geom::{GridRect, RayScene};
 use super::components::{Feet, FootPrints, SystemFault, TerrainDirty, TerrainVolume};
 use super::labels;
 use super::systems_character::step_dt;
-use crate::terrain::{Heightfield, carve, settle, smooth, stage_window};
+use crate::terrain::{Heightfield, carve, settle_from, smooth, stage_window};
 
 /// Resource: the rectangles carving and smoothing changed this step, passed
 /// from `carve` to `smooth` to `settle`.
@@ -69,8 +69,9 @@ pub fn settle_system(world: &mut World) {
     let Some(hf) = terrains.iter().next() else {
         return;
     };
-    for &carved in &windows.carved {
-        settle(hf, stage_window(hf, carved));
+    for (&carved, &smoothed) in windows.carved.iter().zip(&windows.smoothed) {
+        let window = stage_window(hf, carved);
+        settle_from(hf, window, smoothed);
     }
 }
 
