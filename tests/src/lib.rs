@@ -1,1 +1,88 @@
-//! Shared helpers for the integration tests in `tests/tests/`.
+//! Shared helpers for the integration tests in `tests/tests/`: small scenes
+//! built on the full pipeline (`softwalk_systems::sim`), walked and measured.
+
+use engine::schedule::App;
+use glam::{Vec2, Vec3};
+use softwalk_systems::character::{CharacterDesc, WalkPath};
+use softwalk_systems::sim::{SimBuilder, WalkerMetrics, run_steps};
+use softwalk_systems::terrain::{GaitResponse, Heightfield, MaterialTable, TerrainMaterial, generate};
+use softwalk_systems::vegetation::{GrassSettings, XzRect};
+
+/// The fixed step of every test scene.
+pub const DT: f32 = 1.0 / 60.0;
+
+/// A material that does not deform: the "rigid ground" of the comparisons.
+pub fn rigid() -> TerrainMaterial {
+    TerrainMaterial {
+        name: "rigid".into(),
+        depth: 0.0,
+        compression: 1.0,
+        smoothness: 0.0,
+        repose_deg: 90.0,
+        gait: GaitResponse::NEUTRAL,
+    }
+}
+
+/// What a test scene is made of.
+#[derive(Clone)]
+pub struct TestScene {
+    /// Material of the whole terrain (a preset name or "rigid").
+    pub material: &'static str,
+    /// Terrain slope along +X, degrees.
+    pub slope_deg: f32,
+    /// Grass over the walk, if any.
+    pub grass: Option<GrassSettings>,
+    /// The walker.
+    pub body: CharacterDesc,
+    /// Balance controller on or off.
+    pub controller: bool,
+}
+
+impl TestScene {
+    /// Flat ground of `material`, an adult walking along +X.
+    pub fn flat(material: &'static str) -> Self {
+        TestScene { material, slope_deg: 0.0, grass: None, body: CharacterDesc::adult(), controller: true }
+    }
+}
+
+/// Terrain: 9 x 3 m at 2 cm, origin (0, 0); the walk starts at (1, 1.5) heading +X for 6 m.
+pub fn build(scene: &TestScene) -> App {
+    let mut table = MaterialTable::with_presets();
+    table.add(rigid()).unwrap();
+    let id = table.id(scene.material).unwrap();
+    let spec = generate::GridSpec { origin: Vec2::ZERO, cell: 0.02, nx: 451, nz: 151 };
+    let grid = generate::slope(spec, 1.0, scene.slope_deg, Vec2::X).unwrap();
+    let mut sim = SimBuilder::new(DT).unwrap();
+    sim.terrain(Heightfield::from_grid(grid, table, id).unwrap()).unwrap();
+    if let Some(settings) = scene.grass {
+        sim.grass(XzRect::new(Vec2::new(0.0, 0.8), Vec2::new(9.0, 2.2)), settings).unwrap();
+    }
+    let path = WalkPath::straight(Vec3::new(1.0, 0.0, 1.5), Vec3::X, 6.0).unwrap();
+    let walker = sim.character("walker", scene.body, path).unwrap();
+    let mut app = sim.build().unwrap();
+    app.world.get_mut::<softwalk_systems::character::Balance>(walker).unwrap().enabled = scene.controller;
+    app
+}
+
+/// Runs `steps` steps and returns each step's metrics of the first character.
+pub fn walk(app: &mut App, steps: usize) -> Vec<WalkerMetrics> {
+    (0..steps)
+        .map(|_| {
+            run_steps(app, 1).unwrap();
+            let mut q = app.world.query::<&WalkerMetrics>();
+            *q.iter().next().unwrap()
+        })
+        .collect()
+}
+
+/// Mean of a series.
+pub fn mean(xs: impl IntoIterator<Item = f32>) -> f32 {
+    let (sum, n) = xs.into_iter().fold((0.0f64, 0usize), |(s, n), x| (s + f64::from(x), n + 1));
+    (sum / n.max(1) as f64) as f32
+}
+
+/// Standard deviation of a series.
+pub fn std_dev(xs: &[f32]) -> f32 {
+    let m = mean(xs.iter().copied());
+    mean(xs.iter().map(|x| (x - m) * (x - m))).sqrt()
+}
