@@ -153,6 +153,16 @@ impl GridBvh {
     }
 }
 
+impl std::fmt::Debug for GridBvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GridBvh")
+            .field("tile_cells", &self.tiling.tile_cells())
+            .field("tiles", &self.tiling.tile_counts())
+            .field("nodes", &self.bvh.nodes.len())
+            .finish()
+    }
+}
+
 /// Closer, with ties broken by cell so that the answer does not depend on tree order.
 pub(crate) fn closer(a: &Hit, b: &Hit) -> bool {
     if a.distance != b.distance {

@@ -24,7 +24,7 @@ use super::{GeomError, GridBvh, GridRect, HeightGrid, Hit, MeshBvh, MeshId, Ray,
 /// assert!(beside.point.y.abs() < 1e-6);
 /// # let _ = rock_id;
 /// ```
-#[derive(Clone, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct RayScene {
     meshes: Vec<MeshBvh>,
     grid: Option<GridBvh>,
