@@ -144,6 +144,11 @@ impl GridBvh {
         grid.intersect_ray_in_cells(ray, self.tiling.walk_cells(tile), t0, t1)
     }
 
+    /// True when `grid` has the shape (origin, cell size, samples) this BVH was built for.
+    pub fn matches(&self, grid: &HeightGrid) -> bool {
+        self.shape == GridShape::of(grid)
+    }
+
     fn check_shape(&self, grid: &HeightGrid) {
         assert_eq!(
             self.shape,
