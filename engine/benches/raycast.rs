@@ -151,6 +151,25 @@ fn mesh(c: &mut Criterion) {
             black_box(sum)
         })
     });
+    // Coherent primary rays of a 64 x 64 pinhole camera framing the mesh.
+    let eye = Vec3::new(0.3, 0.8, 3.0);
+    let camera: Vec<Ray> = (0..RAYS)
+        .map(|k| {
+            let (px, py) = ((k % 64) as f32 / 63.0 - 0.5, (k / 64) as f32 / 63.0 - 0.5);
+            Ray::new(eye, Vec3::new(px * 0.9, py * 0.9 - 0.25, -1.0)).unwrap()
+        })
+        .collect();
+    group.bench_function("camera_rays", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            for ray in &camera {
+                if let Some(h) = bvh.cast(ray, f32::INFINITY) {
+                    sum += h.distance;
+                }
+            }
+            black_box(sum)
+        })
+    });
     group.finish();
 }
 

@@ -24,9 +24,6 @@ impl Rng {
     fn range(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * self.unit()
     }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
 }
 
 const TILE: usize = 8;
@@ -429,7 +426,18 @@ fn scene_returns_the_closest_of_ground_and_meshes() {
     let p = g.sample_position(2, 2);
     let hit = scene.cast_down(Some(&g), p.x, p.z, 5.0).unwrap();
     assert_eq!(hit.point.y, p.y);
-    let _ = rng.below(2);
+    // A grid of another shape is answered exactly (no panic), and a refit rebuilds for it.
+    let other = flat();
+    let x = ORIGIN.x + 1.3;
+    assert_eq!(
+        scene.cast_down(Some(&other), x, 3.0, 5.0).unwrap().point.y,
+        0.5
+    );
+    let ray = Ray::down(x, 5.0, 3.0).unwrap();
+    assert_eq!(scene.cast(Some(&other), &ray, 50.0).unwrap().distance, 4.5);
+    assert!(scene.any_hit(Some(&other), &ray, 50.0));
+    scene.refit_grid(&other, other.full_rect());
+    assert!(scene.grid_bvh().unwrap().matches(&other));
 }
 
 #[test]

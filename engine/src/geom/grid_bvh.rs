@@ -8,7 +8,7 @@ use obvhs::bvh2::builder::build_bvh2;
 use obvhs::ray::{Ray as ObRay, RayHit};
 
 use super::ray::usable_max_t;
-use super::{GeomError, GridRect, GridTiling, HeightGrid, Hit, HitTarget, Ray};
+use super::{Aabb, GeomError, GridRect, GridTiling, HeightGrid, Hit, HitTarget, Ray};
 
 /// A BVH over the tiles of a [`HeightGrid`] for fast ray casts on deformable ground.
 ///
@@ -100,7 +100,7 @@ impl GridBvh {
         self.bvh
             .ray_traverse(to_obvhs(ray, max_t), &mut hit, |r, slot| {
                 let tile = self.bvh.primitive_indices[slot] as usize;
-                match grid.intersect_ray_in_cells(ray, self.tiling.walk_cells(tile), r.tmax) {
+                match self.walk_tile(grid, ray, tile, r.tmax) {
                     Some(h) => {
                         if best.is_none_or(|b| closer(&h, &b)) {
                             best = Some(h);
@@ -121,7 +121,7 @@ impl GridBvh {
         }
         !self.bvh.ray_traverse_miss(to_obvhs(ray, max_t), |r, slot| {
             let tile = self.bvh.primitive_indices[slot] as usize;
-            grid.intersect_ray_in_cells(ray, self.tiling.walk_cells(tile), r.tmax)
+            self.walk_tile(grid, ray, tile, r.tmax)
                 .map_or(f32::INFINITY, |h| h.distance)
         })
     }
@@ -134,12 +134,37 @@ impl GridBvh {
         grid.cast_down(x, z, from_y)
     }
 
+    /// Walks the cells of `tile` over the part of the ray inside the tile's box:
+    /// a crossing lies between the tile's lowest and highest sample, so the
+    /// parts of the ray above or below them are skipped.
+    fn walk_tile(&self, grid: &HeightGrid, ray: &Ray, tile: usize, max_t: f32) -> Option<Hit> {
+        let b = tile_box(&self.tiling, self.shape, tile);
+        let bounds = Aabb::new(Vec3::from(b.min), Vec3::from(b.max));
+        let (t0, t1) = bounds.ray_interval(ray, max_t)?;
+        grid.intersect_ray_in_cells(ray, self.tiling.walk_cells(tile), t0, t1)
+    }
+
+    /// True when `grid` has the shape (origin, cell size, samples) this BVH was built for.
+    pub fn matches(&self, grid: &HeightGrid) -> bool {
+        self.shape == GridShape::of(grid)
+    }
+
     fn check_shape(&self, grid: &HeightGrid) {
         assert_eq!(
             self.shape,
             GridShape::of(grid),
             "GridBvh queried with a grid of another shape than the one it was built from"
         );
+    }
+}
+
+impl std::fmt::Debug for GridBvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GridBvh")
+            .field("tile_cells", &self.tiling.tile_cells())
+            .field("tiles", &self.tiling.tile_counts())
+            .field("nodes", &self.bvh.nodes.len())
+            .finish()
     }
 }
 

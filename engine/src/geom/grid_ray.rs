@@ -38,7 +38,7 @@ impl HeightGrid {
     /// assert!((hit.point - Vec3::new(2.0, 1.0, 2.0)).length() < 1e-5);
     /// ```
     pub fn intersect_ray(&self, ray: &Ray, max_t: f32) -> Option<Hit> {
-        self.intersect_ray_in_cells(ray, self.full_cell_rect(), max_t)
+        self.intersect_ray_in_cells(ray, self.full_cell_rect(), 0.0, max_t)
     }
 
     /// What a vertical ray going down from `(x, from_y, z)` hits: the surface at
@@ -58,11 +58,13 @@ impl HeightGrid {
     }
 
     /// Like [`HeightGrid::intersect_ray`] but only over the cells in `cells`
-    /// (cell indices, half-open).
+    /// (cell indices, half-open) and distances `min_t..=max_t`. Callers that clip
+    /// `min_t` must only cut away parts of the ray where no crossing can be.
     pub(crate) fn intersect_ray_in_cells(
         &self,
         ray: &Ray,
         cells: GridRect,
+        min_t: f32,
         max_t: f32,
     ) -> Option<Hit> {
         if cells.is_empty() || !usable_max_t(max_t) {
@@ -77,7 +79,7 @@ impl HeightGrid {
         }
         let (ax, bx) = slab(g0.x, gd.x, cells.i0 as f32, cells.i1 as f32)?;
         let (az, bz) = slab(g0.y, gd.y, cells.j0 as f32, cells.j1 as f32)?;
-        let t_lo = ax.max(az).max(0.0);
+        let t_lo = ax.max(az).max(min_t).max(0.0);
         let t_hi = bx.min(bz).min(max_t);
         if t_lo > t_hi {
             return None;
@@ -106,13 +108,13 @@ impl HeightGrid {
                 && td < t_exit
             {
                 let f_d = walk.f(td, ci, cj);
-                if let Some(t) = crossing(t_prev, f_prev, td, f_d) {
+                if let Some(t) = walk.crossing(ci, cj, (t_prev, f_prev), (td, f_d)) {
                     return Some(walk.hit(ray, t, ci, cj));
                 }
                 (t_prev, f_prev) = (td, f_d);
             }
             let f_exit = walk.f(t_exit, ci, cj);
-            if let Some(t) = crossing(t_prev, f_prev, t_exit, f_exit) {
+            if let Some(t) = walk.crossing(ci, cj, (t_prev, f_prev), (t_exit, f_exit)) {
                 return Some(walk.hit(ray, t, ci, cj));
             }
             (t_prev, f_prev) = (t_exit, f_exit);
@@ -237,6 +239,42 @@ impl CellWalk<'_> {
         (slope != 0.0).then(|| ((self.g0.y - j as f32) - (self.g0.x - i as f32)) / slope)
     }
 
+    /// Where `f` changes sign over the piece `a..b` inside one triangle of cell
+    /// `(i, j)`, if it does. The root is solved on the triangle's plane from the
+    /// cell alone, not from the piece's ends, so that every walk that reaches
+    /// this triangle (whatever its start) finds the very same distance.
+    #[inline]
+    fn crossing(&self, i: usize, j: usize, a: (f32, f32), b: (f32, f32)) -> Option<f32> {
+        let ((t0, f0), (t1, f1)) = (a, b);
+        if !((f0 > 0.0 && f1 <= 0.0) || (f0 < 0.0 && f1 >= 0.0)) {
+            return None;
+        }
+        let mid = self.grid_at(0.5 * (t0 + t1));
+        let lower_right = mid.x - i as f32 >= mid.y - j as f32;
+        let g = self.grid;
+        let h00 = g.height(i, j);
+        // The plane h = h00 + bx * fx + bz * fz of the triangle.
+        let (bx, bz) = if lower_right {
+            (
+                g.height(i + 1, j) - h00,
+                g.height(i + 1, j + 1) - g.height(i + 1, j),
+            )
+        } else {
+            (
+                g.height(i + 1, j + 1) - g.height(i, j + 1),
+                g.height(i, j + 1) - h00,
+            )
+        };
+        let c0 = self.oy - h00 - bx * (self.g0.x - i as f32) - bz * (self.g0.y - j as f32);
+        let c1 = self.dy - bx * self.gd.x - bz * self.gd.y;
+        let t = if c1 != 0.0 {
+            -c0 / c1
+        } else {
+            t0 + (t1 - t0) * (f0 / (f0 - f1))
+        };
+        Some(t.clamp(t0, t1))
+    }
+
     fn hit(&self, ray: &Ray, t: f32, i: usize, j: usize) -> Hit {
         let (fx, fz) = self.fractions(t, i, j);
         let p = ray.at(t);
@@ -274,11 +312,4 @@ fn step_index(c: usize, gd: f32, lo: usize, hi: usize) -> Option<usize> {
 #[inline]
 fn clamp_index(g: f32, lo: usize, hi: usize) -> usize {
     g.floor().clamp(lo as f32, (hi - 1) as f32) as usize
-}
-
-/// The root of the linear piece from `(t0, f0)` to `(t1, f1)` when it changes sign.
-#[inline]
-fn crossing(t0: f32, f0: f32, t1: f32, f1: f32) -> Option<f32> {
-    let changes = (f0 > 0.0 && f1 <= 0.0) || (f0 < 0.0 && f1 >= 0.0);
-    changes.then(|| t0 + (t1 - t0) * (f0 / (f0 - f1)))
 }

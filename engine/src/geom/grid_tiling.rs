@@ -120,6 +120,13 @@ impl GridTiling {
     }
 }
 
+impl HeightGrid {
+    /// This grid cut into square tiles of `tile_cells` cells, with per-tile height bounds.
+    pub fn tiling(&self, tile_cells: usize) -> Result<GridTiling, GeomError> {
+        GridTiling::new(self, tile_cells)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use glam::Vec2;
@@ -129,7 +136,7 @@ mod tests {
     #[test]
     fn touching_tiles_cover_every_tile_that_sees_a_sample() {
         let g = HeightGrid::new(Vec2::ZERO, 1.0, 70, 40, 0.0).unwrap();
-        let tiling = GridTiling::new(&g, 16).unwrap();
+        let tiling = g.tiling(16).unwrap();
         assert_eq!(tiling.tile_counts(), (5, 3));
         for s in 0..70 {
             let got = tiling.tiles_touching(GridRect::new(s, 0, s + 1, 1));

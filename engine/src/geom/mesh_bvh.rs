@@ -26,6 +26,16 @@ pub struct MeshBvh {
     id: MeshId,
 }
 
+impl std::fmt::Debug for MeshBvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MeshBvh")
+            .field("id", &self.id)
+            .field("triangles", &self.triangles.len())
+            .field("bounds", &self.bounds)
+            .finish()
+    }
+}
+
 impl MeshBvh {
     /// Builds the BVH after checking the mesh (non-empty, finite, indices in range).
     /// Hits carry `MeshId(0)` until [`MeshBvh::with_id`] says otherwise.

@@ -5,7 +5,8 @@ use super::{GeomError, GridBvh, GridRect, HeightGrid, Hit, MeshBvh, MeshId, Ray,
 /// deformable height grid, through their BVHs.
 ///
 /// The grid's heights are not owned: queries take `Option<&HeightGrid>`
-/// (`None` leaves the ground out).
+/// (`None` leaves the ground out). A grid whose shape differs from the one
+/// the ground BVH was built for is still answered exactly, by a direct walk.
 ///
 /// ```
 /// use engine::geom::{HeightGrid, RayScene, TriMesh};
@@ -24,7 +25,7 @@ use super::{GeomError, GridBvh, GridRect, HeightGrid, Hit, MeshBvh, MeshId, Ray,
 /// assert!(beside.point.y.abs() < 1e-6);
 /// # let _ = rock_id;
 /// ```
-#[derive(Clone, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct RayScene {
     meshes: Vec<MeshBvh>,
     grid: Option<GridBvh>,
@@ -68,12 +69,18 @@ impl RayScene {
         self.grid.as_ref()
     }
 
-    /// Refits the ground after the samples in `changed` were edited (builds it when none is set).
+    /// Refits the ground after the samples in `changed` were edited (builds it
+    /// when none is set or when the grid changed shape).
     pub fn refit_grid(&mut self, grid: &HeightGrid, changed: GridRect) {
         match &mut self.grid {
-            Some(bvh) => bvh.refit(grid, changed),
-            None => self.set_grid(grid),
+            Some(bvh) if bvh.matches(grid) => bvh.refit(grid, changed),
+            _ => self.set_grid(grid),
         }
+    }
+
+    /// The ground BVH when it was built for `grid`'s shape.
+    fn ground_for(&self, grid: &HeightGrid) -> Option<&GridBvh> {
+        self.grid.as_ref().filter(|bvh| bvh.matches(grid))
     }
 
     /// The closest hit over every mesh and the ground within `max_t`.
@@ -95,11 +102,10 @@ impl RayScene {
 
     /// True when `ray` meets anything within `max_t`.
     pub fn any_hit(&self, grid: Option<&HeightGrid>, ray: &Ray, max_t: f32) -> bool {
-        let ground = match (grid, &self.grid) {
-            (Some(g), Some(bvh)) => bvh.any_hit(g, ray, max_t),
-            (Some(g), None) => g.intersect_ray(ray, max_t).is_some(),
-            (None, _) => false,
-        };
+        let ground = grid.is_some_and(|g| match self.ground_for(g) {
+            Some(bvh) => bvh.any_hit(g, ray, max_t),
+            None => g.intersect_ray(ray, max_t).is_some(),
+        });
         ground
             || self
                 .meshes
@@ -110,7 +116,7 @@ impl RayScene {
     /// The closest hit of a ray going straight down from `(x, from_y, z)`:
     /// the ground through its vertical fast path, meshes through their BVHs.
     pub fn cast_down(&self, grid: Option<&HeightGrid>, x: f32, z: f32, from_y: f32) -> Option<Hit> {
-        let mut best = grid.and_then(|g| match &self.grid {
+        let mut best = grid.and_then(|g| match self.ground_for(g) {
             Some(bvh) => bvh.cast_down(g, x, z, from_y),
             None => g.cast_down(x, z, from_y),
         });
@@ -131,7 +137,7 @@ impl RayScene {
 
     fn cast_ground(&self, grid: Option<&HeightGrid>, ray: &Ray, max_t: f32) -> Option<Hit> {
         let grid = grid?;
-        match &self.grid {
+        match self.ground_for(grid) {
             Some(bvh) => bvh.cast(grid, ray, max_t),
             None => grid.intersect_ray(ray, max_t),
         }
