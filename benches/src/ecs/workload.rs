@@ -1,4 +1,6 @@
 //! Component types and sizes of the ecs_bench_suite workloads, shared by all contenders.
+// The payload fields give the components the suite's sizes; not every workload reads them.
+#![allow(dead_code)]
 
 use bevy_ecs::component::Component;
 use glam::{Mat4, Vec3};
