@@ -31,6 +31,9 @@ pub(crate) trait Contender {
     fn schedule(&self) -> Option<f64>;
 }
 
+/// Measures one workload on one contender.
+type Measure = fn(&dyn Contender) -> Option<f64>;
+
 /// Runs the group and returns one row per workload.
 pub fn run() -> Vec<Row> {
     bevy_peer::init_task_pool();
@@ -39,7 +42,7 @@ pub fn run() -> Vec<Row> {
         ("hecs_ns", &hecs_peer::Hecs),
         ("bevy_ns", &bevy_peer::Bevy),
     ];
-    let workloads: [(&str, fn(&dyn Contender) -> Option<f64>); 7] = [
+    let workloads: [(&str, Measure); 7] = [
         ("simple_insert", |c| Some(c.simple_insert())),
         ("simple_iter", |c| Some(c.simple_iter())),
         ("fragmented_iter", |c| Some(c.fragmented_iter())),
