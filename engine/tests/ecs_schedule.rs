@@ -346,3 +346,47 @@ fn app_runs_the_same_twice() {
     }
     assert_eq!(run(), run());
 }
+
+/// The tutorial of `docs/parts/ecs.md`, kept compiling and running.
+#[test]
+fn tutorial_example_runs() -> Result<(), Box<dyn std::error::Error>> {
+    use engine::ecs::{PreparedQuery, With};
+
+    struct Position(glam::Vec3);
+    struct Velocity(glam::Vec3);
+    struct Player;
+
+    let mut app = App::new(1.0 / 60.0)?;
+    let player = app.world.spawn((
+        Position(glam::Vec3::ZERO),
+        Velocity(glam::Vec3::NEG_Y * 30.0),
+        Player,
+    ));
+
+    let mut moving = PreparedQuery::<(&mut Position, &Velocity)>::new();
+    app.add_system("integrate", move |world: &mut World| {
+        let dt = world.resource::<Time>().dt;
+        for (p, v) in moving.query_mut(world) {
+            p.0 += v.0 * dt;
+        }
+    });
+    app.add_system("fall_out", |world: &mut World| {
+        for (e, p) in world
+            .query_filtered::<(Entity, &Position), With<Player>>()
+            .iter()
+        {
+            if p.0.y < -10.0 {
+                world.commands().despawn(e);
+            }
+        }
+    })
+    .after("integrate");
+    app.run_for(1.0)?;
+    assert!(
+        !app.world.contains(player),
+        "fell below -10 m within a second"
+    );
+    app.schedule.replace("fall_out", |_: &mut World| {})?;
+    assert_eq!(app.schedule.order(), vec!["integrate", "fall_out"]);
+    Ok(())
+}

@@ -84,9 +84,8 @@ impl Archetype {
     }
 
     pub(crate) fn column_index(&self, type_id: TypeId) -> Option<usize> {
-        self.columns
-            .binary_search_by_key(&type_id, |c| c.ty.type_id)
-            .ok()
+        // Archetypes hold a handful of columns: a linear scan beats a binary search.
+        self.columns.iter().position(|c| c.ty.type_id == type_id)
     }
 
     pub(crate) fn type_ids(&self) -> impl Iterator<Item = TypeId> + '_ {

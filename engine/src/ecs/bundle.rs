@@ -1,6 +1,9 @@
 //! Bundles: tuples of components spawned, inserted or removed together.
 
+use std::any::{Any, TypeId};
+
 use super::archetype::{Archetype, ComponentType};
+use super::entity::Entity;
 
 /// Any value that can be a component: `Send + Sync + 'static`.
 pub trait Component: Send + Sync + 'static {}
@@ -19,6 +22,15 @@ pub trait Bundle: Send + Sync + 'static {
     /// handled by the caller).
     fn push_into(self, archetype: &mut Archetype);
     #[doc(hidden)]
+    /// Pushes every bundle as a new row, with the entity `alloc(row)`; each
+    /// column is looked up once for the whole batch.
+    fn push_batch(
+        bundles: impl Iterator<Item = Self>,
+        archetype: &mut Archetype,
+        alloc: impl FnMut(u32) -> Entity,
+    ) where
+        Self: Sized;
+    #[doc(hidden)]
     /// Overwrites the components of `row` in place.
     fn overwrite(self, archetype: &mut Archetype, row: usize);
     #[doc(hidden)]
@@ -29,8 +41,14 @@ pub trait Bundle: Send + Sync + 'static {
 
 const COLUMN_EXISTS: &str = "the target archetype has a column for every bundle component";
 
+/// Typed access to a column known to hold `T`.
+fn typed_column<T: 'static>(column: &mut super::archetype::ArchetypeColumn) -> &mut Vec<T> {
+    let data: &mut dyn Any = &mut **column.data.get_exclusive();
+    data.downcast_mut::<Vec<T>>().expect(COLUMN_EXISTS)
+}
+
 macro_rules! impl_bundle {
-    ($($name:ident $field:tt),+) => {
+    ($($name:ident $field:tt $var:ident),+) => {
         impl<$($name: Component),+> Bundle for ($($name,)+) {
             fn component_types() -> Vec<ComponentType> {
                 vec![$(ComponentType::of::<$name>()),+]
@@ -38,6 +56,24 @@ macro_rules! impl_bundle {
 
             fn push_into(self, archetype: &mut Archetype) {
                 $(archetype.column_mut::<$name>().expect(COLUMN_EXISTS).push(self.$field);)+
+            }
+
+            fn push_batch(
+                bundles: impl Iterator<Item = Self>,
+                archetype: &mut Archetype,
+                mut alloc: impl FnMut(u32) -> Entity,
+            ) {
+                let indices = [$(archetype.column_index(TypeId::of::<$name>()).expect(COLUMN_EXISTS)),+];
+                let [$($var),+] = archetype
+                    .columns
+                    .get_disjoint_mut(indices)
+                    .expect("a bundle's component types are distinct");
+                $(let $var = typed_column::<$name>($var);)+
+                let entities = &mut archetype.entities;
+                for bundle in bundles {
+                    entities.push(alloc(entities.len() as u32));
+                    $($var.push(bundle.$field);)+
+                }
             }
 
             fn overwrite(self, archetype: &mut Archetype, row: usize) {
@@ -51,15 +87,15 @@ macro_rules! impl_bundle {
     };
 }
 
-impl_bundle!(A 0);
-impl_bundle!(A 0, B 1);
-impl_bundle!(A 0, B 1, C 2);
-impl_bundle!(A 0, B 1, C 2, D 3);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4, F 5);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4, F 5, G 6);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10);
-impl_bundle!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7, I 8, J 9, K 10, L 11);
+impl_bundle!(A 0 a);
+impl_bundle!(A 0 a, B 1 b);
+impl_bundle!(A 0 a, B 1 b, C 2 c);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e, F 5 f);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e, F 5 f, G 6 g);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e, F 5 f, G 6 g, H 7 h);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e, F 5 f, G 6 g, H 7 h, I 8 i);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e, F 5 f, G 6 g, H 7 h, I 8 i, J 9 j);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e, F 5 f, G 6 g, H 7 h, I 8 i, J 9 j, K 10 k);
+impl_bundle!(A 0 a, B 1 b, C 2 c, D 3 d, E 4 e, F 5 f, G 6 g, H 7 h, I 8 i, J 9 j, K 10 k, L 11 l);

@@ -96,6 +96,12 @@ impl Entities {
         Entity { index, generation }
     }
 
+    /// Makes room for `additional` more ids without reallocating.
+    pub fn reserve(&mut self, additional: usize) {
+        self.slots
+            .reserve(additional.saturating_sub(self.free.len()));
+    }
+
     /// Frees a live id and returns where it was; `None` if it is not alive.
     pub fn free(&mut self, entity: Entity) -> Option<Location> {
         let slot = self.slots.get_mut(entity.index as usize)?;

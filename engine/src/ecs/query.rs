@@ -56,6 +56,17 @@ pub trait Fetch: Send + Sized {
     fn next_item(&mut self) -> Self::Item;
     /// Splits into rows `..mid` and `mid..` (for parallel batches).
     fn split_at(self, mid: usize) -> (Self, Self);
+    /// Folds the next `rows` rows (which the caller guarantees exist).
+    /// Single-column fetches override it with a plain slice walk, which the
+    /// compiler can vectorise.
+    #[inline]
+    fn fold_rows<B>(mut self, rows: usize, init: B, mut g: impl FnMut(B, Self::Item) -> B) -> B {
+        let mut acc = init;
+        for _ in 0..rows {
+            acc = g(acc, self.next_item());
+        }
+        acc
+    }
 }
 
 const ROW_COUNT: &str = "the query iterator never asks for more rows than the archetype has";
@@ -76,6 +87,10 @@ impl<'q, T: Sync> Fetch for ReadFetch<'q, T> {
         let (a, b) = self.0.split_at(mid);
         (ReadFetch(a), ReadFetch(b))
     }
+    #[inline]
+    fn fold_rows<B>(self, rows: usize, init: B, g: impl FnMut(B, &'q T) -> B) -> B {
+        self.0[..rows].iter().fold(init, g)
+    }
 }
 
 /// Fetch of `&mut T`.
@@ -93,6 +108,10 @@ impl<'q, T: Send> Fetch for WriteFetch<'q, T> {
     fn split_at(self, mid: usize) -> (Self, Self) {
         let (a, b) = self.0.split_at_mut(mid);
         (WriteFetch(a), WriteFetch(b))
+    }
+    #[inline]
+    fn fold_rows<B>(self, rows: usize, init: B, g: impl FnMut(B, &'q mut T) -> B) -> B {
+        self.0[..rows].iter_mut().fold(init, g)
     }
 }
 

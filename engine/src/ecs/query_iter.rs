@@ -143,11 +143,9 @@ impl<'q, Q: Query, F: QueryFilter> QueryIter<'q, Q, F> {
         while let Some(archetype) = self.next_archetype() {
             split(Self::fetch(archetype), archetype.len());
         }
-        batches.into_par_iter().for_each(|(mut fetch, rows)| {
-            for _ in 0..rows {
-                f(fetch.next_item());
-            }
-        });
+        batches
+            .into_par_iter()
+            .for_each(|(fetch, rows)| fetch.fold_rows(rows, (), |(), item| f(item)));
     }
 }
 
@@ -176,16 +174,11 @@ impl<'q, Q: Query, F: QueryFilter> Iterator for QueryIter<'q, Q, F> {
         G: FnMut(B, Self::Item) -> B,
     {
         let mut acc = init;
-        if let Some(mut fetch) = self.current.take() {
-            for _ in 0..self.remaining {
-                acc = g(acc, fetch.next_item());
-            }
+        if let Some(fetch) = self.current.take() {
+            acc = fetch.fold_rows(self.remaining, acc, &mut g);
         }
         while let Some(archetype) = self.next_archetype() {
-            let mut fetch = Self::fetch(archetype);
-            for _ in 0..archetype.len() {
-                acc = g(acc, fetch.next_item());
-            }
+            acc = Self::fetch(archetype).fold_rows(archetype.len(), acc, &mut g);
         }
         acc
     }

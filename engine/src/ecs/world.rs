@@ -124,8 +124,17 @@ impl World {
         let bundles = bundles.into_iter();
         let (lower, _) = bundles.size_hint();
         self.archetypes[target as usize].reserve(lower);
+        self.entities.reserve(lower);
         let mut spawned = Vec::with_capacity(lower);
-        spawned.extend(bundles.map(|bundle| self.spawn_in(target, bundle)));
+        let entities = &mut self.entities;
+        B::push_batch(bundles, &mut self.archetypes[target as usize], |row| {
+            let entity = entities.alloc(Location {
+                archetype: target,
+                row,
+            });
+            spawned.push(entity);
+            entity
+        });
         spawned
     }
 
