@@ -60,7 +60,10 @@ fn base_scene_is_valid() {
         scene.characters[0].body.beta, 6.0,
         "beta defaults to the paper's 6"
     );
-    assert!(scene.characters[0].controller, "the controller is on by default");
+    assert!(
+        scene.characters[0].controller,
+        "the controller is on by default"
+    );
     assert!(!scene.characters[1].controller);
     assert_eq!(scene.steps(), 50);
 }
@@ -256,7 +259,10 @@ fn user_materials_are_data_and_usable() {
     let scene = parse(&with_ash(ASH)).unwrap();
     let ash = scene.material_at(3.0, 3.0).unwrap();
     assert_eq!(ash.depth, 1.0);
-    assert!((ash.print_depth() - 0.1).abs() < 1e-6, "d_t 1 is a 0.1 m print");
+    assert!(
+        (ash.print_depth() - 0.1).abs() < 1e-6,
+        "d_t 1 is a 0.1 m print"
+    );
     assert_eq!(ash.gait.speed_scale, 0.9);
     assert!(scene.material_names().contains(&"ash".to_owned()));
     let table = scene.material_table().unwrap();
@@ -316,7 +322,10 @@ fn bad_grass_names_the_field() {
     let e = grass("t_max = nan").unwrap_err().to_string();
     assert!(e.starts_with("grass[0].t_max: NaN must be"), "{e}");
     let e = grass("preset = \"tall\"").unwrap_err().to_string();
-    assert!(e.starts_with("grass[0].preset: unknown variant `tall`"), "{e}");
+    assert!(
+        e.starts_with("grass[0].preset: unknown variant `tall`"),
+        "{e}"
+    );
     let e = grass("density = 1e9").unwrap_err().to_string();
     assert!(e.starts_with("grass[0].density: "), "{e}");
     let e = grass("blades = 3").unwrap_err().to_string();
@@ -329,12 +338,18 @@ fn bad_waypoint_paths_name_the_point() {
         "path = { kind = \"straight\", start = [1.0, 5.0], heading_deg = 0.0, length = 5.0 }",
         "path = { kind = \"waypoints\", points = [[1.0, 5.0], [4.0, 5.0], [1.0, 5.1]] }",
     );
-    assert!(e.starts_with("characters[0].path.points[1]: turns by"), "{e}");
+    assert!(
+        e.starts_with("characters[0].path.points[1]: turns by"),
+        "{e}"
+    );
     let e = error_with(
         "path = { kind = \"straight\", start = [1.0, 5.0], heading_deg = 0.0, length = 5.0 }",
         "path = { kind = \"waypoints\", points = [[1.0, 5.0]] }",
     );
-    assert!(e.starts_with("characters[0].path.points: 1 point(s)"), "{e}");
+    assert!(
+        e.starts_with("characters[0].path.points: 1 point(s)"),
+        "{e}"
+    );
 }
 
 #[test]
