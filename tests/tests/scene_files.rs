@@ -23,16 +23,19 @@ dt = 0.02
 
 [[characters]]
 name = "a"
-speed = { mps = 1.2 }
-morphology = { height = 1.75, mass = 70.0, leg_factor = 0.52 }
+body = { height = 1.75, mass = 70.0 }
 path = { kind = "straight", start = [1.0, 5.0], heading_deg = 0.0, length = 5.0 }
 
 [[characters]]
 name = "b"
-alpha = 30.0
-speed = { froude = 0.25 }
-morphology = { height = 1.0, mass = 20.0, leg_factor = 0.49 }
+controller = false
 path = { kind = "straight", start = [1.0, 7.0], heading_deg = 0.0, length = 5.0 }
+
+[characters.body]
+height = 1.0
+mass = 20.0
+froude = 0.2
+alpha = 30.0
 "#;
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
@@ -51,11 +54,17 @@ fn error_with(from: &str, to: &str) -> String {
 fn base_scene_is_valid() {
     let scene = parse(BASE).unwrap();
     assert_eq!(scene.characters.len(), 2);
-    assert_eq!(scene.characters[1].alpha, 30.0);
+    assert_eq!(scene.characters[1].body.alpha, 30.0);
+    assert_eq!(scene.characters[1].body.froude, 0.2);
     assert_eq!(
-        scene.characters[0].beta, 6.0,
+        scene.characters[0].body.beta, 6.0,
         "beta defaults to the paper's 6"
     );
+    assert!(
+        scene.characters[0].controller,
+        "the controller is on by default"
+    );
+    assert!(!scene.characters[1].controller);
     assert_eq!(scene.steps(), 50);
 }
 
@@ -89,7 +98,8 @@ fn builtin_scenes_cover_the_papers_settings() {
             assert_eq!((s.terrain.size_x, s.terrain.size_z), (10.0, 10.0));
             assert_eq!(s.terrain.resolution, 512);
             assert_eq!(s.terrain.max_height, 10.0);
-            assert_eq!((s.characters[0].alpha, s.characters[0].beta), (30.0, 6.0));
+            let body = s.characters[0].body;
+            assert_eq!((body.alpha, body.beta), (30.0, 6.0));
             let slope = s.terrain.slope().map_or(0.0, |p| p.angle_deg);
             let expected = match kind {
                 "flat" => 0.0,
@@ -99,14 +109,14 @@ fn builtin_scenes_cover_the_papers_settings() {
             assert_eq!(slope, expected, "{name}");
         }
     }
-    let grass = |n: &str| Scene::builtin(n).unwrap().grass[0].height;
+    let grass = |n: &str| Scene::builtin(n).unwrap().grass[0].settings().height;
     assert_eq!(grass("grass-small"), 0.5);
     assert_eq!(grass("grass-medium"), 0.9);
     let heights: Vec<f32> = Scene::builtin("morphology")
         .unwrap()
         .characters
         .iter()
-        .map(|c| c.morphology.height)
+        .map(|c| c.body.height)
         .collect();
     assert_eq!(heights, [1.0, 1.4, 1.9]);
     let compare = Scene::builtin("controller-compare").unwrap();
@@ -175,8 +185,13 @@ fn unknown_fields_are_refused() {
         e.starts_with("terrain.roughness: unknown field `roughness`"),
         "{e}"
     );
-    let e = error_with("name = \"b\"\nalpha", "name = \"b\"\ngamma = 1.0\nalpha");
+    let e = error_with("name = \"b\"\n", "name = \"b\"\ngamma = 1.0\n");
     assert!(e.starts_with("characters[1].gamma: unknown field"), "{e}");
+    let e = error_with("alpha = 30.0", "alpha = 30.0\nleg_factor = 0.5");
+    assert!(
+        e.starts_with("characters[1].body.leg_factor: unknown field"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -187,8 +202,12 @@ fn out_of_range_numbers_are_refused() {
     );
     assert_eq!(error_with("dt = 0.02", "dt = 0.0"), "sim.dt: 0 must be > 0");
     assert_eq!(
-        error_with("height = 1.0,", "height = 7.0,"),
-        "characters[1].morphology.height: 7 exceeds the maximum 2.5"
+        error_with("height = 1.0\n", "height = 7.0\n"),
+        "characters[1].body.height: 7 is not a finite number in [0.5, 2.5]"
+    );
+    assert_eq!(
+        error_with("froude = 0.2", "froude = 3.0"),
+        "characters[1].body.froude: 3 is not a finite number in [0.02, 0.5]"
     );
     let e = error_with(
         "length = 5.0 }\n\n[[characters]]",
@@ -204,7 +223,7 @@ fn out_of_range_numbers_are_refused() {
 fn nan_is_refused() {
     assert_eq!(
         error_with("alpha = 30.0", "alpha = nan"),
-        "characters[1].alpha: NaN is not allowed"
+        "characters[1].body.alpha: NaN is not a finite number in [0, 10000]"
     );
     assert_eq!(
         error_with("size_z = 10.0", "size_z = inf"),
@@ -220,27 +239,116 @@ fn unknown_material_lists_the_known_ones() {
     );
     assert_eq!(
         e,
-        "terrain.regions[0].material: unknown material \"quicksand\" (known: sand, soil, mud, snow, rock)"
+        "terrain.regions[0].material: unknown material \"quicksand\" (known: sand, soil, mud, snow)"
+    );
+}
+
+/// `BASE` on a user material `ash`, the `[[materials]]` entry given as TOML keys.
+fn with_ash(keys: &str) -> String {
+    BASE.replacen(
+        "material = \"sand\"",
+        &format!("material = \"ash\"\n\n[[materials]]\nname = \"ash\"\n{keys}"),
+        1,
+    )
+}
+
+const ASH: &str = "depth = 1.0\ncompression = 0.3\nsmoothness = 2.0\nrepose_deg = 38.0\ngait = { speed_scale = 0.9, step_length_scale = 0.95, extra_clearance = 0.0 }";
+
+#[test]
+fn user_materials_are_data_and_usable() {
+    let scene = parse(&with_ash(ASH)).unwrap();
+    let ash = scene.material_at(3.0, 3.0).unwrap();
+    assert_eq!(ash.depth, 1.0);
+    assert!(
+        (ash.print_depth() - 0.1).abs() < 1e-6,
+        "d_t 1 is a 0.1 m print"
+    );
+    assert_eq!(ash.gait.speed_scale, 0.9);
+    assert!(scene.material_names().contains(&"ash".to_owned()));
+    let table = scene.material_table().unwrap();
+    assert_eq!(table.by_name("ash").unwrap(), &ash);
+    let no_gait = ASH.split("\ngait").next().unwrap();
+    let scene = parse(&with_ash(no_gait)).unwrap();
+    assert_eq!(
+        scene.material("ash").unwrap().gait,
+        softwalk_systems::terrain::GaitResponse::NEUTRAL
     );
 }
 
 #[test]
-fn user_materials_are_data_and_usable() {
-    let text = BASE.replacen(
-        "material = \"sand\"",
-        "material = \"ash\"\n\n[[materials]]\nname = \"ash\"\ndepth = 0.1\ncompression = 0.3\nsmoothness = 2.0\nrepose_deg = 38.0\ngait = { speed_factor = 0.9 }",
-        1,
-    );
-    let scene = parse(&text).unwrap();
-    let ash = scene.material_at(3.0, 3.0).unwrap();
-    assert_eq!(ash.depth, 0.1);
-    assert_eq!(ash.gait.speed_factor, 0.9);
-    assert_eq!(ash.gait.knee_lift, 0.0);
-    assert!(scene.material_names().contains(&"ash"));
-    let bad = text.replacen("compression = 0.3", "compression = 1.5", 1);
+fn bad_user_materials_name_the_field() {
+    let bad = |from: &str, to: &str| {
+        parse(&with_ash(&ASH.replacen(from, to, 1)))
+            .expect_err("the material should be refused")
+            .to_string()
+    };
     assert_eq!(
-        parse(&bad).unwrap_err().to_string(),
-        "materials[0].compression: 1.5 exceeds the maximum 1"
+        bad("compression = 0.3", "compression = 1.5"),
+        "materials[0].compression: 1.5 is not in [0, 1]"
+    );
+    assert_eq!(
+        bad("repose_deg = 38.0", "repose_deg = nan"),
+        "materials[0].repose_deg: NaN is not in (0, 90]"
+    );
+    assert_eq!(
+        bad("speed_scale = 0.9", "speed_scale = 0.0"),
+        "materials[0].gait.speed_scale: 0 is not in (0, 2]"
+    );
+    let e = bad("depth = 1.0", "depth = 1.0\nhardness = 2.0");
+    assert!(
+        e.starts_with("materials[0].hardness: unknown field `hardness`"),
+        "{e}"
+    );
+    let e = bad("smoothness = 2.0\n", "");
+    assert!(
+        e.starts_with("materials[0]: missing field `smoothness`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_grass_names_the_field() {
+    let grass = |keys: &str| {
+        let text = BASE.replacen(
+            "[[characters]]",
+            &format!("[[grass]]\nx = [2.0, 4.0]\nz = [2.0, 4.0]\n{keys}\n\n[[characters]]"),
+            1,
+        );
+        parse(&text)
+    };
+    let scene = grass("preset = \"medium\"\ngamma = 1.5").unwrap();
+    assert_eq!(scene.grass[0].settings().height, 0.9);
+    assert_eq!(scene.grass[0].settings().field.gamma, 1.5);
+    let e = grass("t_max = nan").unwrap_err().to_string();
+    assert!(e.starts_with("grass[0].t_max: NaN must be"), "{e}");
+    let e = grass("preset = \"tall\"").unwrap_err().to_string();
+    assert!(
+        e.starts_with("grass[0].preset: unknown variant `tall`"),
+        "{e}"
+    );
+    let e = grass("density = 1e9").unwrap_err().to_string();
+    assert!(e.starts_with("grass[0].density: "), "{e}");
+    let e = grass("blades = 3").unwrap_err().to_string();
+    assert!(e.starts_with("grass[0].blades: unknown field"), "{e}");
+}
+
+#[test]
+fn bad_waypoint_paths_name_the_point() {
+    let e = error_with(
+        "path = { kind = \"straight\", start = [1.0, 5.0], heading_deg = 0.0, length = 5.0 }",
+        "path = { kind = \"waypoints\", points = [[1.0, 5.0], [4.0, 5.0], [1.0, 5.1]] }",
+    );
+    assert!(
+        e.starts_with("characters[0].path.points[1]: turns by"),
+        "{e}"
+    );
+    let e = error_with(
+        "path = { kind = \"straight\", start = [1.0, 5.0], heading_deg = 0.0, length = 5.0 }",
+        "path = { kind = \"waypoints\", points = [[1.0, 5.0]] }",
+    );
+    assert!(
+        e.starts_with("characters[0].path.points: 1 point(s)"),
+        "{e}"
     );
 }
 

@@ -16,10 +16,10 @@ const MIXED: &str = include_str!("../../scenes/mixed.toml");
 const WALK_MATERIALS: [&str; 4] = ["sand", "soil", "mud", "snow"];
 /// Slope of the `-up` and `-down` scenes, degrees.
 const WALK_SLOPE_DEG: f32 = 10.0;
-/// Grass scenes: name, blade height (m), label.
-const GRASS_SCENES: [(&str, f32, &str); 2] = [
-    ("grass-small", 0.5, "small (0.5 m)"),
-    ("grass-medium", 0.9, "medium (0.9 m)"),
+/// Grass scenes: name, `[[grass]]` preset, label.
+const GRASS_SCENES: [(&str, &str, &str); 2] = [
+    ("grass-small", "small", "small (0.5 m)"),
+    ("grass-medium", "medium", "medium (0.9 m)"),
 ];
 
 /// A built-in scene: its name and TOML source.
@@ -58,14 +58,14 @@ pub fn builtin_scenes() -> Vec<BuiltinScene> {
             all.push(BuiltinScene { name, toml });
         }
     }
-    for (name, height, label) in GRASS_SCENES {
+    for (name, preset, label) in GRASS_SCENES {
         let description = format!("Walk on soil through {label} grass");
         let toml = fill(
             GRASS,
             &[
                 ("@NAME@", name),
                 ("@DESCRIPTION@", &description),
-                ("@HEIGHT@", &format!("{height:.2}")),
+                ("@PRESET@", preset),
             ],
         );
         all.push(BuiltinScene {

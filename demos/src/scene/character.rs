@@ -1,33 +1,23 @@
-//! `[[characters]]`: who walks, where and how fast.
+//! `[[characters]]`: who walks, where, and whether the balance controller runs.
+//!
+//! The body is the library's [`CharacterDesc`] (`[characters.body]`); the
+//! walking speed follows from its Froude number. The path is turned into a
+//! [`WalkPath`] here.
 
+use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
+use softwalk_systems::character::{CharacterDesc, CharacterError, PathSegment, WalkPath};
 
 use super::SceneError;
 use super::check::{finite, identifier, in_range, on_terrain, positive};
 
-/// Standard gravity, m/s^2, used to turn a Froude number into a speed.
-pub const GRAVITY: f32 = 9.81;
+/// Default radius of the rounded corners of a waypoint path, metres.
+pub const DEFAULT_CORNER_RADIUS: f32 = 0.75;
+/// Sharpest accepted turn at a waypoint, degrees (a U-turn cannot be rounded).
+pub const MAX_TURN_DEG: f32 = 170.0;
 
-/// Body proportions.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Morphology {
-    /// Standing height, metres, in `[0.5, 2.5]` (paper: 1 to 1.9 m).
-    pub height: f32,
-    /// Body mass, kg, in `(0, 300]`.
-    pub mass: f32,
-    /// Leg length (hip to sole) as a fraction of the height, in `[0.35, 0.65]`.
-    pub leg_factor: f32,
-}
-
-impl Morphology {
-    /// Leg length, metres.
-    pub fn leg_length(&self) -> f32 {
-        self.height * self.leg_factor
-    }
-}
-
-/// The route a character follows, selected by `kind`.
+/// The route a character follows, selected by `kind`. Headings are in degrees
+/// from +X towards +Z.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum PathSpec {
@@ -40,15 +30,22 @@ pub enum PathSpec {
         /// Length, metres.
         length: f32,
     },
-    /// A polyline through at least two points `[x, z]`.
+    /// Straight runs through at least two points `[x, z]`, corners rounded by circular arcs.
     Waypoints {
         /// The points in walking order.
         points: Vec<[f32; 2]>,
+        /// Radius of the corner arcs, metres, in `(0, 100]`; shrunk where the runs are short.
+        #[serde(default = "default_corner_radius")]
+        corner_radius: f32,
     },
 }
 
+fn default_corner_radius() -> f32 {
+    DEFAULT_CORNER_RADIUS
+}
+
 impl PathSpec {
-    /// The path as a polyline of `[x, z]` points.
+    /// The path's corner points `[x, z]` (start and end for a straight path).
     pub fn polyline(&self) -> Vec<[f32; 2]> {
         match self {
             PathSpec::Straight {
@@ -59,35 +56,84 @@ impl PathSpec {
                 let (s, c) = heading_deg.to_radians().sin_cos();
                 vec![*start, [start[0] + c * length, start[1] + s * length]]
             }
-            PathSpec::Waypoints { points } => points.clone(),
+            PathSpec::Waypoints { points, .. } => points.clone(),
         }
     }
 
-    /// Total length of the path, metres.
-    pub fn length(&self) -> f32 {
-        self.polyline()
-            .windows(2)
-            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-            .sum()
+    /// The library path: straight runs joined by tangent arcs, starting at ground
+    /// level (the path ignores heights; characters stand on the ground under it).
+    pub fn walk_path(&self) -> Result<WalkPath, CharacterError> {
+        let points: Vec<Vec2> = self.polyline().iter().map(|p| Vec2::from(*p)).collect();
+        let radius = match self {
+            PathSpec::Straight { .. } => 0.0,
+            PathSpec::Waypoints { corner_radius, .. } => *corner_radius,
+        };
+        let runs: Vec<Vec2> = points.windows(2).map(|w| w[1] - w[0]).collect();
+        // Tangent length cut from each run at each interior corner, and the corner's arc.
+        let mut cut = vec![[0.0f32; 2]; runs.len()];
+        let mut arcs = vec![None; runs.len()];
+        for k in 1..runs.len() {
+            let (a, b) = (runs[k - 1], runs[k]);
+            // Positive when turning from +X towards +Z, which is a right turn for the path.
+            let turn = a.perp_dot(b).atan2(a.dot(b));
+            if turn.abs() < 1e-4 || radius <= 0.0 {
+                continue;
+            }
+            let half_tan = (turn.abs() * 0.5).tan();
+            let tangent = (radius * half_tan)
+                .min(0.5 * a.length())
+                .min(0.5 * b.length());
+            cut[k - 1][1] = tangent;
+            cut[k][0] = tangent;
+            arcs[k] = Some(PathSegment::Arc {
+                radius: tangent / half_tan,
+                angle: -turn,
+            });
+        }
+        let mut segments = Vec::with_capacity(2 * runs.len());
+        for (k, run) in runs.iter().enumerate() {
+            if let Some(arc) = arcs[k] {
+                segments.push(arc);
+            }
+            let length = run.length() - cut[k][0] - cut[k][1];
+            if length > 1e-4 {
+                segments.push(PathSegment::Straight { length });
+            }
+        }
+        let start = points.first().copied().unwrap_or(Vec2::ZERO);
+        let heading = runs.first().copied().unwrap_or(Vec2::ZERO);
+        WalkPath::new(
+            Vec3::new(start.x, 0.0, start.y),
+            Vec3::new(heading.x, 0.0, heading.y),
+            segments,
+            false,
+        )
     }
 
     fn validate(&self, field: &str, size: [f32; 2]) -> Result<(), SceneError> {
-        if let PathSpec::Straight {
-            heading_deg,
-            length,
-            ..
-        } = self
-        {
-            in_range(&format!("{field}.heading_deg"), *heading_deg, -360.0, 360.0)?;
-            positive(&format!("{field}.length"), *length, 100_000.0)?;
+        match self {
+            PathSpec::Straight {
+                heading_deg,
+                length,
+                ..
+            } => {
+                in_range(&format!("{field}.heading_deg"), *heading_deg, -360.0, 360.0)?;
+                positive(&format!("{field}.length"), *length, 100_000.0)?;
+            }
+            PathSpec::Waypoints {
+                points,
+                corner_radius,
+            } => {
+                positive(&format!("{field}.corner_radius"), *corner_radius, 100.0)?;
+                if points.len() < 2 {
+                    return Err(SceneError::invalid(
+                        format!("{field}.points"),
+                        format!("{} point(s); a path needs at least 2", points.len()),
+                    ));
+                }
+            }
         }
         let points = self.polyline();
-        if points.len() < 2 {
-            return Err(SceneError::invalid(
-                format!("{field}.points"),
-                format!("{} point(s); a path needs at least 2", points.len()),
-            ));
-        }
         for (k, p) in points.iter().enumerate() {
             let name = match self {
                 PathSpec::Straight { .. } if k == 0 => format!("{field}.start"),
@@ -106,21 +152,32 @@ impl PathSpec {
                 )
             })?;
         }
-        if self.length() <= 0.0 {
-            return Err(SceneError::invalid(field, "the path has zero length"));
+        for k in 1..points.len() {
+            let run = Vec2::from(points[k]) - Vec2::from(points[k - 1]);
+            if run.length() < 1e-3 {
+                return Err(SceneError::invalid(
+                    format!("{field}.points[{k}]"),
+                    "repeats the previous point",
+                ));
+            }
+            if k + 1 < points.len() {
+                let next = Vec2::from(points[k + 1]) - Vec2::from(points[k]);
+                let turn = run.perp_dot(next).atan2(run.dot(next)).to_degrees();
+                if turn.abs() > MAX_TURN_DEG {
+                    return Err(SceneError::invalid(
+                        format!("{field}.points[{k}]"),
+                        format!(
+                            "turns by {:.0} degrees; at most {MAX_TURN_DEG} can be rounded",
+                            turn.abs()
+                        ),
+                    ));
+                }
+            }
         }
-        Ok(())
+        self.walk_path()
+            .map(|_| ())
+            .map_err(|e| SceneError::invalid(field, e.to_string()))
     }
-}
-
-/// Walking speed, either in m/s or as a Froude number `v^2 / (g L)`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
-pub enum SpeedSpec {
-    /// Metres per second, in `(0, 5]`.
-    Mps(f32),
-    /// Froude number, in `(0, 1]` (0.25 is a comfortable walk).
-    Froude(f32),
 }
 
 /// One `[[characters]]` entry.
@@ -129,60 +186,31 @@ pub enum SpeedSpec {
 pub struct CharacterSpec {
     /// Unique name (letters, digits, `-`, `_`), used in metrics and the camera.
     pub name: String,
-    /// Body proportions.
-    pub morphology: Morphology,
-    /// Walking speed (`speed = { mps = 1.2 }` or `speed = { froude = 0.25 }`).
-    pub speed: SpeedSpec,
-    /// PD gain alpha on the centre-of-mass error (paper: 30), in `[0, 1000]`.
-    #[serde(default = "default_alpha")]
-    pub alpha: f32,
-    /// PD gain beta on the angular velocity (paper: 6), in `[0, 1000]`.
-    #[serde(default = "default_beta")]
-    pub beta: f32,
-    /// Whether the balance controller (tilt and swing) runs.
+    /// Whether the balance controller (tilt and swing) runs; `Balance::enabled`.
     #[serde(default = "default_controller")]
     pub controller: bool,
+    /// Body and gains: `height`, `mass`, optional `leg_length_factor`, `froude`
+    /// (sets the speed), `alpha`, `beta`, `proxy_mass`.
+    pub body: CharacterDesc,
     /// The route.
     pub path: PathSpec,
 }
 
-fn default_alpha() -> f32 {
-    30.0
-}
-fn default_beta() -> f32 {
-    6.0
-}
 fn default_controller() -> bool {
     true
 }
 
 impl CharacterSpec {
-    /// Walking speed in m/s (a Froude number is converted with the leg length).
-    pub fn speed_mps(&self) -> f32 {
-        match self.speed {
-            SpeedSpec::Mps(v) => v,
-            SpeedSpec::Froude(fr) => (fr * GRAVITY * self.morphology.leg_length()).sqrt(),
-        }
-    }
-
     /// Checks the character; `field` is its path (`characters[0]`).
     pub(crate) fn validate(&self, field: &str, size: [f32; 2]) -> Result<(), SceneError> {
         identifier(&format!("{field}.name"), &self.name)?;
-        let m = &self.morphology;
-        in_range(&format!("{field}.morphology.height"), m.height, 0.5, 2.5)?;
-        positive(&format!("{field}.morphology.mass"), m.mass, 300.0)?;
-        in_range(
-            &format!("{field}.morphology.leg_factor"),
-            m.leg_factor,
-            0.35,
-            0.65,
-        )?;
-        match self.speed {
-            SpeedSpec::Mps(v) => positive(&format!("{field}.speed.mps"), v, 5.0)?,
-            SpeedSpec::Froude(fr) => positive(&format!("{field}.speed.froude"), fr, 1.0)?,
-        };
-        in_range(&format!("{field}.alpha"), self.alpha, 0.0, 1000.0)?;
-        in_range(&format!("{field}.beta"), self.beta, 0.0, 1000.0)?;
+        self.body.validate().map_err(|e| match e {
+            CharacterError::InvalidField {
+                field: name,
+                reason,
+            } => SceneError::invalid(format!("{field}.body.{name}"), reason),
+            other => SceneError::invalid(format!("{field}.body"), other.to_string()),
+        })?;
         self.path.validate(&format!("{field}.path"), size)
     }
 }
@@ -191,28 +219,26 @@ impl CharacterSpec {
 mod tests {
     use super::*;
 
-    #[test]
-    fn froude_speed_uses_leg_length() {
-        let c = CharacterSpec {
+    fn walker(path: PathSpec) -> CharacterSpec {
+        CharacterSpec {
             name: "a".into(),
-            morphology: Morphology {
-                height: 1.0,
-                mass: 30.0,
-                leg_factor: 0.49,
-            },
-            speed: SpeedSpec::Froude(0.25),
-            alpha: 30.0,
-            beta: 6.0,
             controller: true,
-            path: PathSpec::Straight {
-                start: [1.0, 1.0],
-                heading_deg: 90.0,
-                length: 3.0,
-            },
-        };
-        assert!((c.speed_mps() - 1.096).abs() < 0.01);
+            body: CharacterDesc::adult(),
+            path,
+        }
+    }
+
+    #[test]
+    fn straight_path_heads_along_its_angle() {
+        let c = walker(PathSpec::Straight {
+            start: [1.0, 1.0],
+            heading_deg: 90.0,
+            length: 3.0,
+        });
         let end = c.path.polyline()[1];
         assert!((end[0] - 1.0).abs() < 1e-5 && (end[1] - 4.0).abs() < 1e-5);
+        let path = c.path.walk_path().unwrap();
+        assert!((path.point_at(3.0).position - Vec2::new(1.0, 4.0)).length() < 1e-5);
         c.validate("characters[0]", [10.0, 10.0]).unwrap();
         let e = c.validate("characters[0]", [10.0, 3.0]).unwrap_err();
         assert!(
@@ -220,5 +246,46 @@ mod tests {
                 .starts_with("characters[0].path.length: point"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn waypoint_corners_are_rounded_and_the_path_ends_at_the_last_point() {
+        let spec = PathSpec::Waypoints {
+            points: vec![[1.0, 1.0], [6.0, 1.0], [6.0, 6.0], [2.0, 7.0]],
+            corner_radius: 1.0,
+        };
+        let path = spec.walk_path().unwrap();
+        let end = path.point_at(path.length());
+        assert!(
+            (end.position - Vec2::new(2.0, 7.0)).length() < 1e-3,
+            "{end:?}"
+        );
+        // Mid-run points lie on the polyline; the first corner is cut inside.
+        assert!((path.point_at(2.0).position - Vec2::new(3.0, 1.0)).length() < 1e-4);
+        let corner = path.point_at(5.0 - 1.0 + 0.25 * std::f32::consts::PI);
+        assert!(
+            corner.position.x < 6.0 && corner.position.y > 1.0,
+            "{corner:?}"
+        );
+        assert!(path.length() < 5.0 + 5.0 + 17f32.sqrt());
+        let e = walker(PathSpec::Waypoints {
+            points: vec![[1.0, 1.0], [5.0, 1.0], [1.0, 1.01]],
+            corner_radius: 1.0,
+        })
+        .validate("characters[0]", [10.0, 10.0])
+        .unwrap_err();
+        assert_eq!(e.field(), Some("characters[0].path.points[1]"));
+    }
+
+    #[test]
+    fn body_errors_name_the_field() {
+        let mut c = walker(PathSpec::Straight {
+            start: [1.0, 1.0],
+            heading_deg: 0.0,
+            length: 3.0,
+        });
+        c.body.alpha = f32::NAN;
+        let e = c.validate("characters[1]", [10.0, 10.0]).unwrap_err();
+        assert_eq!(e.field(), Some("characters[1].body.alpha"));
     }
 }

@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use softwalk_systems::sim::SimError;
 use thiserror::Error;
 
 /// A scene could not be read, parsed or validated.
@@ -82,6 +83,16 @@ pub enum SceneError {
         /// The built-in names, comma separated.
         known: String,
     },
+    /// A valid scene could not be turned into a simulation; `part` names the
+    /// scene part that failed (`terrain`, `grass[0]`, `characters[1]`, `sim`).
+    #[error("{part}: {source}")]
+    Setup {
+        /// The scene part.
+        part: String,
+        /// The simulation's refusal.
+        #[source]
+        source: SimError,
+    },
     /// The scene could not be written back to TOML.
     #[error("cannot write the scene as TOML: {0}")]
     Serialize(String),
@@ -111,7 +122,8 @@ impl SceneError {
             | SceneError::Invalid { field, .. }
             | SceneError::UnknownMaterial { field, .. }
             | SceneError::MissingFile { field, .. }
-            | SceneError::BadFile { field, .. } => Some(field),
+            | SceneError::BadFile { field, .. }
+            | SceneError::Setup { part: field, .. } => Some(field),
             _ => None,
         }
     }

@@ -1,5 +1,12 @@
 //! Scene files: a TOML description of terrain, materials, grass, characters,
-//! camera, simulation and rendering settings, checked field by field.
+//! camera, simulation and rendering settings, checked field by field, and
+//! turned into a simulation by [`Scene::build_sim`].
+//!
+//! The scene format builds on the library's types: `[[materials]]` entries are
+//! `softwalk_systems::terrain::TerrainMaterial`s, `[characters.body]` is a
+//! `softwalk_systems::character::CharacterDesc`, `[[grass]]` starts from a
+//! `softwalk_systems::vegetation::GrassSettings` preset. The terrain spans
+//! `x` in `[0, size_x]` and `z` in `[0, size_z]`, heights in `[0, max_height]`.
 //!
 //! ```
 //! use demos::scene::Scene;
@@ -9,6 +16,7 @@
 //! assert_eq!(scene, again);
 //! ```
 
+mod build;
 mod builtin;
 mod camera;
 mod character;
@@ -21,18 +29,17 @@ mod sim_settings;
 mod syntax;
 mod terrain;
 mod terrain_build;
-mod value_noise;
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
+use softwalk_systems::terrain::{MaterialTable, TerrainMaterial};
 
 pub use builtin::{BuiltinScene, builtin_scenes};
 pub use camera::{CameraMode, CameraSpec};
-pub use character::{CharacterSpec, GRAVITY, Morphology, PathSpec, SpeedSpec};
+pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, PathSpec};
 pub use error::SceneError;
-pub use grass::{GrassPatchSpec, MAX_GRASS_DENSITY};
-pub use material::{BUILTIN_MATERIALS, GaitResponse, MaterialSpec};
+pub use grass::{GrassPatchSpec, GrassPreset};
 pub use render_settings::{MAX_FRAME_SIDE, RenderSettings};
 pub use sim_settings::{MAX_STEPS, SimSettings};
 pub use terrain::{
@@ -59,9 +66,9 @@ pub struct Scene {
     /// Frame settings; defaults to 960 x 540 every 2nd step.
     #[serde(default)]
     pub render: RenderSettings,
-    /// User-defined materials; one named like a built-in replaces it.
+    /// User-defined materials; one named like a preset replaces it.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub materials: Vec<MaterialSpec>,
+    pub materials: Vec<TerrainMaterial>,
     /// Grass patches.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grass: Vec<GrassPatchSpec>,
@@ -123,28 +130,31 @@ impl Scene {
         self.terrain.build_height_grid(&self.base_dir)
     }
 
-    /// The material with this name: a user definition first, then a built-in preset.
-    pub fn material(&self, name: &str) -> Option<MaterialSpec> {
-        self.materials
-            .iter()
-            .find(|m| m.name == name)
-            .cloned()
-            .or_else(|| MaterialSpec::preset(name))
+    /// The material with this name: a user definition first, then a library preset.
+    pub fn material(&self, name: &str) -> Option<TerrainMaterial> {
+        match self.materials.iter().find(|m| m.name == name) {
+            Some(m) => Some(m.clone()),
+            None => MaterialTable::with_presets().by_name(name).ok().cloned(),
+        }
     }
 
-    /// Every material name the scene may use, built-ins first.
-    pub fn material_names(&self) -> Vec<&str> {
-        let mut names: Vec<&str> = BUILTIN_MATERIALS.to_vec();
+    /// Every material name the scene may use, presets first.
+    pub fn material_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = MaterialTable::with_presets()
+            .materials()
+            .iter()
+            .map(|m| m.name.clone())
+            .collect();
         for m in &self.materials {
-            if !names.contains(&m.name.as_str()) {
-                names.push(&m.name);
+            if !names.contains(&m.name) {
+                names.push(m.name.clone());
             }
         }
         names
     }
 
     /// The material at `(x, z)` on the terrain.
-    pub fn material_at(&self, x: f32, z: f32) -> Option<MaterialSpec> {
+    pub fn material_at(&self, x: f32, z: f32) -> Option<TerrainMaterial> {
         self.material(self.terrain.material_at(x, z))
     }
 
@@ -159,7 +169,7 @@ impl Scene {
         self.terrain.validate()?;
         for (k, m) in self.materials.iter().enumerate() {
             let field = format!("materials[{k}]");
-            m.validate(&field)?;
+            material::validate_material(&field, m)?;
             if self.materials[..k].iter().any(|o| o.name == m.name) {
                 return Err(SceneError::invalid(
                     format!("{field}.name"),

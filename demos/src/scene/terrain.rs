@@ -8,6 +8,9 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
+use softwalk_systems::terrain::TerrainError;
+use softwalk_systems::terrain::generate::{DuneParams, GridSpec, NoiseParams};
+
 use super::SceneError;
 use super::check::{count_in_range, in_range, interval, positive};
 
@@ -52,7 +55,9 @@ pub struct Slope {
     pub direction_deg: f32,
 }
 
-/// The relief, selected by `kind`.
+/// The relief, selected by `kind`. Each variant maps onto one generator of
+/// `softwalk_systems::terrain::generate` (or `engine::asset::load_heightmap`);
+/// the field names are the generator's parameter names.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum TerrainShape {
@@ -61,28 +66,42 @@ pub enum TerrainShape {
     Flat,
     /// A plane (see [`Slope`]).
     Slope {
-        /// Steepness in degrees, in `[-60, 60]`.
+        /// Steepness in degrees, in `[-60, 60]` (negative falls towards `direction_deg`).
         angle_deg: f32,
         /// Uphill heading in degrees.
         direction_deg: f32,
     },
-    /// Parallel sine dunes, crests across `direction_deg`.
+    /// Transverse dunes: ridges along Z repeating along X (`generate::dunes`).
     Dunes {
-        /// Half the crest-to-trough height, metres.
+        /// Trough-to-crest height, metres.
         amplitude: f32,
-        /// Crest spacing, metres.
+        /// Crest spacing along X, metres.
         wavelength: f32,
-        /// Heading the wind blows towards (across the crests), degrees.
-        direction_deg: f32,
+        /// Fraction of a period on the gentle side, in `(0, 1)`; default 0.7.
+        #[serde(default = "default_stoss_fraction")]
+        stoss_fraction: f32,
+        /// Crest sinuosity in periods (0 = straight crests); default 0.1.
+        #[serde(default = "default_sinuosity")]
+        sinuosity: f32,
+        /// Seed of the sinuous crests.
+        #[serde(default = "default_seed")]
+        seed: u64,
     },
-    /// Smooth value noise.
+    /// Seeded fractal value-noise hills (`generate::noise`).
     Noise {
-        /// Half the peak-to-peak height, metres.
+        /// Largest deviation from the mean height, metres.
         amplitude: f32,
-        /// Feature size, metres.
-        wavelength: f32,
-        /// Seed of the in-house PRNG.
-        seed: u32,
+        /// Size of the largest features, metres.
+        feature_size: f32,
+        /// Octaves, 1 to 16; default 5.
+        #[serde(default = "default_octaves")]
+        octaves: u32,
+        /// Amplitude ratio between octaves, in `[0, 1]`; default 0.5.
+        #[serde(default = "default_gain")]
+        gain: f32,
+        /// Noise seed.
+        #[serde(default = "default_seed")]
+        seed: u64,
     },
     /// A 16-bit grayscale PNG stretched over the terrain.
     Heightmap {
@@ -91,6 +110,22 @@ pub enum TerrainShape {
         /// Height in metres of pixel value 65535.
         height_scale: f32,
     },
+}
+
+fn default_stoss_fraction() -> f32 {
+    DuneParams::default().stoss_fraction
+}
+fn default_sinuosity() -> f32 {
+    DuneParams::default().sinuosity
+}
+fn default_octaves() -> u32 {
+    NoiseParams::default().octaves
+}
+fn default_gain() -> f32 {
+    NoiseParams::default().gain
+}
+fn default_seed() -> u64 {
+    1
 }
 
 /// A material over a band or rectangle. An omitted axis spans the whole terrain.
@@ -160,47 +195,38 @@ impl TerrainShape {
         match self {
             TerrainShape::Flat => 0.0,
             TerrainShape::Slope { .. } => self.as_slope().map_or(0.0, |s| s.relief(size)),
-            TerrainShape::Dunes { amplitude, .. } | TerrainShape::Noise { amplitude, .. } => {
-                2.0 * amplitude
-            }
+            TerrainShape::Dunes { amplitude, .. } => *amplitude,
+            TerrainShape::Noise { amplitude, .. } => 2.0 * amplitude,
             TerrainShape::Heightmap { height_scale, .. } => *height_scale,
         }
     }
 
-    fn validate(&self, field: &str, size: [f32; 2]) -> Result<(), SceneError> {
-        let longest = size[0].max(size[1]);
+    fn validate(&self, field: &str) -> Result<(), SceneError> {
         match self {
             TerrainShape::Flat => Ok(()),
             TerrainShape::Slope { .. } => self.as_slope().map_or(Ok(()), |s| s.validate(field)),
-            TerrainShape::Dunes {
-                amplitude,
-                wavelength,
-                direction_deg,
-            } => {
+            TerrainShape::Dunes { amplitude, .. } | TerrainShape::Noise { amplitude, .. } => {
                 positive(&format!("{field}.amplitude"), *amplitude, 1000.0)?;
-                positive(&format!("{field}.wavelength"), *wavelength, 10.0 * longest)?;
-                in_range(
-                    &format!("{field}.direction_deg"),
-                    *direction_deg,
-                    -360.0,
-                    360.0,
-                )?;
-                Ok(())
-            }
-            TerrainShape::Noise {
-                amplitude,
-                wavelength,
-                ..
-            } => {
-                positive(&format!("{field}.amplitude"), *amplitude, 1000.0)?;
-                positive(&format!("{field}.wavelength"), *wavelength, 10.0 * longest)?;
-                Ok(())
+                // The generator checks its own parameters; a 2 x 2 probe names the bad one.
+                self.generate(GridSpec::square(1.0, 2))
+                    .map(|_| ())
+                    .map_err(|e| generator_error(field, e))
             }
             TerrainShape::Heightmap { height_scale, .. } => {
                 positive(&format!("{field}.height_scale"), *height_scale, 10_000.0)?;
                 Ok(())
             }
         }
+    }
+}
+
+/// A generator's refusal as an error on `field.<parameter>`.
+pub(crate) fn generator_error(field: &str, error: TerrainError) -> SceneError {
+    match error {
+        TerrainError::InvalidParameter { name, reason } => {
+            SceneError::invalid(format!("{field}.{name}"), reason)
+        }
+        other => SceneError::invalid(field, other.to_string()),
     }
 }
 
@@ -243,7 +269,7 @@ impl TerrainSpec {
         count_in_range("terrain.resolution", self.resolution, 2, MAX_RESOLUTION)?;
         positive("terrain.max_height", self.max_height, 10_000.0)?;
         let size = self.size();
-        self.shape.validate("terrain.shape", size)?;
+        self.shape.validate("terrain.shape")?;
         if let Some(base) = &self.base_slope {
             if self.shape.as_slope().is_some() {
                 return Err(SceneError::invalid(

@@ -1,120 +1,187 @@
-//! Turns a [`TerrainSpec`] into an [`engine::geom::HeightGrid`].
+//! Glue from a [`TerrainSpec`] to the library's terrain generators.
 //!
-//! Heights are the shape plus the base slope, shifted so the lowest sample is
-//! at 0 and clamped to `[0, max_height]`. The grid's origin is `(0, 0)`.
-//! A heightmap PNG is stretched over the whole terrain: pixel `(0, 0)` at
-//! `x = 0, z = 0`, columns along +X, rows along +Z, bilinear in between.
+//! The shape comes from `softwalk_systems::terrain::generate` (flat, slope,
+//! dunes, noise) or from `engine::asset::load_heightmap`; a base slope is
+//! added per sample; then heights are shifted so the lowest sample is at 0 and
+//! clamped to `[0, max_height]`. The grid's origin is `(0, 0)`, so the terrain
+//! spans `x` in `[0, size_x]`, `z` in `[0, size_z]`. A heightmap PNG is
+//! stretched over the whole terrain: pixel `(0, 0)` at `x = 0, z = 0`,
+//! columns along +X, rows along +Z, bilinear in between.
 
 use std::path::Path;
 
+use engine::asset::{AssetError, load_heightmap};
 use engine::geom::HeightGrid;
 use glam::Vec2;
+use softwalk_systems::terrain::generate::{self, DuneParams, GridSpec, NoiseParams};
+use softwalk_systems::terrain::{Heightfield, MaterialTable, TerrainError};
 
-use super::value_noise::value_noise;
+use super::terrain::generator_error;
 use super::{SceneError, TerrainShape, TerrainSpec};
 
-/// A 16-bit grayscale image, values scaled to `[0, 1]`.
-struct Heightmap {
-    width: usize,
-    height: usize,
-    values: Vec<f32>,
-}
+/// Field the heightmap path is read from, named in file errors.
+const HEIGHTMAP_FIELD: &str = "terrain.shape.path";
 
-impl Heightmap {
-    fn load(path: &Path) -> Result<Heightmap, SceneError> {
-        let bad = |reason: String| SceneError::BadFile {
-            field: "terrain.shape.path".into(),
-            path: path.to_path_buf(),
-            reason,
-        };
-        let image = image::open(path)
-            .map_err(|e| bad(e.to_string()))?
-            .into_luma16();
-        let (width, height) = (image.width() as usize, image.height() as usize);
-        if width < 2 || height < 2 {
-            return Err(bad(format!(
-                "{width} x {height} pixels; need at least 2 x 2"
-            )));
+impl TerrainShape {
+    /// The shape's heights on `spec`, from the matching generator. A heightmap
+    /// is not generated: this returns flat ground for it (see [`TerrainSpec::build_height_grid`]).
+    pub(crate) fn generate(&self, spec: GridSpec) -> Result<HeightGrid, TerrainError> {
+        match *self {
+            TerrainShape::Flat | TerrainShape::Heightmap { .. } => generate::flat(spec, 0.0),
+            TerrainShape::Slope {
+                angle_deg,
+                direction_deg,
+            } => {
+                let (s, c) = direction_deg.to_radians().sin_cos();
+                let uphill = Vec2::new(c, s) * angle_deg.signum();
+                generate::slope(spec, 0.0, angle_deg.abs(), uphill)
+            }
+            TerrainShape::Dunes {
+                amplitude,
+                wavelength,
+                stoss_fraction,
+                sinuosity,
+                seed,
+            } => generate::dunes(
+                spec,
+                DuneParams {
+                    base: 0.0,
+                    amplitude,
+                    wavelength,
+                    stoss_fraction,
+                    sinuosity,
+                    seed,
+                },
+            ),
+            TerrainShape::Noise {
+                amplitude,
+                feature_size,
+                octaves,
+                gain,
+                seed,
+            } => generate::noise(
+                spec,
+                NoiseParams {
+                    base: 0.0,
+                    amplitude,
+                    feature_size,
+                    octaves,
+                    gain,
+                    seed,
+                },
+            ),
         }
-        let values = image
-            .as_raw()
-            .iter()
-            .map(|v| f32::from(*v) / 65535.0)
-            .collect();
-        Ok(Heightmap {
-            width,
-            height,
-            values,
-        })
-    }
-
-    /// Bilinear value at fractional pixel coordinates (clamped to the image).
-    fn sample(&self, u: f32, v: f32) -> f32 {
-        let u = u.clamp(0.0, (self.width - 1) as f32);
-        let v = v.clamp(0.0, (self.height - 1) as f32);
-        let (i, j) = (
-            (u as usize).min(self.width - 2),
-            (v as usize).min(self.height - 2),
-        );
-        let (fu, fv) = (u - i as f32, v - j as f32);
-        let at = |i: usize, j: usize| self.values[j * self.width + i];
-        let a = at(i, j) + (at(i + 1, j) - at(i, j)) * fu;
-        let b = at(i, j + 1) + (at(i + 1, j + 1) - at(i, j + 1)) * fu;
-        a + (b - a) * fv
     }
 }
 
 impl TerrainSpec {
+    /// Where the samples lie: origin `(0, 0)`, [`TerrainSpec::cell_size`] apart,
+    /// [`TerrainSpec::grid_samples`] of them.
+    pub fn grid_spec(&self) -> GridSpec {
+        let (nx, nz) = self.grid_samples();
+        GridSpec {
+            origin: Vec2::ZERO,
+            cell: self.cell_size(),
+            nx,
+            nz,
+        }
+    }
+
     /// Builds the height grid; a heightmap path resolves against `base_dir`.
     pub fn build_height_grid(&self, base_dir: &Path) -> Result<HeightGrid, SceneError> {
-        let heightmap = match &self.shape {
-            TerrainShape::Heightmap { path, .. } => Some(Heightmap::load(&base_dir.join(path))?),
-            _ => None,
+        let spec = self.grid_spec();
+        let mut grid = match &self.shape {
+            TerrainShape::Heightmap { path, height_scale } => {
+                self.stretch_heightmap(&base_dir.join(path), *height_scale, spec)?
+            }
+            shape => shape
+                .generate(spec)
+                .map_err(|e| generator_error("terrain.shape", e))?,
         };
-        let centre = [self.size_x * 0.5, self.size_z * 0.5];
-        let base = self.base_slope;
-        let shape_height = |x: f32, z: f32| -> f32 {
-            let shape = match &self.shape {
-                TerrainShape::Flat => 0.0,
-                TerrainShape::Slope { .. } => self
-                    .shape
-                    .as_slope()
-                    .map_or(0.0, |s| s.height_at(x, z, centre)),
-                TerrainShape::Dunes {
-                    amplitude,
-                    wavelength,
-                    direction_deg,
-                } => {
-                    let (s, c) = direction_deg.to_radians().sin_cos();
-                    let along = x * c + z * s;
-                    amplitude * (std::f32::consts::TAU * along / wavelength).sin()
+        if let Some(base) = self.base_slope {
+            let centre = spec.center();
+            for j in 0..grid.nz() {
+                for i in 0..grid.nx() {
+                    let p = grid.sample_position(i, j);
+                    let h = p.y + base.height_at(p.x, p.z, [centre.x, centre.y]);
+                    grid.set_height(i, j, h);
                 }
-                TerrainShape::Noise {
-                    amplitude,
-                    wavelength,
-                    seed,
-                } => value_noise(x, z, *amplitude, *wavelength, *seed),
-                TerrainShape::Heightmap { height_scale, .. } => {
-                    heightmap.as_ref().map_or(0.0, |m| {
-                        let u = x / self.size_x * (m.width - 1) as f32;
-                        let v = z / self.size_z * (m.height - 1) as f32;
-                        m.sample(u, v) * height_scale
-                    })
-                }
-            };
-            shape + base.map_or(0.0, |b| b.height_at(x, z, centre))
-        };
-        let (nx, nz) = self.grid_samples();
-        let grid_error =
-            |e: engine::geom::GeomError| SceneError::invalid("terrain.resolution", e.to_string());
-        let mut grid = HeightGrid::from_fn(Vec2::ZERO, self.cell_size(), nx, nz, shape_height)
-            .map_err(grid_error)?;
+            }
+        }
         let lowest = grid.heights().iter().copied().fold(f32::INFINITY, f32::min);
         let max_height = self.max_height;
         for h in grid.heights_mut() {
             *h = (*h - lowest).clamp(0.0, max_height);
         }
         Ok(grid)
+    }
+
+    /// The PNG at `path` (pixels 1 m apart as loaded), resampled bilinearly onto `spec`
+    /// so that it covers the whole terrain.
+    fn stretch_heightmap(
+        &self,
+        path: &Path,
+        height_scale: f32,
+        spec: GridSpec,
+    ) -> Result<HeightGrid, SceneError> {
+        let image = load_heightmap(path, 1.0, height_scale).map_err(|e| match e {
+            AssetError::Missing { path } => SceneError::MissingFile {
+                field: HEIGHTMAP_FIELD.into(),
+                path,
+            },
+            other => SceneError::BadFile {
+                field: HEIGHTMAP_FIELD.into(),
+                path: path.to_path_buf(),
+                reason: other.to_string(),
+            },
+        })?;
+        let pixels = image.extent();
+        let (sx, sz) = (pixels.x / self.size_x, pixels.y / self.size_z);
+        HeightGrid::from_fn(spec.origin, spec.cell, spec.nx, spec.nz, |x, z| {
+            image.height_bilinear(x * sx, z * sz).unwrap_or(0.0)
+        })
+        .map_err(|e| SceneError::invalid("terrain.resolution", e.to_string()))
+    }
+
+    /// The terrain as a [`Heightfield`]: heights from [`TerrainSpec::build_height_grid`],
+    /// materials from `table` painted by `material` and `regions` (later regions win).
+    pub fn build_heightfield(
+        &self,
+        base_dir: &Path,
+        table: MaterialTable,
+    ) -> Result<Heightfield, SceneError> {
+        let id = |field: String, name: &str| {
+            table
+                .id(name)
+                .map_err(|e| SceneError::invalid(field, e.to_string()))
+        };
+        let fill = id("terrain.material".into(), &self.material)?;
+        let regions = self
+            .regions
+            .iter()
+            .enumerate()
+            .map(|(k, r)| {
+                Ok((
+                    r,
+                    id(format!("terrain.regions[{k}].material"), &r.material)?,
+                ))
+            })
+            .collect::<Result<Vec<_>, SceneError>>()?;
+        let grid = self.build_height_grid(base_dir)?;
+        let terrain_error = |e: TerrainError| SceneError::invalid("terrain", e.to_string());
+        let mut field = Heightfield::from_grid(grid, table, fill).map_err(terrain_error)?;
+        if !regions.is_empty() {
+            field
+                .paint_fn(|x, z| {
+                    regions
+                        .iter()
+                        .rev()
+                        .find(|(r, _)| r.contains(x, z))
+                        .map_or(fill, |(_, id)| *id)
+                })
+                .map_err(terrain_error)?;
+        }
+        Ok(field)
     }
 }
 
@@ -151,6 +218,13 @@ mod tests {
         assert!(g.height(0, 5).abs() < 1e-5);
         assert!((g.height(40, 5) - 4.0).abs() < 1e-4);
         assert!((g.height(20, 0) - g.height(20, 20)).abs() < 1e-5);
+        let down = terrain(TerrainShape::Slope {
+            angle_deg: -45.0,
+            direction_deg: 0.0,
+        });
+        let g = down.build_height_grid(Path::new("")).unwrap();
+        assert!((g.height(0, 5) - 4.0).abs() < 1e-4);
+        assert!(g.height(40, 5).abs() < 1e-5);
     }
 
     #[test]
@@ -158,7 +232,9 @@ mod tests {
         let mut t = terrain(TerrainShape::Dunes {
             amplitude: 0.3,
             wavelength: 1.0,
-            direction_deg: 0.0,
+            stoss_fraction: 0.7,
+            sinuosity: 0.0,
+            seed: 1,
         });
         t.base_slope = Some(Slope {
             angle_deg: 5.0,
@@ -168,8 +244,8 @@ mod tests {
         let b = t.build_height_grid(Path::new("")).unwrap();
         assert_eq!(a.heights(), b.heights());
         let max = a.heights().iter().copied().fold(0.0, f32::max);
-        assert!(max <= 0.6 + 5f32.to_radians().tan() * 2.0 + 1e-4);
-        assert!(max > 0.5);
+        assert!(max <= 0.3 + 5f32.to_radians().tan() * 2.0 + 1e-4);
+        assert!(max > 0.25);
     }
 
     #[test]
@@ -194,6 +270,29 @@ mod tests {
         let e = t.build_height_grid(dir.path()).unwrap_err();
         assert_eq!(e.field(), Some("terrain.shape.path"));
         assert!(e.to_string().contains("cannot use"), "{e}");
+        std::fs::remove_file(&png).unwrap();
+        let e = t.build_height_grid(dir.path()).unwrap_err();
+        assert!(matches!(e, SceneError::MissingFile { .. }), "{e}");
+    }
+
+    #[test]
+    fn regions_paint_the_material_map() {
+        let mut t = terrain(TerrainShape::Flat);
+        t.regions = vec![crate::scene::MaterialRegion {
+            material: "snow".into(),
+            x: Some([2.0, 4.0]),
+            z: None,
+        }];
+        let field = t
+            .build_heightfield(Path::new(""), MaterialTable::with_presets())
+            .unwrap();
+        assert_eq!(field.material_at(1.0, 1.0).unwrap().name, "sand");
+        assert_eq!(field.material_at(3.0, 1.0).unwrap().name, "snow");
+        t.material = "lava".into();
+        let e = t
+            .build_heightfield(Path::new(""), MaterialTable::with_presets())
+            .unwrap_err();
+        assert_eq!(e.field(), Some("terrain.material"));
     }
 
     #[test]

@@ -20,6 +20,7 @@ pub const SINK_TIME_S: f32 = 0.1;
 /// the scales and raises its swing apex by `extra_clearance`. Values of the
 /// presets are stylised (deep or sticky grounds slow the walk and lift the feet).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GaitResponse {
     /// Multiplier on walking speed (1 = unchanged), in (0, 2].
     pub speed_scale: f32,
@@ -54,6 +55,7 @@ impl Default for GaitResponse {
 ///   0.4 cell² each) run over the touched window per step;
 /// - `repose_deg` is the angle of repose: steeper disturbed slopes slump.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TerrainMaterial {
     /// Unique name, used for lookups.
     pub name: String,

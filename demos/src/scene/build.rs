@@ -1,0 +1,116 @@
+//! From a validated [`Scene`] to a ready-to-run simulation, through
+//! `softwalk_systems::sim::SimBuilder`.
+
+use engine::ecs::Entity;
+use engine::schedule::App;
+use softwalk_systems::character::Balance;
+use softwalk_systems::sim::{SimBuilder, SimError};
+use softwalk_systems::terrain::{Heightfield, MaterialTable};
+
+use super::material::material_table;
+use super::{Scene, SceneError};
+
+/// Wraps a simulation refusal with the scene part it came from.
+fn setup(part: impl Into<String>) -> impl FnOnce(SimError) -> SceneError {
+    let part = part.into();
+    move |source| SceneError::Setup { part, source }
+}
+
+impl Scene {
+    /// The material table: the library presets (sand, soil, mud, snow), then
+    /// the scene's `[[materials]]` (one named like a preset replaces it).
+    pub fn material_table(&self) -> Result<MaterialTable, SceneError> {
+        material_table(&self.materials)
+    }
+
+    /// The terrain with its material map, a heightmap resolved against the scene's folder.
+    pub fn build_heightfield(&self) -> Result<Heightfield, SceneError> {
+        self.terrain
+            .build_heightfield(&self.base_dir, self.material_table()?)
+    }
+
+    /// The scene as a simulation: terrain, grass patches and characters in a
+    /// built [`App`] stepped at `sim.dt`, and the characters' entities in scene
+    /// order. Each character's `controller` switch is set on its `Balance`.
+    /// Run it with `softwalk_systems::sim::run_steps`.
+    ///
+    /// ```
+    /// use demos::scene::Scene;
+    /// let mut scene = Scene::builtin("sand-flat").unwrap();
+    /// scene.terrain.resolution = 101; // keep the doctest quick
+    /// let (mut app, walkers) = scene.build_sim().unwrap();
+    /// assert_eq!(walkers.len(), 1);
+    /// softwalk_systems::sim::run_steps(&mut app, 10).unwrap();
+    /// ```
+    pub fn build_sim(&self) -> Result<(App, Vec<Entity>), SceneError> {
+        let mut builder = SimBuilder::new(self.sim.dt).map_err(setup("sim.dt"))?;
+        builder
+            .terrain(self.build_heightfield()?)
+            .map_err(setup("terrain"))?;
+        for (k, patch) in self.grass.iter().enumerate() {
+            builder
+                .grass(patch.area(), patch.settings())
+                .map_err(setup(format!("grass[{k}]")))?;
+        }
+        let mut walkers = Vec::with_capacity(self.characters.len());
+        for (k, c) in self.characters.iter().enumerate() {
+            let part = format!("characters[{k}]");
+            let path = c.path.walk_path().map_err(|source| SceneError::Setup {
+                part: format!("{part}.path"),
+                source: SimError::Character {
+                    name: c.name.clone(),
+                    source,
+                },
+            })?;
+            let entity = builder
+                .character(&c.name, c.body, path)
+                .map_err(setup(part))?;
+            walkers.push(entity);
+        }
+        let app = builder.build().map_err(setup("sim"))?;
+        for (k, (c, entity)) in self.characters.iter().zip(&walkers).enumerate() {
+            let mut balance =
+                app.world
+                    .get_mut::<Balance>(*entity)
+                    .map_err(|e| SceneError::Setup {
+                        part: format!("characters[{k}].controller"),
+                        source: SimError::System {
+                            system: "spawn",
+                            step: 0,
+                            message: e.to_string(),
+                        },
+                    })?;
+            balance.enabled = c.controller;
+        }
+        Ok((app, walkers))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn controller_switch_reaches_the_balance_component() {
+        let mut scene = Scene::builtin("controller-compare").unwrap();
+        scene.terrain.resolution = 101;
+        let (app, walkers) = scene.build_sim().unwrap();
+        let enabled: Vec<bool> = walkers
+            .iter()
+            .map(|e| app.world.get::<Balance>(*e).unwrap().enabled)
+            .collect();
+        assert_eq!(enabled, [true, false]);
+    }
+
+    #[test]
+    fn setup_failures_name_the_part() {
+        let mut scene = Scene::builtin("sand-flat").unwrap();
+        scene.terrain.resolution = 101;
+        scene.characters[0].body.beta = 50.0;
+        let Err(e) = scene.build_sim() else {
+            panic!("a beta above the passive damping should be refused");
+        };
+        assert_eq!(e.field(), Some("characters[0]"), "{e}");
+        assert!(e.to_string().starts_with("characters[0]: "), "{e}");
+    }
+}
