@@ -50,6 +50,15 @@ impl Default for FrameScene<'_> {
     }
 }
 
+/// What one frame sent to the rasterizer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FrameStats {
+    /// Screen batches (visible terrain patches, mesh parts, groups of blades).
+    pub batches: usize,
+    /// Triangles set up after culling and clipping.
+    pub triangles: usize,
+}
+
 /// Draws [`FrameScene`]s into `width` x `height` RGBA images.
 ///
 /// Geometry is projected per batch (terrain patch, mesh part, group of blades)
@@ -112,18 +121,27 @@ impl Renderer {
     /// Renders one frame. The camera's viewport should match the renderer's size
     /// (its aspect ratio is used for the projection).
     pub fn render(&self, scene: &FrameScene<'_>, camera: &Camera) -> RgbaImage {
+        self.render_with_stats(scene, camera).0
+    }
+
+    /// Renders one frame and says how much geometry reached the rasterizer.
+    pub fn render_with_stats(&self, scene: &FrameScene<'_>, camera: &Camera) -> (RgbaImage, FrameStats) {
         match &self.pool {
             Some(pool) => pool.install(|| self.render_here(scene, camera)),
             None => self.render_here(scene, camera),
         }
     }
 
-    fn render_here(&self, scene: &FrameScene<'_>, camera: &Camera) -> RgbaImage {
+    fn render_here(&self, scene: &FrameScene<'_>, camera: &Camera) -> (RgbaImage, FrameStats) {
         let vp = Viewport {
             width: self.width as i32,
             height: self.height as i32,
         };
         let batches = self.project(scene, camera, vp);
+        let stats = FrameStats {
+            batches: batches.len(),
+            triangles: batches.iter().map(|b| b.tris.len()).sum(),
+        };
         let (w, h) = (self.width as usize, self.height as usize);
         let mut color = vec![0u8; w * h * 4];
         let mut depth = vec![0f32; w * h];
@@ -154,8 +172,9 @@ impl Renderer {
                     }
                 }
             });
-        RgbaImage::from_raw(self.width, self.height, color)
-            .expect("the colour buffer has width * height * 4 bytes")
+        let image = RgbaImage::from_raw(self.width, self.height, color)
+            .expect("the colour buffer has width * height * 4 bytes");
+        (image, stats)
     }
 
     /// All screen batches in drawing order: terrain, meshes, grass.

@@ -39,7 +39,7 @@ pub use batch::CullMode;
 pub use camera::Camera;
 pub use error::RenderError;
 pub use follow::CameraFollow;
-pub use frame::{FrameScene, Renderer};
+pub use frame::{FrameScene, FrameStats, Renderer};
 pub use grass::GrassBlade;
 pub use mesh::MeshInstance;
 pub use shading::{Lighting, Sun, encode_display};
