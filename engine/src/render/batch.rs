@@ -25,17 +25,25 @@ pub(crate) struct TriangleGroup<'a> {
     pub cull: CullMode,
 }
 
-/// Screen-space triangles ready to rasterize, with the rows they touch.
+/// Rows per band: the unit of parallel rasterization. Fixed, so that the
+/// result does not depend on the number of threads.
+pub(crate) const BAND_ROWS: i32 = 16;
+
+/// Screen-space triangles ready to rasterize, binned by the bands of rows they touch.
 #[derive(Debug, Default)]
 pub(crate) struct ScreenBatch {
     /// Projected vertices (clipped triangles append their own).
     pub verts: Vec<ScreenVertex>,
     /// Triangles, clockwise on screen, each with twice its fixed-point area.
     pub tris: Vec<([u32; 3], i64)>,
-    /// First pixel row any triangle touches.
-    pub y_min: i32,
-    /// Last pixel row any triangle touches.
-    pub y_max: i32,
+    /// Pixel rows (first, last) each triangle touches, until binned.
+    rows: Vec<(i32, i32)>,
+    /// First band any triangle touches.
+    first_band: i32,
+    /// `bins[k]..bins[k + 1]` indexes `binned` for band `first_band + k`.
+    bins: Vec<u32>,
+    /// Triangle indices of each band, in submission order.
+    binned: Vec<u32>,
 }
 
 /// The viewport a batch is built for.
@@ -55,8 +63,10 @@ impl Viewport {
         ScreenVertex {
             // Saturating casts: off-screen garbage (for vertices that are clipped
             // anyway) cannot overflow.
-            x: (sx * scale).round() as i32,
-            y: (sy * scale).round() as i32,
+            // Rounds to nearest on screen; truncates (still consistently per
+            // vertex) off the top and left, which only changes clipped geometry.
+            x: (sx * scale + 0.5) as i32,
+            y: (sy * scale + 0.5) as i32,
             inv_w,
             color_w: v.color * inv_w,
         }
@@ -68,9 +78,7 @@ impl ScreenBatch {
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
         let mut batch = ScreenBatch {
             verts: verts.iter().map(|v| vp.project(v)).collect(),
-            tris: Vec::new(),
-            y_min: i32::MAX,
-            y_max: i32::MIN,
+            ..ScreenBatch::default()
         };
         let codes: Vec<u8> = verts.iter().map(|v| outcode(v.pos)).collect();
         let mut polygon = Vec::with_capacity(9);
@@ -96,7 +104,51 @@ impl ScreenBatch {
                 }
             }
         }
+        batch.bin();
         batch
+    }
+
+    /// Sorts the triangles into per-band lists (counting sort, order kept).
+    fn bin(&mut self) {
+        let rows = std::mem::take(&mut self.rows);
+        let Some(first) = rows.iter().map(|r| r.0).min() else {
+            return;
+        };
+        let last = rows.iter().map(|r| r.1).max().unwrap_or(first);
+        self.first_band = first / BAND_ROWS;
+        let bands = (last / BAND_ROWS - self.first_band + 1) as usize;
+        let mut counts = vec![0u32; bands + 1];
+        let band_range = |(y0, y1): (i32, i32)| {
+            (y0 / BAND_ROWS - self.first_band) as usize..=(y1 / BAND_ROWS - self.first_band) as usize
+        };
+        for &r in &rows {
+            for b in band_range(r) {
+                counts[b + 1] += 1;
+            }
+        }
+        for b in 0..bands {
+            counts[b + 1] += counts[b];
+        }
+        let mut fill = counts.clone();
+        self.binned = vec![0; counts[bands] as usize];
+        for (t, &r) in rows.iter().enumerate() {
+            for b in band_range(r) {
+                self.binned[fill[b] as usize] = t as u32;
+                fill[b] += 1;
+            }
+        }
+        self.bins = counts;
+    }
+
+    /// Indices (into `tris`) of the triangles touching band `band`, in order.
+    #[inline]
+    pub fn band_triangles(&self, band: i32) -> &[u32] {
+        let k = band - self.first_band;
+        if k < 0 || k as usize + 1 >= self.bins.len() {
+            return &[];
+        }
+        let k = k as usize;
+        &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize]
     }
 
     /// Culls, orients and keeps one triangle if it covers a pixel centre.
@@ -121,15 +173,8 @@ impl ScreenBatch {
         if span.is_empty() {
             return;
         }
-        self.y_min = self.y_min.min(span.y0);
-        self.y_max = self.y_max.max(span.y1);
+        self.rows.push((span.y0, span.y1));
         self.tris.push((tri, area));
-    }
-
-    /// True when the batch may draw into rows `y0..y1`.
-    #[inline]
-    pub fn touches_rows(&self, y0: i32, y1: i32) -> bool {
-        !self.tris.is_empty() && self.y_min < y1 && self.y_max >= y0
     }
 }
 

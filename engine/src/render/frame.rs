@@ -7,17 +7,13 @@ use image::RgbaImage;
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{ScreenBatch, Viewport};
+use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
 use super::error::RenderError;
 use super::grass::{GrassBlade, blade_batches};
 use super::mesh::MeshInstance;
 use super::raster::{Band, draw_triangle, to_u8};
 use super::shading::Lighting;
 use super::terrain::TerrainRenderer;
-
-/// Rows per band: the unit of parallel rasterization. Fixed, so that the
-/// result does not depend on the number of threads.
-const BAND_ROWS: usize = 16;
 
 /// Everything drawn in one frame.
 #[derive(Debug, Clone, Copy)]
@@ -146,12 +142,13 @@ impl Renderer {
         let mut color = vec![0u8; w * h * 4];
         let mut depth = vec![0f32; w * h];
         let sky_rows = self.sky_rows(camera, &scene.lighting);
+        let band_rows = BAND_ROWS as usize;
         color
-            .par_chunks_mut(w * 4 * BAND_ROWS)
-            .zip(depth.par_chunks_mut(w * BAND_ROWS))
+            .par_chunks_mut(w * 4 * band_rows)
+            .zip(depth.par_chunks_mut(w * band_rows))
             .enumerate()
             .for_each(|(b, (color, depth))| {
-                let y0 = (b * BAND_ROWS) as i32;
+                let y0 = b as i32 * BAND_ROWS;
                 let y1 = y0 + (depth.len() / w) as i32;
                 for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
                     let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
@@ -165,8 +162,9 @@ impl Renderer {
                     y0,
                     y1,
                 };
-                for batch in batches.iter().filter(|b| b.touches_rows(y0, y1)) {
-                    for (tri, area) in &batch.tris {
+                for batch in &batches {
+                    for &t in batch.band_triangles(b as i32) {
+                        let (tri, area) = &batch.tris[t as usize];
                         let v = tri.map(|k| &batch.verts[k as usize]);
                         draw_triangle(&mut band, v, *area);
                     }
