@@ -121,15 +121,25 @@ pub fn run() -> Vec<Row> {
     let mut instance = MeshInstance::new(&mesh, Mat4::IDENTITY, SAND);
     instance.cull = CullMode::None;
     let meshes = [instance];
-    let mesh_scene = FrameScene { meshes: &meshes, lighting, ..FrameScene::new() };
+    let mesh_scene = FrameScene {
+        meshes: &meshes,
+        lighting,
+        ..FrameScene::new()
+    };
     let ours_mesh_ns = time_ns(3000, || {
         std::hint::black_box(renderer.render(&mesh_scene, &cam));
     });
 
     // Ours, the terrain renderer on the same grid.
     let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).expect("style");
-    terrain.update(&grid, &UniformColor(SAND), &lighting).expect("grid");
-    let terrain_scene = FrameScene { terrain: Some(&terrain), lighting, ..FrameScene::new() };
+    terrain
+        .update(&grid, &UniformColor(SAND), &lighting)
+        .expect("grid");
+    let terrain_scene = FrameScene {
+        terrain: Some(&terrain),
+        lighting,
+        ..FrameScene::new()
+    };
     let ours_terrain_ns = time_ns(3000, || {
         std::hint::black_box(renderer.render(&terrain_scene, &cam));
     });

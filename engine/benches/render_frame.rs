@@ -7,8 +7,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};
 use engine::render::{
-    Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, TerrainRenderer, TerrainStyle,
-    UniformColor,
+    Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, TerrainRenderer,
+    TerrainStyle, UniformColor,
 };
 
 fn terrain_grid() -> HeightGrid {
@@ -36,7 +36,11 @@ fn body() -> TriMesh {
         let t = std::f32::consts::PI * r as f32 / rings as f32;
         for s in 0..segments {
             let p = std::f32::consts::TAU * s as f32 / segments as f32;
-            positions.push(Vec3::new(t.sin() * p.cos() * 0.25, t.cos() * 0.85, t.sin() * p.sin() * 0.25));
+            positions.push(Vec3::new(
+                t.sin() * p.cos() * 0.25,
+                t.cos() * 0.85,
+                t.sin() * p.sin() * 0.25,
+            ));
         }
     }
     for r in 0..rings {
@@ -81,16 +85,31 @@ fn bench(c: &mut Criterion) {
     let colors = UniformColor(Vec3::new(0.62, 0.5, 0.34));
     terrain.update(&grid, &colors, &lighting).expect("grid");
     let mesh = body();
-    let meshes = [MeshInstance::new(&mesh, Mat4::from_translation(Vec3::new(-0.5, 0.85, 0.0)), Vec3::new(0.7, 0.3, 0.2))];
+    let meshes = [MeshInstance::new(
+        &mesh,
+        Mat4::from_translation(Vec3::new(-0.5, 0.85, 0.0)),
+        Vec3::new(0.7, 0.3, 0.2),
+    )];
     let blades = blades(&grid);
-    let scene = FrameScene { terrain: Some(&terrain), meshes: &meshes, blades: &blades, lighting };
+    let scene = FrameScene {
+        terrain: Some(&terrain),
+        meshes: &meshes,
+        blades: &blades,
+        lighting,
+    };
     let camera = Camera::perspective(0.9, 1280, 720, 0.05, 200.0)
         .expect("camera")
-        .look_at(Vec3::new(-1.5, 1.6, -3.2), Vec3::new(0.0, 0.2, 0.5), Vec3::Y);
+        .look_at(
+            Vec3::new(-1.5, 1.6, -3.2),
+            Vec3::new(0.0, 0.2, 0.5),
+            Vec3::Y,
+        );
     let renderer = Renderer::new(1280, 720).expect("size");
     let (_, stats) = renderer.render_with_stats(&scene, &camera);
     eprintln!("frame: {stats:?}");
-    c.bench_function("frame_512sq_1280x720_mesh_20k_blades", |b| b.iter(|| renderer.render(&scene, &camera)));
+    c.bench_function("frame_512sq_1280x720_mesh_20k_blades", |b| {
+        b.iter(|| renderer.render(&scene, &camera))
+    });
 
     let mut group = c.benchmark_group("terrain_update");
     let rect = grid.rect_covering(Vec2::new(-0.2, -0.1), Vec2::new(0.2, 0.1));

@@ -4,8 +4,8 @@
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};
 use engine::render::{
-    Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors, TerrainRenderer,
-    TerrainStyle, UniformColor,
+    Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors,
+    TerrainRenderer, TerrainStyle, UniformColor,
 };
 use image::RgbaImage;
 
@@ -37,7 +37,14 @@ fn bumps(x: f32, z: f32) -> f32 {
 
 /// Centres of a walk along +X: alternating left and right prints.
 fn prints() -> Vec<(f32, f32)> {
-    (0..6).map(|k| (0.35 + k as f32 * 0.32, 1.28 + if k % 2 == 0 { 0.1 } else { -0.1 })).collect()
+    (0..6)
+        .map(|k| {
+            (
+                0.35 + k as f32 * 0.32,
+                1.28 + if k % 2 == 0 { 0.1 } else { -0.1 },
+            )
+        })
+        .collect()
 }
 
 fn ground(with_prints: bool) -> HeightGrid {
@@ -45,7 +52,10 @@ fn ground(with_prints: bool) -> HeightGrid {
     HeightGrid::from_fn(Vec2::ZERO, 0.02, 129, 129, |x, z| {
         let mut h = bumps(x, z);
         if with_prints {
-            h += centres.iter().map(|&(cx, cz)| footprint(x, z, cx, cz, 0.035)).sum::<f32>();
+            h += centres
+                .iter()
+                .map(|&(cx, cz)| footprint(x, z, cx, cz, 0.035))
+                .sum::<f32>();
         }
         h
     })
@@ -86,8 +96,20 @@ fn footprints_are_darker_than_flat_surroundings() {
     let without = ground(false);
     let t_with = terrain_for(&with, &lighting);
     let t_without = terrain_for(&without, &lighting);
-    let img_with = renderer.render(&FrameScene { terrain: Some(&t_with), ..FrameScene::new() }, &cam);
-    let img_without = renderer.render(&FrameScene { terrain: Some(&t_without), ..FrameScene::new() }, &cam);
+    let img_with = renderer.render(
+        &FrameScene {
+            terrain: Some(&t_with),
+            ..FrameScene::new()
+        },
+        &cam,
+    );
+    let img_without = renderer.render(
+        &FrameScene {
+            terrain: Some(&t_without),
+            ..FrameScene::new()
+        },
+        &cam,
+    );
     preview("footprints", &img_with);
     preview("footprints_none", &img_without);
     // Around each print's centre the ground is darker than the same spot untouched.
@@ -96,7 +118,10 @@ fn footprints_are_darker_than_flat_surroundings() {
         let (x, y) = (p.x as u32, p.y as u32);
         let dark = luminance(&img_with, x - 4, y - 2, x + 4, y + 3);
         let flat = luminance(&img_without, x - 4, y - 2, x + 4, y + 3);
-        assert!(dark < flat - 8.0, "print at ({cx}, {cz}): {dark} vs flat {flat}");
+        assert!(
+            dark < flat - 8.0,
+            "print at ({cx}, {cz}): {dark} vs flat {flat}"
+        );
     }
 }
 
@@ -108,7 +133,11 @@ fn sphere(centre: Vec3, radius: f32) -> TriMesh {
         let theta = std::f32::consts::PI * r as f32 / rings as f32;
         for s in 0..segments {
             let phi = std::f32::consts::TAU * s as f32 / segments as f32;
-            let d = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+            let d = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            );
             positions.push(centre + d * radius);
         }
     }
@@ -128,9 +157,15 @@ fn sphere(centre: Vec3, radius: f32) -> TriMesh {
 /// Two spheres as named parts (a "body" and a "head").
 fn two_part_mesh() -> TriMesh {
     let mut body = sphere(Vec3::ZERO, 0.12);
-    body.parts = vec![engine::geom::MeshPart { name: "body".into(), triangles: 0..body.triangles.len() }];
+    body.parts = vec![engine::geom::MeshPart {
+        name: "body".into(),
+        triangles: 0..body.triangles.len(),
+    }];
     let mut head = sphere(Vec3::ZERO, 0.07);
-    head.parts = vec![engine::geom::MeshPart { name: "head".into(), triangles: 0..head.triangles.len() }];
+    head.parts = vec![engine::geom::MeshPart {
+        name: "head".into(),
+        triangles: 0..head.triangles.len(),
+    }];
     body.append(&head);
     body
 }
@@ -169,14 +204,26 @@ fn mesh_parts_and_blades_draw_where_expected() {
     let terrain = terrain_for(&grid, &lighting);
     let mesh = two_part_mesh();
     let at = Vec3::new(1.9, 0.14, 1.3);
-    let parts = [Mat4::IDENTITY, Mat4::from_translation(Vec3::new(0.0, 0.17, 0.0))];
-    let instance = MeshInstance::new(&mesh, Mat4::from_translation(at), Vec3::new(0.75, 0.2, 0.15))
-        .with_parts(&parts);
+    let parts = [
+        Mat4::IDENTITY,
+        Mat4::from_translation(Vec3::new(0.0, 0.17, 0.0)),
+    ];
+    let instance = MeshInstance::new(
+        &mesh,
+        Mat4::from_translation(at),
+        Vec3::new(0.75, 0.2, 0.15),
+    )
+    .with_parts(&parts);
     let blades = meadow(0.7, 1.9, 3000, &grid);
     let cam = camera(256, 160);
     let renderer = Renderer::new(256, 160).unwrap();
     let meshes = [instance];
-    let scene = FrameScene { terrain: Some(&terrain), meshes: &meshes, blades: &blades, lighting };
+    let scene = FrameScene {
+        terrain: Some(&terrain),
+        meshes: &meshes,
+        blades: &blades,
+        lighting,
+    };
     let (image, stats) = renderer.render_with_stats(&scene, &cam);
     preview("mesh_and_grass", &image);
     assert!(stats.triangles > 9000);
@@ -201,21 +248,53 @@ fn frames_are_identical_on_one_and_two_threads() {
     let terrain = terrain_for(&grid, &lighting);
     let blades = meadow(0.7, 1.9, 2000, &grid);
     let mesh = sphere(Vec3::new(1.9, 0.12, 1.3), 0.12);
-    let meshes = [MeshInstance::new(&mesh, Mat4::IDENTITY, Vec3::new(0.6, 0.6, 0.7))];
-    let scene = FrameScene { terrain: Some(&terrain), meshes: &meshes, blades: &blades, lighting };
+    let meshes = [MeshInstance::new(
+        &mesh,
+        Mat4::IDENTITY,
+        Vec3::new(0.6, 0.6, 0.7),
+    )];
+    let scene = FrameScene {
+        terrain: Some(&terrain),
+        meshes: &meshes,
+        blades: &blades,
+        lighting,
+    };
     let cam = camera(200, 120);
-    let one = Renderer::new(200, 120).unwrap().with_threads(1).unwrap().render(&scene, &cam);
-    let two = Renderer::new(200, 120).unwrap().with_threads(2).unwrap().render(&scene, &cam);
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let one = Renderer::new(200, 120)
+        .unwrap()
+        .with_threads(1)
+        .unwrap()
+        .render(&scene, &cam);
+    let two = Renderer::new(200, 120)
+        .unwrap()
+        .with_threads(2)
+        .unwrap()
+        .render(&scene, &cam);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
     let ambient = pool.install(|| Renderer::new(200, 120).unwrap().render(&scene, &cam));
     assert!(one.as_raw() == two.as_raw(), "1 vs 2 threads differ");
-    assert!(one.as_raw() == ambient.as_raw(), "own pool vs installed pool differ");
+    assert!(
+        one.as_raw() == ambient.as_raw(),
+        "own pool vs installed pool differ"
+    );
     // And the light computed by a 2-thread update equals a 1-thread one.
-    let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let single = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
     let terrain_one = single.install(|| terrain_for(&grid, &lighting));
-    let scene_one = FrameScene { terrain: Some(&terrain_one), ..scene };
+    let scene_one = FrameScene {
+        terrain: Some(&terrain_one),
+        ..scene
+    };
     let again = Renderer::new(200, 120).unwrap().render(&scene_one, &cam);
-    assert!(one.as_raw() == again.as_raw(), "terrain update depends on threads");
+    assert!(
+        one.as_raw() == again.as_raw(),
+        "terrain update depends on threads"
+    );
 }
 
 #[test]
@@ -234,19 +313,39 @@ fn only_dirty_patches_remesh_and_match_a_fresh_terrain() {
     }
     terrain.mark_dirty(rect);
     assert!(terrain.is_dirty());
-    terrain.update(&grid, &UniformColor(SAND), &lighting).unwrap();
+    terrain
+        .update(&grid, &UniformColor(SAND), &lighting)
+        .unwrap();
     assert!(!terrain.is_dirty());
     let remeshed = terrain.remeshed_last_update();
-    assert!(remeshed >= 1 && remeshed < terrain.patch_count(), "{remeshed} of {}", terrain.patch_count());
+    assert!(
+        remeshed >= 1 && remeshed < terrain.patch_count(),
+        "{remeshed} of {}",
+        terrain.patch_count()
+    );
     // Nothing marked: nothing re-meshed.
-    terrain.update(&grid, &UniformColor(SAND), &lighting).unwrap();
+    terrain
+        .update(&grid, &UniformColor(SAND), &lighting)
+        .unwrap();
     assert_eq!(terrain.remeshed_last_update(), 0);
     // The incremental result equals a terrain built from scratch.
     let fresh = terrain_for(&grid, &lighting);
     let cam = camera(160, 100);
     let r = Renderer::new(160, 100).unwrap();
-    let a = r.render(&FrameScene { terrain: Some(&terrain), ..FrameScene::new() }, &cam);
-    let b = r.render(&FrameScene { terrain: Some(&fresh), ..FrameScene::new() }, &cam);
+    let a = r.render(
+        &FrameScene {
+            terrain: Some(&terrain),
+            ..FrameScene::new()
+        },
+        &cam,
+    );
+    let b = r.render(
+        &FrameScene {
+            terrain: Some(&fresh),
+            ..FrameScene::new()
+        },
+        &cam,
+    );
     assert!(a.as_raw() == b.as_raw());
 }
 
@@ -257,7 +356,12 @@ fn level_of_detail_cuts_triangles_without_cracks() {
     })
     .unwrap();
     let magenta = Vec3::new(1.0, 0.0, 1.0);
-    let lighting = Lighting { sky_zenith: magenta, sky_horizon: magenta, fog_density: 0.0, ..Lighting::default() };
+    let lighting = Lighting {
+        sky_zenith: magenta,
+        sky_horizon: magenta,
+        fog_density: 0.0,
+        ..Lighting::default()
+    };
     // Looking down steeply: the terrain fills the whole frame.
     let cam = Camera::perspective(0.8, 192, 128, 0.05, 100.0)
         .unwrap()
@@ -266,18 +370,38 @@ fn level_of_detail_cuts_triangles_without_cracks() {
     let render = |style: TerrainStyle| {
         let mut t = TerrainRenderer::new(&grid, style).unwrap();
         t.update(&grid, &UniformColor(SAND), &lighting).unwrap();
-        r.render_with_stats(&FrameScene { terrain: Some(&t), lighting, ..FrameScene::new() }, &cam)
+        r.render_with_stats(
+            &FrameScene {
+                terrain: Some(&t),
+                lighting,
+                ..FrameScene::new()
+            },
+            &cam,
+        )
     };
-    let full = TerrainStyle { max_cell_px: 1e-3, ..TerrainStyle::default() };
-    let coarse = TerrainStyle { max_cell_px: 8.0, max_error_px: 4.0, ..TerrainStyle::default() };
+    let full = TerrainStyle {
+        max_cell_px: 1e-3,
+        ..TerrainStyle::default()
+    };
+    let coarse = TerrainStyle {
+        max_cell_px: 8.0,
+        max_error_px: 4.0,
+        ..TerrainStyle::default()
+    };
     let (img_full, full_stats) = render(full);
     let (img_lod, lod_stats) = render(coarse);
     preview("lod_full", &img_full);
     preview("lod_coarse", &img_lod);
-    assert!(lod_stats.triangles * 3 < full_stats.triangles, "{lod_stats:?} vs {full_stats:?}");
+    assert!(
+        lod_stats.triangles * 3 < full_stats.triangles,
+        "{lod_stats:?} vs {full_stats:?}"
+    );
     for (name, img) in [("full", &img_full), ("lod", &img_lod)] {
         let holes = img.pixels().filter(|p| p[1] < 90 && p[2] > p[1]).count();
-        assert_eq!(holes, 0, "{name}: {holes} sky pixels show through the terrain");
+        assert_eq!(
+            holes, 0,
+            "{name}: {holes} sky pixels show through the terrain"
+        );
     }
 }
 
@@ -287,17 +411,46 @@ fn disturbed_samples_are_darker() {
     let grid = ground(false);
     let n = grid.nx() * grid.nz();
     let albedo = vec![SAND; n];
-    let disturbed: Vec<f32> = (0..n).map(|k| if k % grid.nx() < 64 { 1.0 } else { 0.0 }).collect();
-    let colors = SampleColors { nx: grid.nx(), albedo: &albedo, disturbed: &disturbed };
+    let disturbed: Vec<f32> = (0..n)
+        .map(|k| if k % grid.nx() < 64 { 1.0 } else { 0.0 })
+        .collect();
+    let colors = SampleColors {
+        nx: grid.nx(),
+        albedo: &albedo,
+        disturbed: &disturbed,
+    };
     let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
     terrain.update(&grid, &colors, &lighting).unwrap();
     let cam = Camera::perspective(0.9, 128, 128, 0.05, 60.0)
         .unwrap()
-        .look_at(Vec3::new(1.28, 3.0, 1.27), Vec3::new(1.28, 0.0, 1.28), Vec3::Y);
-    let img = Renderer::new(128, 128).unwrap().render(&FrameScene { terrain: Some(&terrain), ..FrameScene::new() }, &cam);
+        .look_at(
+            Vec3::new(1.28, 3.0, 1.27),
+            Vec3::new(1.28, 0.0, 1.28),
+            Vec3::Y,
+        );
+    let img = Renderer::new(128, 128).unwrap().render(
+        &FrameScene {
+            terrain: Some(&terrain),
+            ..FrameScene::new()
+        },
+        &cam,
+    );
     preview("disturbed", &img);
     let left = cam.project(Vec3::new(0.6, 0.0, 1.28)).unwrap();
     let right = cam.project(Vec3::new(1.9, 0.0, 1.28)).unwrap();
-    let lum = |p: Vec2| luminance(&img, p.x as u32 - 3, p.y as u32 - 3, p.x as u32 + 3, p.y as u32 + 3);
-    assert!(lum(left) < lum(right) - 10.0, "{} vs {}", lum(left), lum(right));
+    let lum = |p: Vec2| {
+        luminance(
+            &img,
+            p.x as u32 - 3,
+            p.y as u32 - 3,
+            p.x as u32 + 3,
+            p.y as u32 + 3,
+        )
+    };
+    assert!(
+        lum(left) < lum(right) - 10.0,
+        "{} vs {}",
+        lum(left),
+        lum(right)
+    );
 }

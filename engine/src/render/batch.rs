@@ -119,7 +119,8 @@ impl ScreenBatch {
         let bands = (last / BAND_ROWS - self.first_band + 1) as usize;
         let mut counts = vec![0u32; bands + 1];
         let band_range = |(y0, y1): (i32, i32)| {
-            (y0 / BAND_ROWS - self.first_band) as usize..=(y1 / BAND_ROWS - self.first_band) as usize
+            (y0 / BAND_ROWS - self.first_band) as usize
+                ..=(y1 / BAND_ROWS - self.first_band) as usize
         };
         for &r in &rows {
             for b in band_range(r) {
@@ -165,11 +166,7 @@ impl ScreenBatch {
         } else {
             return;
         };
-        let span = PixelSpan::of(
-            [a, b, c].map(|v| v as &ScreenVertex),
-            vp.width,
-            vp.height,
-        );
+        let span = PixelSpan::of([a, b, c].map(|v| v as &ScreenVertex), vp.width, vp.height);
         if span.is_empty() {
             return;
         }

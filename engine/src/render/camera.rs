@@ -85,7 +85,9 @@ impl Camera {
 
     /// Unit viewing direction; -Z when eye and target coincide.
     pub fn forward(&self) -> Vec3 {
-        (self.target - self.eye).try_normalize().unwrap_or(Vec3::NEG_Z)
+        (self.target - self.eye)
+            .try_normalize()
+            .unwrap_or(Vec3::NEG_Z)
     }
 
     /// The world-to-view matrix. A degenerate up hint (parallel to the view
@@ -200,8 +202,16 @@ mod tests {
         let c = cam();
         let planes = c.frustum_planes();
         assert!(c.sees_box(&planes, Vec3::splat(-0.5), Vec3::splat(0.5)));
-        assert!(!c.sees_box(&planes, Vec3::new(-1.0, -1.0, 6.0), Vec3::new(1.0, 1.0, 8.0)));
-        assert!(!c.sees_box(&planes, Vec3::new(50.0, -1.0, -1.0), Vec3::new(51.0, 1.0, 1.0)));
+        assert!(!c.sees_box(
+            &planes,
+            Vec3::new(-1.0, -1.0, 6.0),
+            Vec3::new(1.0, 1.0, 8.0)
+        ));
+        assert!(!c.sees_box(
+            &planes,
+            Vec3::new(50.0, -1.0, -1.0),
+            Vec3::new(51.0, 1.0, 1.0)
+        ));
     }
 
     #[test]

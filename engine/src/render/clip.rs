@@ -121,7 +121,14 @@ mod tests {
     #[test]
     fn near_plane_cuts_a_triangle_into_a_quad() {
         let mut out = Vec::new();
-        clip_triangle([v(0.0, 0.0, -1.0, 1.0), v(1.0, 0.0, 1.0, 2.0), v(0.0, 1.0, 1.0, 2.0)], &mut out);
+        clip_triangle(
+            [
+                v(0.0, 0.0, -1.0, 1.0),
+                v(1.0, 0.0, 1.0, 2.0),
+                v(0.0, 1.0, 1.0, 2.0),
+            ],
+            &mut out,
+        );
         assert_eq!(out.len(), 4);
         assert!(out.iter().all(|p| p.pos.z >= -1e-6));
         // Two of the new vertices lie on the plane with interpolated colour 0.
@@ -132,12 +139,26 @@ mod tests {
     #[test]
     fn fully_behind_is_removed_and_inside_is_kept() {
         let mut out = Vec::new();
-        clip_triangle([v(0.0, 0.0, -1.0, 1.0), v(1.0, 0.0, -2.0, 1.0), v(0.0, 1.0, -1.0, 1.0)], &mut out);
+        clip_triangle(
+            [
+                v(0.0, 0.0, -1.0, 1.0),
+                v(1.0, 0.0, -2.0, 1.0),
+                v(0.0, 1.0, -1.0, 1.0),
+            ],
+            &mut out,
+        );
         assert!(out.is_empty());
-        let inside = [v(0.0, 0.0, 0.5, 1.0), v(0.5, 0.0, 0.5, 1.0), v(0.0, 0.5, 0.5, 1.0)];
+        let inside = [
+            v(0.0, 0.0, 0.5, 1.0),
+            v(0.5, 0.0, 0.5, 1.0),
+            v(0.0, 0.5, 0.5, 1.0),
+        ];
         clip_triangle(inside, &mut out);
         assert_eq!(out, inside.to_vec());
         assert_eq!(outcode(Vec4::new(0.0, 0.0, -0.1, 1.0)), OUT_NEAR);
-        assert_eq!(outcode(Vec4::new(20.0, 0.0, 0.5, 1.0)), OUT_RIGHT | OUT_GUARD);
+        assert_eq!(
+            outcode(Vec4::new(20.0, 0.0, 0.5, 1.0)),
+            OUT_RIGHT | OUT_GUARD
+        );
     }
 }

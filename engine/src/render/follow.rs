@@ -52,7 +52,10 @@ mod tests {
         for _ in 0..60 {
             follow.update(&mut cam, target, 1.0 / 30.0);
             let gap = (cam.target - target).length();
-            assert!(gap < last, "the camera must move monotonically towards the target");
+            assert!(
+                gap < last,
+                "the camera must move monotonically towards the target"
+            );
             last = gap;
         }
         assert!(last < 1e-3);

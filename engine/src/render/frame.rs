@@ -121,7 +121,11 @@ impl Renderer {
     }
 
     /// Renders one frame and says how much geometry reached the rasterizer.
-    pub fn render_with_stats(&self, scene: &FrameScene<'_>, camera: &Camera) -> (RgbaImage, FrameStats) {
+    pub fn render_with_stats(
+        &self,
+        scene: &FrameScene<'_>,
+        camera: &Camera,
+    ) -> (RgbaImage, FrameStats) {
         match &self.pool {
             Some(pool) => pool.install(|| self.render_here(scene, camera)),
             None => self.render_here(scene, camera),

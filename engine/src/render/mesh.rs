@@ -53,14 +53,23 @@ impl<'a> MeshInstance<'a> {
             .iter()
             .enumerate()
             .map(|(k, part)| {
-                let local = self.part_transforms.get(k).copied().unwrap_or(Mat4::IDENTITY);
+                let local = self
+                    .part_transforms
+                    .get(k)
+                    .copied()
+                    .unwrap_or(Mat4::IDENTITY);
                 (part.triangles.clone(), self.transform * local)
             })
             .collect()
     }
 
     /// One screen batch per part.
-    pub(crate) fn batches(&self, camera: &Camera, lighting: &Lighting, vp: Viewport) -> Vec<ScreenBatch> {
+    pub(crate) fn batches(
+        &self,
+        camera: &Camera,
+        lighting: &Lighting,
+        vp: Viewport,
+    ) -> Vec<ScreenBatch> {
         let view_proj = camera.view_proj();
         let mesh = self.mesh;
         self.parts()
@@ -79,11 +88,13 @@ impl<'a> MeshInstance<'a> {
                         let radiance = lighting.radiance(self.color, n, sky, 1.0);
                         Some(ClipVertex {
                             pos: to_clip(&view_proj, p),
-                            color: lighting.apply_fog(encode_display(radiance), (p - camera.eye).length()),
+                            color: lighting
+                                .apply_fog(encode_display(radiance), (p - camera.eye).length()),
                         })
                     })
                     .collect::<Option<_>>()?;
-                let local: Vec<[u32; 3]> = tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
+                let local: Vec<[u32; 3]> =
+                    tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
                 Some(ScreenBatch::build(
                     &verts,
                     &[TriangleGroup {

@@ -230,7 +230,11 @@ mod tests {
         for r in 0..n - 1 {
             for c in 0..n - 1 {
                 let (a, b, cc, d) = (at(c, r), at(c + 1, r), at(c, r + 1), at(c + 1, r + 1));
-                let tris = if rng.next() < 0.5 { [[a, b, d], [a, d, cc]] } else { [[a, b, cc], [b, d, cc]] };
+                let tris = if rng.next() < 0.5 {
+                    [[a, b, d], [a, d, cc]]
+                } else {
+                    [[a, b, cc], [b, d, cc]]
+                };
                 for mut t in tris {
                     let mut area = signed_area(&t[0], &t[1], &t[2]);
                     if area < 0 {
@@ -305,23 +309,30 @@ mod tests {
                 triangles: tris,
                 cull: CullMode::None,
             }],
-            Viewport { width: w, height: h },
+            Viewport {
+                width: w,
+                height: h,
+            },
         )
     }
 
     #[test]
     fn nearer_triangle_wins_in_either_order() {
-        let near = |c| [
-            cv(Vec4::new(-0.8, -0.8, 0.5, 1.0), c),
-            cv(Vec4::new(0.8, -0.8, 0.5, 1.0), c),
-            cv(Vec4::new(0.0, 0.8, 0.5, 1.0), c),
-        ];
+        let near = |c| {
+            [
+                cv(Vec4::new(-0.8, -0.8, 0.5, 1.0), c),
+                cv(Vec4::new(0.8, -0.8, 0.5, 1.0), c),
+                cv(Vec4::new(0.0, 0.8, 0.5, 1.0), c),
+            ]
+        };
         // The far triangle has w = 2 (half the 1/w depth), scaled to cover the same area.
-        let far = |c| [
-            cv(Vec4::new(-2.0, -2.0, 1.0, 2.0), c),
-            cv(Vec4::new(2.0, -2.0, 1.0, 2.0), c),
-            cv(Vec4::new(0.0, 2.0, 1.0, 2.0), c),
-        ];
+        let far = |c| {
+            [
+                cv(Vec4::new(-2.0, -2.0, 1.0, 2.0), c),
+                cv(Vec4::new(2.0, -2.0, 1.0, 2.0), c),
+                cv(Vec4::new(0.0, 2.0, 1.0, 2.0), c),
+            ]
+        };
         let (red, blue) = (Vec3::X, Vec3::Z);
         for near_first in [true, false] {
             let mut verts = Vec::new();
@@ -371,7 +382,10 @@ mod tests {
                 let z = a.z + (b.z - a.z) * t;
                 let want = colour(z).x * 255.0;
                 let got = color[4 * k] as f32;
-                assert!((got - want).abs() <= 1.5, "pixel ({x}, {y}): {got} vs {want}");
+                assert!(
+                    (got - want).abs() <= 1.5,
+                    "pixel ({x}, {y}): {got} vs {want}"
+                );
                 checked += 1;
             }
         }

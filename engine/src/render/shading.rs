@@ -134,6 +134,9 @@ mod tests {
         let lit = l.radiance(Vec3::ONE, l.sun.direction, 1.0, 1.0);
         let shade = l.radiance(Vec3::ONE, l.sun.direction, 1.0, 0.0);
         assert!(lit.x > shade.x);
-        assert_eq!(encode_display(Vec3::new(0.25, 2.0, -1.0)), Vec3::new(0.5, 1.0, 0.0));
+        assert_eq!(
+            encode_display(Vec3::new(0.25, 2.0, -1.0)),
+            Vec3::new(0.5, 1.0, 0.0)
+        );
     }
 }

@@ -9,13 +9,13 @@ use std::collections::BTreeMap;
 use glam::{Mat4, Vec3};
 use rayon::prelude::*;
 
+use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::clip::ClipVertex;
 use super::error::{RenderError, positive};
 use super::shading::{Lighting, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
-use super::Camera;
 use crate::geom::{GridRect, HeightGrid};
 
 /// How a [`TerrainRenderer`] cuts, levels and shades the grid.
@@ -148,7 +148,9 @@ impl TerrainRenderer {
             for step in level_steps(p) {
                 let m = offsets(patch.cells_x, step).len();
                 let n = offsets(patch.cells_z, step).len();
-                indices.entry((m, n)).or_insert_with(|| grid_triangles(m, n));
+                indices
+                    .entry((m, n))
+                    .or_insert_with(|| grid_triangles(m, n));
             }
         }
         let count = patches.len();
@@ -305,11 +307,18 @@ impl TerrainRenderer {
     }
 
     /// Projects every visible patch into screen batches (one per patch, in patch order).
-    pub(crate) fn batches(&self, camera: &Camera, lighting: &Lighting, vp: Viewport) -> Vec<ScreenBatch> {
+    pub(crate) fn batches(
+        &self,
+        camera: &Camera,
+        lighting: &Lighting,
+        vp: Viewport,
+    ) -> Vec<ScreenBatch> {
         let levels = self.choose_levels(camera);
         let view_proj = camera.view_proj();
         let pz = self.patches.len() / self.patches_x;
-        let visible: Vec<usize> = (0..self.patches.len()).filter(|&k| levels[k].is_some()).collect();
+        let visible: Vec<usize> = (0..self.patches.len())
+            .filter(|&k| levels[k].is_some())
+            .collect();
         visible
             .par_iter()
             .map(|&k| {
@@ -325,7 +334,12 @@ impl TerrainRenderer {
                     (l != level).then(|| self.patches[n].levels[l].error)
                 };
                 // Sides: -Z (first row), +Z (last row), -X (first column), +X (last column).
-                let skirts = [neighbour(0, -1), neighbour(0, 1), neighbour(-1, 0), neighbour(1, 0)];
+                let skirts = [
+                    neighbour(0, -1),
+                    neighbour(0, 1),
+                    neighbour(-1, 0),
+                    neighbour(1, 0),
+                ];
                 self.patch_batch(k, level, skirts, &view_proj, camera.eye, lighting, vp)
             })
             .collect()
@@ -430,7 +444,12 @@ impl Patch {
         light: &TerrainLight,
         style: &TerrainStyle,
     ) {
-        let rect = GridRect::new(self.i0, self.j0, self.i0 + self.cells_x + 1, self.j0 + self.cells_z + 1);
+        let rect = GridRect::new(
+            self.i0,
+            self.j0,
+            self.i0 + self.cells_x + 1,
+            self.j0 + self.cells_z + 1,
+        );
         (self.min_h, self.max_h) = grid.min_max_in(&rect);
         self.levels = level_steps(style.patch_cells)
             .map(|step| {
@@ -446,7 +465,9 @@ impl Patch {
                         let (i, j) = (self.i0 + c, self.j0 + r);
                         let k = grid.index(i, j);
                         let albedo = colors.albedo(i, j)
-                            * (1.0 - style.disturbed_darkening * colors.disturbance(i, j).clamp(0.0, 1.0));
+                            * (1.0
+                                - style.disturbed_darkening
+                                    * colors.disturbance(i, j).clamp(0.0, 1.0));
                         let radiance = lighting.radiance(
                             albedo,
                             grid.sample_normal(i, j),
@@ -476,7 +497,10 @@ impl Patch {
             for (c, pair_c) in level.cols.windows(2).enumerate() {
                 let h = |cc: usize, rr: usize| level.heights[rr * m + cc];
                 let (h00, h10, h01, h11) = (h(c, r), h(c + 1, r), h(c, r + 1), h(c + 1, r + 1));
-                let (w, d) = ((pair_c[1] - pair_c[0]) as f32, (pair_r[1] - pair_r[0]) as f32);
+                let (w, d) = (
+                    (pair_c[1] - pair_c[0]) as f32,
+                    (pair_r[1] - pair_r[0]) as f32,
+                );
                 for b in pair_r[0]..=pair_r[1] {
                     for a in pair_c[0]..=pair_c[1] {
                         let fx = (a - pair_c[0]) as f32 / w;

@@ -43,7 +43,10 @@ pub struct SampleColors<'a> {
 
 impl TerrainColors for SampleColors<'_> {
     fn albedo(&self, i: usize, j: usize) -> Vec3 {
-        self.albedo.get(j * self.nx + i).copied().unwrap_or(Vec3::ONE)
+        self.albedo
+            .get(j * self.nx + i)
+            .copied()
+            .unwrap_or(Vec3::ONE)
     }
 
     fn disturbance(&self, i: usize, j: usize) -> f32 {

@@ -55,7 +55,12 @@ impl TerrainLight {
 
     /// The samples whose light may change when heights in `rect` change:
     /// the sky radius around it and the shadow length away from the sun.
-    pub fn affected(grid: &HeightGrid, rect: &GridRect, sun_dir: Vec3, reach: LightReach) -> GridRect {
+    pub fn affected(
+        grid: &HeightGrid,
+        rect: &GridRect,
+        sun_dir: Vec3,
+        reach: LightReach,
+    ) -> GridRect {
         let r = rect.expand(reach.sky + 1, grid.nx(), grid.nz());
         let h = Vec3::new(sun_dir.x, 0.0, sun_dir.z).normalize_or_zero();
         // A sample is shadowed by occluders towards the sun, so changes reach
@@ -72,7 +77,13 @@ impl TerrainLight {
     }
 
     /// Recomputes both terms for the samples of `rect`.
-    pub fn recompute(&mut self, grid: &HeightGrid, rect: &GridRect, sun_dir: Vec3, reach: LightReach) {
+    pub fn recompute(
+        &mut self,
+        grid: &HeightGrid,
+        rect: &GridRect,
+        sun_dir: Vec3,
+        reach: LightReach,
+    ) {
         if rect.is_empty() {
             return;
         }
