@@ -137,7 +137,7 @@ impl Camera {
     /// or `None` when it lies behind the near plane.
     pub fn project(&self, world: Vec3) -> Option<Vec2> {
         let clip = self.view_proj() * world.extend(1.0);
-        if !(clip.w >= self.near * 0.999) || !clip.is_finite() {
+        if !clip.is_finite() || clip.w < self.near * 0.999 {
             return None;
         }
         let ndc = Vec2::new(clip.x, clip.y) / clip.w;

@@ -55,8 +55,8 @@ pub(crate) fn outcode(p: Vec4) -> u8 {
     if p.y > p.w {
         code |= OUT_TOP;
     }
-    // Also catches NaN positions, which are then rejected or clipped away.
-    if !(p.z >= 0.0) {
+    // NaN positions count as behind, so they are rejected or clipped away.
+    if p.z < 0.0 || p.z.is_nan() {
         code |= OUT_NEAR;
     }
     let g = GUARD_BAND * p.w;

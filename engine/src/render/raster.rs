@@ -118,6 +118,28 @@ impl Edge {
     }
 }
 
+impl Edge {
+    /// Narrows the pixel run `lo..=hi` (offsets from the row's first pixel, where
+    /// the edge value is `value`) to where this edge covers.
+    #[inline]
+    fn covered_run(&self, value: i64, lo: i32, hi: i32) -> (i32, i32) {
+        if self.step_x > 0 {
+            // value + k * step >= 0  <=>  k >= ceil(-value / step)
+            let first =
+                (-value).div_euclid(self.step_x) + i64::from((-value).rem_euclid(self.step_x) != 0);
+            (lo.max(first.clamp(0, i32::MAX as i64) as i32), hi)
+        } else if self.step_x < 0 {
+            // value + k * step >= 0  <=>  k <= floor(value / -step)
+            let last = value.div_euclid(-self.step_x);
+            (lo, hi.min(last.clamp(-1, i32::MAX as i64) as i32))
+        } else if value < 0 {
+            (lo, -1)
+        } else {
+            (lo, hi)
+        }
+    }
+}
+
 /// Calls `pixel(x, y, l1, l2)` for every pixel centre of rows `rows` covered by the
 /// triangle (clockwise on screen, positive [`signed_area`] `area`), where `l1` and
 /// `l2` are the screen-space barycentric weights of vertices 1 and 2.
@@ -142,9 +164,23 @@ pub(crate) fn for_each_covered(
     let e2 = Edge::new(v[0], v[1], px, py);
     let inv_area = 1.0 / area as f32;
     let (mut r0, mut r1, mut r2) = (e0.start, e1.start, e2.start);
+    // Wide boxes (thin slanted triangles such as grass blades) get each row's
+    // covered run solved from the edge equations; small ones are just scanned.
+    let narrow = span.x1 - span.x0 >= NARROW_MIN_WIDTH;
     for y in span.y0..=span.y1 {
-        let (mut a0, mut a1, mut a2) = (r0, r1, r2);
-        for x in span.x0..=span.x1 {
+        let (mut lo, mut hi) = (0, span.x1 - span.x0);
+        if narrow {
+            for (value, edge) in [(r0, &e0), (r1, &e1), (r2, &e2)] {
+                (lo, hi) = edge.covered_run(value, lo, hi);
+            }
+        }
+        let skip = lo as i64;
+        let (mut a0, mut a1, mut a2) = (
+            r0 + skip * e0.step_x,
+            r1 + skip * e1.step_x,
+            r2 + skip * e2.step_x,
+        );
+        for x in span.x0 + lo..=span.x0 + hi {
             if (a0 | a1 | a2) >= 0 {
                 // The top-left bias of at most 1 unit is negligible in the weights.
                 pixel(x, y, a1 as f32 * inv_area, a2 as f32 * inv_area);
@@ -158,6 +194,9 @@ pub(crate) fn for_each_covered(
         r2 += e2.step_y;
     }
 }
+
+/// Bounding boxes at least this many pixels wide solve each row's covered run.
+const NARROW_MIN_WIDTH: i32 = 6;
 
 /// Draws one triangle (clockwise on screen, positive [`signed_area`]) into the
 /// band: depth test `1/w` greater than stored, perspective-correct colour.
@@ -253,13 +292,14 @@ mod tests {
     #[test]
     fn shared_edges_draw_every_pixel_exactly_once() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-        let n = 9;
         // Vertices exactly on pixel centres (edges through centres: the fill rule
-        // decides), then jittered sub-pixel vertices.
-        for jitter in [0.0, 3.0] {
+        // decides), then jittered sub-pixel vertices; wide cells exercise the
+        // solved row runs, narrow ones the plain scan.
+        for (n, spacing, jitter) in [(9, 7.0, 0.0), (9, 7.0, 3.0), (17, 3.5, 0.0), (17, 3.5, 1.5)] {
             let points: Vec<Vec2> = (0..n * n)
                 .map(|k| {
-                    let base = Vec2::new((k % n) as f32, (k / n) as f32) * 7.0 + Vec2::splat(4.5);
+                    let base =
+                        Vec2::new((k % n) as f32, (k / n) as f32) * spacing + Vec2::splat(4.5);
                     let on_border = k % n == 0 || k / n == 0 || k % n == n - 1 || k / n == n - 1;
                     let j = if on_border { 0.0 } else { jitter };
                     base + Vec2::new(rng.next() - 0.5, rng.next() - 0.5) * j
