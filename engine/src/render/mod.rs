@@ -6,14 +6,15 @@
 //! ```
 //! use engine::glam::{Vec2, Vec3};
 //! use engine::geom::HeightGrid;
-//! use engine::render::{Camera, FrameScene, Renderer, TerrainRenderer, TerrainStyle, UniformColor};
+//! use engine::render::{
+//!     Camera, FrameScene, Lighting, Renderer, TerrainRenderer, TerrainStyle, UniformColor,
+//! };
 //!
 //! let grid = HeightGrid::new(Vec2::ZERO, 0.1, 33, 33, 0.0).unwrap();
+//! let lighting = Lighting::default();
 //! let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
-//! let scene = FrameScene { terrain: Some(&terrain), ..FrameScene::new() };
-//! let lighting = scene.lighting;
 //! terrain.update(&grid, &UniformColor(Vec3::new(0.7, 0.6, 0.45)), &lighting).unwrap();
-//! let scene = FrameScene { terrain: Some(&terrain), ..FrameScene::new() };
+//! let scene = FrameScene { terrain: Some(&terrain), lighting, ..FrameScene::new() };
 //! let camera = Camera::perspective(1.0, 64, 48, 0.05, 100.0)
 //!     .unwrap()
 //!     .look_at(Vec3::new(1.6, 2.0, -1.0), Vec3::new(1.6, 0.0, 1.6), Vec3::Y);
