@@ -2,12 +2,16 @@
 //! more per named part (rigid-part characters: a capsule per bone).
 
 use glam::{Mat3, Mat4, Vec3};
+use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::clip::ClipVertex;
 use super::shading::{Lighting, encode_display};
 use crate::geom::TriMesh;
+
+/// Triangles per screen batch: the unit of parallel vertex work for big meshes.
+const TRIANGLES_PER_BATCH: usize = 16_384;
 
 /// A mesh placed in the frame.
 #[derive(Debug, Clone, Copy)]
@@ -63,7 +67,8 @@ impl<'a> MeshInstance<'a> {
             .collect()
     }
 
-    /// One screen batch per part.
+    /// Screen batches of at most [`TRIANGLES_PER_BATCH`] triangles per part,
+    /// projected in parallel, in part order.
     pub(crate) fn batches(
         &self,
         camera: &Camera,
@@ -72,8 +77,18 @@ impl<'a> MeshInstance<'a> {
     ) -> Vec<ScreenBatch> {
         let view_proj = camera.view_proj();
         let mesh = self.mesh;
-        self.parts()
+        let chunks: Vec<(std::ops::Range<usize>, Mat4)> = self
+            .parts()
             .into_iter()
+            .flat_map(|(range, model)| {
+                range
+                    .clone()
+                    .step_by(TRIANGLES_PER_BATCH)
+                    .map(move |start| (start..(start + TRIANGLES_PER_BATCH).min(range.end), model))
+            })
+            .collect();
+        chunks
+            .into_par_iter()
             .filter_map(|(range, model)| {
                 let tris = mesh.triangles.get(range)?;
                 let first = tris.iter().flatten().copied().min()? as usize;
