@@ -454,3 +454,40 @@ fn disturbed_samples_are_darker() {
         lum(right)
     );
 }
+
+#[test]
+fn bad_parameters_are_refused_with_their_name() {
+    use engine::render::RenderError;
+    let name = |e: RenderError| match e {
+        RenderError::InvalidParameter { name, .. } => name,
+        RenderError::ThreadPool { .. } => "pool",
+    };
+    assert_eq!(name(Renderer::new(0, 10).unwrap_err()), "size");
+    assert_eq!(
+        name(Renderer::new(8, 8).unwrap().with_threads(0).unwrap_err()),
+        "threads"
+    );
+    let grid = ground(false);
+    let bad = TerrainStyle {
+        patch_cells: 24,
+        ..TerrainStyle::default()
+    };
+    assert_eq!(
+        name(TerrainRenderer::new(&grid, bad).unwrap_err()),
+        "patch_cells"
+    );
+    let bad = TerrainStyle {
+        ao_radius: f32::NAN,
+        ..TerrainStyle::default()
+    };
+    assert_eq!(
+        name(TerrainRenderer::new(&grid, bad).unwrap_err()),
+        "ao_radius"
+    );
+    let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
+    let other = HeightGrid::new(Vec2::ZERO, 0.02, 65, 65, 0.0).unwrap();
+    let err = terrain
+        .update(&other, &UniformColor(SAND), &Lighting::default())
+        .unwrap_err();
+    assert_eq!(name(err), "grid");
+}
