@@ -27,7 +27,7 @@ pub(crate) struct TriangleGroup<'a> {
 
 /// Rows per band: the unit of parallel rasterization. Fixed, so that the
 /// result does not depend on the number of threads.
-pub(crate) const BAND_ROWS: i32 = 16;
+pub(crate) const BAND_ROWS: i32 = 32;
 
 /// Screen-space triangles ready to rasterize, binned by the bands of rows they touch.
 #[derive(Debug, Default)]

@@ -241,7 +241,8 @@ impl TerrainRenderer {
         let reach = self.reach();
         let sun_dir = lighting.sun.direction;
         for rect in std::mem::take(&mut self.pending) {
-            let window = TerrainLight::affected(grid, &rect, sun_dir, reach);
+            self.light.note_heights(grid, &rect);
+            let window = self.light.affected(grid, &rect, sun_dir, reach);
             self.light.recompute(grid, &window, sun_dir, reach);
             self.flag_patches(&window);
         }

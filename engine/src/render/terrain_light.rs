@@ -31,6 +31,8 @@ pub(crate) struct TerrainLight {
     pub sun_visible: Vec<f32>,
     /// Highest height seen so far (shadow rays stop above it).
     pub max_height: f32,
+    /// Lowest height seen so far (bounds how far a shadow can fall).
+    pub min_height: f32,
 }
 
 /// How far the light probes reach, in samples.
@@ -46,16 +48,32 @@ impl TerrainLight {
     /// Light for a grid of `n` samples, all lit, to be filled by [`TerrainLight::recompute`].
     pub fn new(grid: &HeightGrid) -> TerrainLight {
         let n = grid.nx() * grid.nz();
+        let (min_height, max_height) = grid.min_max_in(&grid.full_rect());
         TerrainLight {
             sky_view: vec![1.0; n],
             sun_visible: vec![1.0; n],
-            max_height: grid.min_max_in(&grid.full_rect()).1,
+            max_height,
+            min_height,
         }
     }
 
+    /// Widens the known height range by the (new) heights of `rect`. The range
+    /// only grows, so it stays conservative for heights that have since changed.
+    pub fn note_heights(&mut self, grid: &HeightGrid, rect: &GridRect) {
+        if rect.is_empty() {
+            return;
+        }
+        let (lo, hi) = grid.min_max_in(rect);
+        self.min_height = self.min_height.min(lo);
+        self.max_height = self.max_height.max(hi);
+    }
+
     /// The samples whose light may change when heights in `rect` change:
-    /// the sky radius around it and the shadow length away from the sun.
+    /// the sky radius around it and, away from the sun, the longest shadow the
+    /// known height range can cast (at most `reach.shadow`). Call
+    /// [`TerrainLight::note_heights`] for `rect` first.
     pub fn affected(
+        &self,
         grid: &HeightGrid,
         rect: &GridRect,
         sun_dir: Vec3,
@@ -63,6 +81,21 @@ impl TerrainLight {
     ) -> GridRect {
         let r = rect.expand(reach.sky + 1, grid.nx(), grid.nz());
         let h = Vec3::new(sun_dir.x, 0.0, sun_dir.z).normalize_or_zero();
+        let horizontal = Vec3::new(sun_dir.x, 0.0, sun_dir.z).length();
+        let shadow = if sun_dir.y > 0.0 && horizontal > 1e-6 {
+            // An occluder still dims a sample while its margin is below the
+            // penumbra, so shadows reach as far as the ray's rise beyond it allows.
+            let rise = (sun_dir.y / horizontal - PENUMBRA) * grid.cell_size();
+            if rise > 0.0 {
+                let longest = ((self.max_height - self.min_height) / rise).ceil() as usize + 1;
+                longest.min(reach.shadow)
+            } else {
+                reach.shadow
+            }
+        } else {
+            0
+        };
+        let reach = LightReach { shadow, ..reach };
         // A sample is shadowed by occluders towards the sun, so changes reach
         // samples on the far side from the sun.
         let back_x = (-h.x * reach.shadow as f32).ceil() as isize;
@@ -87,8 +120,7 @@ impl TerrainLight {
         if rect.is_empty() {
             return;
         }
-        let (_, hi) = grid.min_max_in(rect);
-        self.max_height = self.max_height.max(hi);
+        self.note_heights(grid, rect);
         let nx = grid.nx();
         let max_height = self.max_height;
         self.sky_view
@@ -128,7 +160,7 @@ pub(crate) fn sky_view(grid: &HeightGrid, i: usize, j: usize, radius: usize) -> 
 }
 
 /// Soft sun visibility of sample `(i, j)`: marches towards the sun over at most
-/// `max_steps` samples, stopping once the ray is above `max_height`.
+/// `max_steps` samples, stopping once nothing below `max_height` can dim it.
 pub(crate) fn sun_visibility(
     grid: &HeightGrid,
     i: usize,
@@ -151,7 +183,9 @@ pub(crate) fn sun_visibility(
     let mut min_margin = f32::INFINITY;
     for k in 1..=max_steps {
         let ray = h0 + rise * k as f32;
-        if ray > max_height {
+        // Past this point every margin is at least the penumbra: the result is
+        // settled, whatever (conservative) `max_height` was given.
+        if ray - max_height >= PENUMBRA * k as f32 * grid.cell_size() {
             break;
         }
         let (u, v) = (i as f32 + dx * k as f32, j as f32 + dz * k as f32);
