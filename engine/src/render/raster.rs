@@ -35,13 +35,14 @@ pub(crate) struct PixelSpan {
 /// First pixel index whose centre is at or after fixed coordinate `v`.
 #[inline]
 fn first_centre(v: i64) -> i64 {
-    (v - HALF + ONE - 1).div_euclid(ONE)
+    // Arithmetic shifts floor, also for negative values.
+    (v - HALF + ONE - 1) >> SUBPIXEL_BITS
 }
 
 /// Last pixel index whose centre is at or before fixed coordinate `v`.
 #[inline]
 fn last_centre(v: i64) -> i64 {
-    (v - HALF).div_euclid(ONE)
+    (v - HALF) >> SUBPIXEL_BITS
 }
 
 impl PixelSpan {
