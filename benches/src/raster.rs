@@ -1,8 +1,162 @@
-//! The `raster` group of the peers harness.
+//! The `raster` group of the peers harness: one 512² terrain mesh (522,242
+//! triangles, per-vertex colours) seen by one camera at 1280 x 720, drawn by our
+//! renderer and by `euc` (a scalar Rust software rasterizer).
+//!
+//! Rows:
+//! - `terrain_mesh_522k_tris`: both draw every triangle of the same mesh (ours as a
+//!   [`MeshInstance`], lit per vertex each frame; `euc` with precomputed colours).
+//! - `terrain_patches_lod`: ours draws the same grid through [`TerrainRenderer`]
+//!   (patch culling and level of detail); `euc` still draws the full mesh.
 
-use crate::Row;
+use engine::geom::{HeightGrid, TriMesh};
+use engine::glam::{Mat4, Vec2, Vec3};
+use engine::render::{
+    Camera, CullMode, FrameScene, Lighting, MeshInstance, Renderer, TerrainRenderer, TerrainStyle,
+    UniformColor,
+};
+use euc::{Pipeline, buffer::Buffer2d, rasterizer};
+
+use crate::{Row, time_ns};
+
+const WIDTH: u32 = 1280;
+const HEIGHT: u32 = 720;
+const SAND: Vec3 = Vec3::new(0.62, 0.5, 0.34);
+
+/// The shared 10 x 10 m, 512² terrain.
+fn grid() -> HeightGrid {
+    HeightGrid::from_fn(Vec2::new(-5.0, -5.0), 10.0 / 511.0, 512, 512, |x, z| {
+        0.25 * (x * 0.6).sin() * (z * 0.45).cos() + 0.01 * (x * 9.0 + z * 7.0).sin()
+    })
+    .expect("valid grid")
+}
+
+/// The grid as one triangle mesh (same triangulation as the grid).
+fn grid_mesh(grid: &HeightGrid) -> TriMesh {
+    let (nx, nz) = (grid.nx(), grid.nz());
+    let positions = (0..nz)
+        .flat_map(|j| (0..nx).map(move |i| (i, j)))
+        .map(|(i, j)| grid.sample_position(i, j))
+        .collect();
+    let mut triangles = Vec::with_capacity(2 * (nx - 1) * (nz - 1));
+    for j in 0..nz - 1 {
+        for i in 0..nx - 1 {
+            let a = (j * nx + i) as u32;
+            let (b, c) = (a + 1, a + nx as u32);
+            triangles.push([a, c + 1, b]);
+            triangles.push([a, c, c + 1]);
+        }
+    }
+    TriMesh::new(positions, triangles).expect("valid mesh")
+}
+
+/// The shared camera: outside the terrain, looking across it (all of it in front).
+fn camera() -> Camera {
+    Camera::perspective(0.9, WIDTH, HEIGHT, 0.05, 200.0)
+        .expect("camera")
+        .look_at(Vec3::new(0.0, 3.0, -8.0), Vec3::new(0.0, 0.0, 0.0), Vec3::Y)
+}
+
+/// `euc` pipeline: indexed positions through our view-projection, Gouraud colours.
+struct EucTerrain<'a> {
+    view_proj: Mat4,
+    positions: &'a [Vec3],
+    colors: &'a [[f32; 3]],
+}
+
+impl Pipeline for EucTerrain<'_> {
+    type Vertex = u32;
+    type VsOut = (f32, f32, f32);
+    type Pixel = u32;
+
+    fn vert(&self, v: &u32) -> ([f32; 4], Self::VsOut) {
+        let k = *v as usize;
+        let clip = self.view_proj * self.positions[k].extend(1.0);
+        let c = self.colors[k];
+        (clip.to_array(), (c[0], c[1], c[2]))
+    }
+
+    fn frag(&self, c: &Self::VsOut) -> u32 {
+        let b = |v: f32| (v.clamp(0.0, 1.0) * 255.0) as u32;
+        0xff00_0000 | (b(c.0) << 16) | (b(c.1) << 8) | b(c.2)
+    }
+}
 
 /// Runs the group and returns one row per workload.
 pub fn run() -> Vec<Row> {
-    Vec::new()
+    let grid = grid();
+    let mesh = grid_mesh(&grid);
+    let cam = camera();
+    let lighting = Lighting::default();
+    let renderer = Renderer::new(WIDTH, HEIGHT).expect("size");
+
+    // euc: the same mesh, colours lit once with the same sun.
+    let colors: Vec<[f32; 3]> = mesh
+        .normals
+        .iter()
+        .map(|&n| {
+            let c = engine::render::encode_display(lighting.radiance(SAND, n, 1.0, 1.0));
+            [c.x, c.y, c.z]
+        })
+        .collect();
+    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+    let pipeline = EucTerrain {
+        view_proj: cam.view_proj(),
+        positions: &mesh.positions,
+        colors: &colors,
+    };
+    let mut color = Buffer2d::new([WIDTH as usize, HEIGHT as usize], 0u32);
+    let mut depth = Buffer2d::new([WIDTH as usize, HEIGHT as usize], 1.0f32);
+    let euc_ns = time_ns(3000, || {
+        euc::Target::clear(&mut color, 0);
+        euc::Target::clear(&mut depth, 1.0);
+        pipeline.draw::<rasterizer::Triangles<_, rasterizer::BackfaceCullingDisabled>, _>(
+            &indices,
+            &mut color,
+            Some(&mut depth),
+        );
+    });
+    let euc_covered = color.as_ref().iter().filter(|&&p| p != 0).count();
+
+    // Ours, the same full mesh.
+    let mut instance = MeshInstance::new(&mesh, Mat4::IDENTITY, SAND);
+    instance.cull = CullMode::None;
+    let meshes = [instance];
+    let mesh_scene = FrameScene {
+        meshes: &meshes,
+        lighting,
+        ..FrameScene::new()
+    };
+    let ours_mesh_ns = time_ns(3000, || {
+        std::hint::black_box(renderer.render(&mesh_scene, &cam));
+    });
+
+    // Ours, the terrain renderer on the same grid.
+    let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).expect("style");
+    terrain
+        .update(&grid, &UniformColor(SAND), &lighting)
+        .expect("grid");
+    let terrain_scene = FrameScene {
+        terrain: Some(&terrain),
+        lighting,
+        ..FrameScene::new()
+    };
+    let ours_terrain_ns = time_ns(3000, || {
+        std::hint::black_box(renderer.render(&terrain_scene, &cam));
+    });
+    let (_, stats) = renderer.render_with_stats(&terrain_scene, &cam);
+    eprintln!(
+        "raster: euc covered {euc_covered} px; terrain patches set up {} triangles",
+        stats.triangles
+    );
+
+    vec![
+        Row::new(
+            "terrain_mesh_522k_tris",
+            vec![("ours_ns", Some(ours_mesh_ns)), ("euc_ns", Some(euc_ns))],
+        ),
+        Row::new(
+            "terrain_patches_lod",
+            vec![("ours_ns", Some(ours_terrain_ns)), ("euc_ns", Some(euc_ns))],
+        ),
+    ]
 }

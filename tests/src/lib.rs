@@ -59,7 +59,7 @@ pub fn build(scene: &TestScene) -> App {
     }
     let path = WalkPath::straight(Vec3::new(1.0, 0.0, 1.5), Vec3::X, 6.0).unwrap();
     let walker = sim.character("walker", scene.body, path).unwrap();
-    let mut app = sim.build().unwrap();
+    let app = sim.build().unwrap();
     app.world.get_mut::<softwalk_systems::character::Balance>(walker).unwrap().enabled = scene.controller;
     app
 }

@@ -1,0 +1,211 @@
+//! A frame: everything drawn in one image, and the [`Renderer`] that draws it.
+
+use std::sync::Arc;
+
+use glam::Vec3;
+use image::RgbaImage;
+use rayon::prelude::*;
+
+use super::Camera;
+use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
+use super::error::RenderError;
+use super::grass::{GrassBlade, blade_batches};
+use super::mesh::MeshInstance;
+use super::raster::{Band, draw_triangle, to_u8};
+use super::shading::Lighting;
+use super::terrain::TerrainRenderer;
+
+/// Everything drawn in one frame.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameScene<'a> {
+    /// The ground, already [`TerrainRenderer::update`]d.
+    pub terrain: Option<&'a TerrainRenderer>,
+    /// Meshes (characters, props).
+    pub meshes: &'a [MeshInstance<'a>],
+    /// Grass blades.
+    pub blades: &'a [GrassBlade],
+    /// Sun, sky and fog.
+    pub lighting: Lighting,
+}
+
+impl<'a> FrameScene<'a> {
+    /// An empty scene (sky only) with default lighting.
+    pub fn new() -> FrameScene<'a> {
+        FrameScene {
+            terrain: None,
+            meshes: &[],
+            blades: &[],
+            lighting: Lighting::default(),
+        }
+    }
+}
+
+impl Default for FrameScene<'_> {
+    fn default() -> Self {
+        FrameScene::new()
+    }
+}
+
+/// What one frame sent to the rasterizer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FrameStats {
+    /// Screen batches (visible terrain patches, mesh parts, groups of blades).
+    pub batches: usize,
+    /// Triangles set up after culling and clipping.
+    pub triangles: usize,
+}
+
+/// Draws [`FrameScene`]s into `width` x `height` RGBA images.
+///
+/// Geometry is projected per batch (terrain patch, mesh part, group of blades)
+/// in parallel; then the screen is cut into fixed bands of rows, rasterized in
+/// parallel, each band drawing the batches in scene order. The image is
+/// bit-identical whatever the number of threads.
+#[derive(Debug, Clone)]
+pub struct Renderer {
+    width: u32,
+    height: u32,
+    pool: Option<Arc<rayon::ThreadPool>>,
+}
+
+impl Renderer {
+    /// A renderer using the ambient rayon pool.
+    pub fn new(width: u32, height: u32) -> Result<Renderer, RenderError> {
+        let pixels = (width as u64) * (height as u64);
+        if width == 0 || height == 0 || width > 16384 || height > 16384 {
+            return Err(RenderError::InvalidParameter {
+                name: "size",
+                reason: format!("{width} x {height} ({pixels} pixels) must be 1..=16384 per side"),
+            });
+        }
+        Ok(Renderer {
+            width,
+            height,
+            pool: None,
+        })
+    }
+
+    /// The same renderer with its own pool of `threads` threads.
+    pub fn with_threads(mut self, threads: usize) -> Result<Renderer, RenderError> {
+        if threads == 0 {
+            return Err(RenderError::InvalidParameter {
+                name: "threads",
+                reason: "at least one thread is needed".into(),
+            });
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| RenderError::ThreadPool {
+                threads,
+                reason: e.to_string(),
+            })?;
+        self.pool = Some(Arc::new(pool));
+        Ok(self)
+    }
+
+    /// Image width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Image height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Renders one frame. The camera's viewport should match the renderer's size
+    /// (its aspect ratio is used for the projection).
+    pub fn render(&self, scene: &FrameScene<'_>, camera: &Camera) -> RgbaImage {
+        self.render_with_stats(scene, camera).0
+    }
+
+    /// Renders one frame and says how much geometry reached the rasterizer.
+    pub fn render_with_stats(
+        &self,
+        scene: &FrameScene<'_>,
+        camera: &Camera,
+    ) -> (RgbaImage, FrameStats) {
+        match &self.pool {
+            Some(pool) => pool.install(|| self.render_here(scene, camera)),
+            None => self.render_here(scene, camera),
+        }
+    }
+
+    fn render_here(&self, scene: &FrameScene<'_>, camera: &Camera) -> (RgbaImage, FrameStats) {
+        let vp = Viewport {
+            width: self.width as i32,
+            height: self.height as i32,
+        };
+        let batches = self.project(scene, camera, vp);
+        let stats = FrameStats {
+            batches: batches.len(),
+            triangles: batches.iter().map(|b| b.tris.len()).sum(),
+        };
+        let (w, h) = (self.width as usize, self.height as usize);
+        let mut color = vec![0u8; w * h * 4];
+        let mut depth = vec![0f32; w * h];
+        let sky_rows = self.sky_rows(camera, &scene.lighting);
+        let band_rows = BAND_ROWS as usize;
+        color
+            .par_chunks_mut(w * 4 * band_rows)
+            .zip(depth.par_chunks_mut(w * band_rows))
+            .enumerate()
+            .for_each(|(b, (color, depth))| {
+                let y0 = b as i32 * BAND_ROWS;
+                let y1 = y0 + (depth.len() / w) as i32;
+                for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
+                    let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
+                    row.chunks_exact_mut(4).for_each(|p| p.copy_from_slice(&px));
+                }
+                let mut band = Band {
+                    color,
+                    depth,
+                    width: vp.width,
+                    height: vp.height,
+                    y0,
+                    y1,
+                };
+                for batch in &batches {
+                    for &t in batch.band_triangles(b as i32) {
+                        let (tri, area) = &batch.tris[t as usize];
+                        let v = tri.map(|k| &batch.verts[k as usize]);
+                        draw_triangle(&mut band, v, *area);
+                    }
+                }
+            });
+        let image = RgbaImage::from_raw(self.width, self.height, color)
+            .expect("the colour buffer has width * height * 4 bytes");
+        (image, stats)
+    }
+
+    /// All screen batches in drawing order: terrain, meshes, grass.
+    fn project(&self, scene: &FrameScene<'_>, camera: &Camera, vp: Viewport) -> Vec<ScreenBatch> {
+        let lighting = &scene.lighting;
+        let mut batches = match scene.terrain {
+            Some(t) => t.batches(camera, lighting, vp),
+            None => Vec::new(),
+        };
+        let meshes: Vec<Vec<ScreenBatch>> = scene
+            .meshes
+            .par_iter()
+            .map(|m| m.batches(camera, lighting, vp))
+            .collect();
+        batches.extend(meshes.into_iter().flatten());
+        batches.extend(blade_batches(scene.blades, camera, lighting, vp));
+        batches
+    }
+
+    /// Sky colour per row, from the view direction through the row's centre.
+    fn sky_rows(&self, camera: &Camera, lighting: &Lighting) -> Vec<Vec3> {
+        let inv = camera.view_proj().inverse();
+        (0..self.height)
+            .map(|y| {
+                let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / self.height as f32;
+                let far = inv.project_point3(Vec3::new(0.0, ndc_y, 1.0));
+                let dir = (far - camera.eye).normalize_or_zero();
+                lighting.sky(dir.y)
+            })
+            .collect()
+    }
+}

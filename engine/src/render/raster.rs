@@ -1,0 +1,462 @@
+//! The triangle rasterizer: integer edge functions with 8 sub-pixel bits, the
+//! top-left fill rule, a `1/w` depth buffer and perspective-correct colours.
+
+use glam::Vec3;
+
+/// Sub-pixel bits of screen coordinates (16.8 fixed point, as D3D11).
+pub(crate) const SUBPIXEL_BITS: u32 = 8;
+/// One pixel in fixed point.
+pub(crate) const ONE: i64 = 1 << SUBPIXEL_BITS;
+const HALF: i64 = ONE / 2;
+
+/// A vertex after projection: fixed-point pixel position (y down), `1/w`, colour / w.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ScreenVertex {
+    /// X in pixels, fixed point.
+    pub x: i32,
+    /// Y in pixels (down), fixed point.
+    pub y: i32,
+    /// Reciprocal of clip `w`: linear in screen space, larger is nearer (the depth).
+    pub inv_w: f32,
+    /// Colour divided by `w`, for perspective-correct interpolation.
+    pub color_w: Vec3,
+}
+
+/// The pixel range a triangle's bounding box covers: first/last pixel columns
+/// and rows whose centres lie inside the box (may be empty: first > last).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct PixelSpan {
+    pub x0: i32,
+    pub x1: i32,
+    pub y0: i32,
+    pub y1: i32,
+}
+
+/// First pixel index whose centre is at or after fixed coordinate `v`.
+#[inline]
+fn first_centre(v: i64) -> i64 {
+    // Arithmetic shifts floor, also for negative values.
+    (v - HALF + ONE - 1) >> SUBPIXEL_BITS
+}
+
+/// Last pixel index whose centre is at or before fixed coordinate `v`.
+#[inline]
+fn last_centre(v: i64) -> i64 {
+    (v - HALF) >> SUBPIXEL_BITS
+}
+
+impl PixelSpan {
+    /// The span of pixel centres inside the bounding box of `v`, clipped to a
+    /// `width` x `height` screen.
+    #[inline]
+    pub fn of(v: [&ScreenVertex; 3], width: i32, height: i32) -> PixelSpan {
+        let min_x = v[0].x.min(v[1].x).min(v[2].x) as i64;
+        let max_x = v[0].x.max(v[1].x).max(v[2].x) as i64;
+        let min_y = v[0].y.min(v[1].y).min(v[2].y) as i64;
+        let max_y = v[0].y.max(v[1].y).max(v[2].y) as i64;
+        PixelSpan {
+            x0: first_centre(min_x).max(0) as i32,
+            x1: last_centre(max_x).min(width as i64 - 1) as i32,
+            y0: first_centre(min_y).max(0) as i32,
+            y1: last_centre(max_y).min(height as i64 - 1) as i32,
+        }
+    }
+
+    /// True when no pixel centre is covered.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.x0 > self.x1 || self.y0 > self.y1
+    }
+}
+
+/// Twice the signed area of the triangle in fixed point squared; positive when
+/// the vertices run clockwise on a y-down screen (the rasterizer's winding).
+#[inline]
+pub(crate) fn signed_area(a: &ScreenVertex, b: &ScreenVertex, c: &ScreenVertex) -> i64 {
+    (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
+        - (b.y as i64 - a.y as i64) * (c.x as i64 - a.x as i64)
+}
+
+/// A horizontal band of the frame: colour (RGBA8) and depth rows `y0..y1`.
+pub(crate) struct Band<'a> {
+    /// RGBA8 pixels of the band's rows.
+    pub color: &'a mut [u8],
+    /// `1/w` per pixel; 0 is empty (infinitely far).
+    pub depth: &'a mut [f32],
+    /// Frame width in pixels.
+    pub width: i32,
+    /// Frame height in pixels.
+    pub height: i32,
+    /// First row of the band.
+    pub y0: i32,
+    /// One past the last row of the band.
+    pub y1: i32,
+}
+
+/// One edge function `E(p) = dx * (py - ay) - dy * (px - ax)` with its top-left bias.
+struct Edge {
+    step_x: i64,
+    step_y: i64,
+    /// Value at the first pixel centre, bias included: covered when `>= 0`.
+    start: i64,
+}
+
+impl Edge {
+    #[inline]
+    fn new(a: &ScreenVertex, b: &ScreenVertex, px: i64, py: i64) -> Edge {
+        let dx = b.x as i64 - a.x as i64;
+        let dy = b.y as i64 - a.y as i64;
+        // Interior is E > 0 (clockwise on a y-down screen). Pixels exactly on an
+        // edge belong to it only when it is a top edge (horizontal, going right)
+        // or a left edge (going up), so shared edges are drawn exactly once.
+        let top_left = dy < 0 || (dy == 0 && dx > 0);
+        let bias = if top_left { 0 } else { -1 };
+        Edge {
+            step_x: -dy * ONE,
+            step_y: dx * ONE,
+            start: dx * (py - a.y as i64) - dy * (px - a.x as i64) + bias,
+        }
+    }
+}
+
+impl Edge {
+    /// Narrows the pixel run `lo..=hi` (offsets from the row's first pixel, where
+    /// the edge value is `value`) to where this edge covers.
+    #[inline]
+    fn covered_run(&self, value: i64, lo: i32, hi: i32) -> (i32, i32) {
+        if self.step_x > 0 {
+            // value + k * step >= 0  <=>  k >= ceil(-value / step)
+            let first =
+                (-value).div_euclid(self.step_x) + i64::from((-value).rem_euclid(self.step_x) != 0);
+            (lo.max(first.clamp(0, i32::MAX as i64) as i32), hi)
+        } else if self.step_x < 0 {
+            // value + k * step >= 0  <=>  k <= floor(value / -step)
+            let last = value.div_euclid(-self.step_x);
+            (lo, hi.min(last.clamp(-1, i32::MAX as i64) as i32))
+        } else if value < 0 {
+            (lo, -1)
+        } else {
+            (lo, hi)
+        }
+    }
+}
+
+/// Calls `pixel(x, y, l1, l2)` for every pixel centre of rows `rows` covered by the
+/// triangle (clockwise on screen, positive [`signed_area`] `area`), where `l1` and
+/// `l2` are the screen-space barycentric weights of vertices 1 and 2.
+#[inline]
+pub(crate) fn for_each_covered(
+    v: [&ScreenVertex; 3],
+    area: i64,
+    width: i32,
+    rows: std::ops::Range<i32>,
+    mut pixel: impl FnMut(i32, i32, f32, f32),
+) {
+    let mut span = PixelSpan::of(v, width, rows.end);
+    span.y0 = span.y0.max(rows.start);
+    if span.is_empty() {
+        return;
+    }
+    let px = span.x0 as i64 * ONE + HALF;
+    let py = span.y0 as i64 * ONE + HALF;
+    // Edge k is opposite vertex k, so its value is vertex k's barycentric weight.
+    let e0 = Edge::new(v[1], v[2], px, py);
+    let e1 = Edge::new(v[2], v[0], px, py);
+    let e2 = Edge::new(v[0], v[1], px, py);
+    let inv_area = 1.0 / area as f32;
+    let (mut r0, mut r1, mut r2) = (e0.start, e1.start, e2.start);
+    // Wide boxes (thin slanted triangles such as grass blades) get each row's
+    // covered run solved from the edge equations; small ones are just scanned.
+    let narrow = span.x1 - span.x0 >= NARROW_MIN_WIDTH;
+    for y in span.y0..=span.y1 {
+        let (mut lo, mut hi) = (0, span.x1 - span.x0);
+        if narrow {
+            for (value, edge) in [(r0, &e0), (r1, &e1), (r2, &e2)] {
+                (lo, hi) = edge.covered_run(value, lo, hi);
+            }
+        }
+        let skip = lo as i64;
+        let (mut a0, mut a1, mut a2) = (
+            r0 + skip * e0.step_x,
+            r1 + skip * e1.step_x,
+            r2 + skip * e2.step_x,
+        );
+        for x in span.x0 + lo..=span.x0 + hi {
+            if (a0 | a1 | a2) >= 0 {
+                // The top-left bias of at most 1 unit is negligible in the weights.
+                pixel(x, y, a1 as f32 * inv_area, a2 as f32 * inv_area);
+            }
+            a0 += e0.step_x;
+            a1 += e1.step_x;
+            a2 += e2.step_x;
+        }
+        r0 += e0.step_y;
+        r1 += e1.step_y;
+        r2 += e2.step_y;
+    }
+}
+
+/// Bounding boxes at least this many pixels wide solve each row's covered run.
+const NARROW_MIN_WIDTH: i32 = 6;
+
+/// Draws one triangle (clockwise on screen, positive [`signed_area`]) into the
+/// band: depth test `1/w` greater than stored, perspective-correct colour.
+#[inline]
+pub(crate) fn draw_triangle(band: &mut Band<'_>, v: [&ScreenVertex; 3], area: i64) {
+    let w0 = v[0].inv_w;
+    let dw1 = v[1].inv_w - w0;
+    let dw2 = v[2].inv_w - w0;
+    let c0 = v[0].color_w;
+    let dc1 = v[1].color_w - c0;
+    let dc2 = v[2].color_w - c0;
+    let width = band.width as usize;
+    let y0 = band.y0;
+    let rows = band.y0..band.y1.min(band.height);
+    let (depth, color) = (&mut *band.depth, &mut *band.color);
+    for_each_covered(v, area, band.width, rows, |x, y, l1, l2| {
+        let inv_w = w0 + l1 * dw1 + l2 * dw2;
+        let k = (y - y0) as usize * width + x as usize;
+        if inv_w > depth[k] {
+            depth[k] = inv_w;
+            let c = (c0 + l1 * dc1 + l2 * dc2) / inv_w;
+            let px = &mut color[4 * k..4 * k + 4];
+            px[0] = to_u8(c.x);
+            px[1] = to_u8(c.y);
+            px[2] = to_u8(c.z);
+            px[3] = 255;
+        }
+    });
+}
+
+/// A display value in `[0, 1]` to 8 bits (rounded, clamped; NaN gives 0).
+#[inline]
+pub(crate) fn to_u8(v: f32) -> u8 {
+    (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Mat4, Vec2, Vec3, Vec4};
+
+    use super::*;
+    use crate::render::Camera;
+    use crate::render::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
+    use crate::render::clip::ClipVertex;
+
+    /// A tiny deterministic generator (xorshift) for jitter.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    fn sv(x: f32, y: f32) -> ScreenVertex {
+        ScreenVertex {
+            x: (x * ONE as f32).round() as i32,
+            y: (y * ONE as f32).round() as i32,
+            inv_w: 1.0,
+            color_w: Vec3::ZERO,
+        }
+    }
+
+    /// Coverage counts of a triangulated grid of points over a 64 x 64 screen.
+    fn coverage(points: &[Vec2], n: usize, rng: &mut Rng) -> Vec<u32> {
+        let mut count = vec![0u32; 64 * 64];
+        let at = |c: usize, r: usize| sv(points[r * n + c].x, points[r * n + c].y);
+        for r in 0..n - 1 {
+            for c in 0..n - 1 {
+                let (a, b, cc, d) = (at(c, r), at(c + 1, r), at(c, r + 1), at(c + 1, r + 1));
+                let tris = if rng.next() < 0.5 {
+                    [[a, b, d], [a, d, cc]]
+                } else {
+                    [[a, b, cc], [b, d, cc]]
+                };
+                for mut t in tris {
+                    let mut area = signed_area(&t[0], &t[1], &t[2]);
+                    if area < 0 {
+                        t.swap(1, 2);
+                        area = -area;
+                    }
+                    for_each_covered([&t[0], &t[1], &t[2]], area, 64, 0..64, |x, y, _, _| {
+                        count[(y * 64 + x) as usize] += 1;
+                    });
+                }
+            }
+        }
+        count
+    }
+
+    #[test]
+    fn shared_edges_draw_every_pixel_exactly_once() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        // Vertices exactly on pixel centres (edges through centres: the fill rule
+        // decides), then jittered sub-pixel vertices; wide cells exercise the
+        // solved row runs, narrow ones the plain scan.
+        for (n, spacing, jitter) in [(9, 7.0, 0.0), (9, 7.0, 3.0), (17, 3.5, 0.0), (17, 3.5, 1.5)] {
+            let points: Vec<Vec2> = (0..n * n)
+                .map(|k| {
+                    let base =
+                        Vec2::new((k % n) as f32, (k / n) as f32) * spacing + Vec2::splat(4.5);
+                    let on_border = k % n == 0 || k / n == 0 || k % n == n - 1 || k / n == n - 1;
+                    let j = if on_border { 0.0 } else { jitter };
+                    base + Vec2::new(rng.next() - 0.5, rng.next() - 0.5) * j
+                })
+                .collect();
+            let count = coverage(&points, n, &mut rng);
+            for y in 0..64usize {
+                for x in 0..64usize {
+                    let c = count[y * 64 + x];
+                    assert!(c <= 1, "pixel ({x}, {y}) drawn {c} times (jitter {jitter})");
+                    // Centres strictly inside the outer square [4.5, 60.5]: exactly once.
+                    let inside = (5..=59).contains(&x) && (5..=59).contains(&y);
+                    if inside {
+                        assert_eq!(c, 1, "pixel ({x}, {y}) missed (jitter {jitter})");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Renders a batch into a fresh `w` x `h` colour and depth buffer.
+    fn draw(batch: &ScreenBatch, w: i32, h: i32) -> (Vec<u8>, Vec<f32>) {
+        let mut color = vec![0u8; (w * h * 4) as usize];
+        let mut depth = vec![0f32; (w * h) as usize];
+        let mut band = Band {
+            color: &mut color,
+            depth: &mut depth,
+            width: w,
+            height: h,
+            y0: 0,
+            y1: h,
+        };
+        for (tri, area) in &batch.tris {
+            draw_triangle(&mut band, tri.map(|k| &batch.verts[k as usize]), *area);
+        }
+        (color, depth)
+    }
+
+    fn cv(p: Vec4, color: Vec3) -> ClipVertex {
+        ClipVertex { pos: p, color }
+    }
+
+    fn build(verts: &[ClipVertex], tris: &[[u32; 3]], w: i32, h: i32) -> ScreenBatch {
+        ScreenBatch::build(
+            verts,
+            &[TriangleGroup {
+                triangles: tris,
+                cull: CullMode::None,
+            }],
+            Viewport {
+                width: w,
+                height: h,
+            },
+        )
+    }
+
+    #[test]
+    fn nearer_triangle_wins_in_either_order() {
+        let near = |c| {
+            [
+                cv(Vec4::new(-0.8, -0.8, 0.5, 1.0), c),
+                cv(Vec4::new(0.8, -0.8, 0.5, 1.0), c),
+                cv(Vec4::new(0.0, 0.8, 0.5, 1.0), c),
+            ]
+        };
+        // The far triangle has w = 2 (half the 1/w depth), scaled to cover the same area.
+        let far = |c| {
+            [
+                cv(Vec4::new(-2.0, -2.0, 1.0, 2.0), c),
+                cv(Vec4::new(2.0, -2.0, 1.0, 2.0), c),
+                cv(Vec4::new(0.0, 2.0, 1.0, 2.0), c),
+            ]
+        };
+        let (red, blue) = (Vec3::X, Vec3::Z);
+        for near_first in [true, false] {
+            let mut verts = Vec::new();
+            if near_first {
+                verts.extend(near(red));
+                verts.extend(far(blue));
+            } else {
+                verts.extend(far(blue));
+                verts.extend(near(red));
+            }
+            let batch = build(&verts, &[[0, 1, 2], [3, 4, 5]], 32, 32);
+            let (color, _) = draw(&batch, 32, 32);
+            let centre = 4 * (16 * 32 + 16);
+            assert_eq!(&color[centre..centre + 4], &[255, 0, 0, 255]);
+        }
+    }
+
+    #[test]
+    fn interpolation_is_perspective_correct() {
+        // A floor quad receding from the camera, coloured by its world z.
+        let cam = Camera::perspective(1.2, 64, 64, 0.1, 100.0)
+            .unwrap()
+            .look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.0, -4.0), Vec3::Y);
+        let vp_m: Mat4 = cam.view_proj();
+        let (z_near, z_far) = (-1.0f32, -9.0f32);
+        let colour = |z: f32| Vec3::splat((z - z_near) / (z_far - z_near));
+        let corners = [(-3.0, z_near), (3.0, z_near), (3.0, z_far), (-3.0, z_far)];
+        let verts: Vec<ClipVertex> = corners
+            .iter()
+            .map(|&(x, z)| cv(vp_m * Vec4::new(x, 0.0, z, 1.0), colour(z)))
+            .collect();
+        let batch = build(&verts, &[[0, 1, 2], [0, 2, 3]], 64, 64);
+        let (color, depth) = draw(&batch, 64, 64);
+        let inv = vp_m.inverse();
+        let mut checked = 0;
+        for y in 0..64 {
+            for x in 0..64 {
+                let k = y * 64 + x;
+                if depth[k] == 0.0 {
+                    continue;
+                }
+                // Analytic reference: intersect the pixel's ray with the floor y = 0.
+                let ndc = Vec2::new((x as f32 + 0.5) / 32.0 - 1.0, 1.0 - (y as f32 + 0.5) / 32.0);
+                let a = inv.project_point3(ndc.extend(0.0));
+                let b = inv.project_point3(ndc.extend(1.0));
+                let t = a.y / (a.y - b.y);
+                let z = a.z + (b.z - a.z) * t;
+                let want = colour(z).x * 255.0;
+                let got = color[4 * k] as f32;
+                assert!(
+                    (got - want).abs() <= 1.5,
+                    "pixel ({x}, {y}): {got} vs {want}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 500);
+    }
+
+    #[test]
+    fn near_plane_clipping_keeps_what_is_in_front() {
+        // A huge floor that passes under and behind the camera.
+        let cam = Camera::perspective(1.0, 48, 32, 0.1, 100.0)
+            .unwrap()
+            .look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 1.0, -1.0), Vec3::Y);
+        let m = cam.view_proj();
+        let corners = [(-50.0, 50.0), (50.0, 50.0), (50.0, -50.0), (-50.0, -50.0)];
+        let verts: Vec<ClipVertex> = corners
+            .iter()
+            .map(|&(x, z)| cv(m * Vec4::new(x, 0.0, z, 1.0), Vec3::ONE))
+            .collect();
+        let batch = build(&verts, &[[0, 1, 2], [0, 2, 3]], 48, 32);
+        assert!(batch.verts.len() > 4, "the floor must have been clipped");
+        let (_, depth) = draw(&batch, 48, 32);
+        // Looking level: the floor fills the lower half, up to the horizon (far
+        // edge 50 m away sits just below it), and nothing above.
+        for y in 0..32 {
+            let covered = (0..48).filter(|&x| depth[y * 48 + x] > 0.0).count();
+            if y < 16 {
+                assert_eq!(covered, 0, "row {y} is above the horizon");
+            } else if y > 16 {
+                assert_eq!(covered, 48, "row {y} is floor");
+            }
+        }
+    }
+}

@@ -1,0 +1,575 @@
+//! Height-grid surfaces drawn by patches with frustum culling, distance level of
+//! detail (geomipmapping) and skirts against cracks between levels.
+//!
+//! Patches re-mesh only when [`TerrainRenderer::mark_dirty`] reported a change
+//! under them (or under their light reach); [`TerrainRenderer::update`] does it.
+
+use std::collections::BTreeMap;
+
+use glam::{Mat4, Vec3};
+use rayon::prelude::*;
+
+use super::Camera;
+use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::clip::ClipVertex;
+use super::error::{RenderError, positive};
+use super::shading::{Lighting, encode_display};
+use super::terrain_colors::TerrainColors;
+use super::terrain_light::{LightReach, TerrainLight};
+use crate::geom::{GridRect, HeightGrid};
+
+/// How a [`TerrainRenderer`] cuts, levels and shades the grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TerrainStyle {
+    /// Cells per patch side (a power of two, 2..=256).
+    pub patch_cells: usize,
+    /// Radius of the sky-view (ambient occlusion) probe, in metres.
+    pub ao_radius: f32,
+    /// Longest shadow, in metres.
+    pub shadow_range: f32,
+    /// How much a fully disturbed sample is darkened (0..1).
+    pub disturbed_darkening: f32,
+    /// A level of detail is used only while its cells stay below this many pixels.
+    pub max_cell_px: f32,
+    /// ... and its height error below this many pixels.
+    pub max_error_px: f32,
+}
+
+impl Default for TerrainStyle {
+    fn default() -> Self {
+        TerrainStyle {
+            patch_cells: 32,
+            ao_radius: 0.3,
+            shadow_range: 4.0,
+            disturbed_darkening: 0.25,
+            max_cell_px: 4.0,
+            max_error_px: 1.0,
+        }
+    }
+}
+
+impl TerrainStyle {
+    fn validate(&self) -> Result<(), RenderError> {
+        if !(self.patch_cells.is_power_of_two() && (2..=256).contains(&self.patch_cells)) {
+            return Err(RenderError::InvalidParameter {
+                name: "patch_cells",
+                reason: format!("{} must be a power of two in 2..=256", self.patch_cells),
+            });
+        }
+        positive("ao_radius", self.ao_radius)?;
+        positive("shadow_range", self.shadow_range)?;
+        positive("max_cell_px", self.max_cell_px)?;
+        positive("max_error_px", self.max_error_px)?;
+        if !(0.0..=1.0).contains(&self.disturbed_darkening) {
+            return Err(RenderError::InvalidParameter {
+                name: "disturbed_darkening",
+                reason: format!("{} must lie in [0, 1]", self.disturbed_darkening),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// One level of detail of a patch: a sub-grid of its samples.
+#[derive(Debug, Clone, Default)]
+struct PatchLevel {
+    /// Sample offsets (from the patch corner) of the level's columns.
+    cols: Vec<usize>,
+    /// Sample offsets of the level's rows.
+    rows: Vec<usize>,
+    /// Heights of the level's vertices, row-major.
+    heights: Vec<f32>,
+    /// Display colours of the level's vertices.
+    colors: Vec<Vec3>,
+    /// Largest height difference between the level and the full-resolution samples.
+    error: f32,
+}
+
+/// A rectangle of cells drawn as one batch.
+#[derive(Debug, Clone)]
+struct Patch {
+    /// First sample (corner) of the patch.
+    i0: usize,
+    j0: usize,
+    /// Cells along X and Z (samples are `i0..=i0 + cells_x`).
+    cells_x: usize,
+    cells_z: usize,
+    levels: Vec<PatchLevel>,
+    min_h: f32,
+    max_h: f32,
+}
+
+/// Draws a [`HeightGrid`] by patches. Create it once, call
+/// [`mark_dirty`](TerrainRenderer::mark_dirty) with what changed and
+/// [`update`](TerrainRenderer::update) before rendering a frame.
+#[derive(Debug, Clone)]
+pub struct TerrainRenderer {
+    style: TerrainStyle,
+    nx: usize,
+    nz: usize,
+    cell: f32,
+    origin: glam::Vec2,
+    patches_x: usize,
+    patches: Vec<Patch>,
+    /// Triangles of a `cols` x `rows` vertex grid, shared by all patches.
+    indices: BTreeMap<(usize, usize), Vec<[u32; 3]>>,
+    light: TerrainLight,
+    lit_with: Option<super::Sun>,
+    pending: Vec<GridRect>,
+    needs_remesh: Vec<bool>,
+    remeshed_last: usize,
+}
+
+impl TerrainRenderer {
+    /// A renderer for grids shaped like `grid`. Everything is dirty until the first
+    /// [`update`](TerrainRenderer::update).
+    pub fn new(grid: &HeightGrid, style: TerrainStyle) -> Result<TerrainRenderer, RenderError> {
+        style.validate()?;
+        let p = style.patch_cells;
+        let (cx, cz) = (grid.nx() - 1, grid.nz() - 1);
+        let (patches_x, patches_z) = (cx.div_ceil(p), cz.div_ceil(p));
+        let mut patches = Vec::with_capacity(patches_x * patches_z);
+        for pj in 0..patches_z {
+            for pi in 0..patches_x {
+                let (i0, j0) = (pi * p, pj * p);
+                patches.push(Patch {
+                    i0,
+                    j0,
+                    cells_x: p.min(cx - i0),
+                    cells_z: p.min(cz - j0),
+                    levels: Vec::new(),
+                    min_h: 0.0,
+                    max_h: 0.0,
+                });
+            }
+        }
+        let mut indices = BTreeMap::new();
+        for patch in &patches {
+            for step in level_steps(p) {
+                let m = offsets(patch.cells_x, step).len();
+                let n = offsets(patch.cells_z, step).len();
+                indices
+                    .entry((m, n))
+                    .or_insert_with(|| grid_triangles(m, n));
+            }
+        }
+        let count = patches.len();
+        Ok(TerrainRenderer {
+            style,
+            nx: grid.nx(),
+            nz: grid.nz(),
+            cell: grid.cell_size(),
+            origin: grid.origin(),
+            patches_x,
+            patches,
+            indices,
+            light: TerrainLight::new(grid),
+            lit_with: None,
+            pending: vec![grid.full_rect()],
+            needs_remesh: vec![true; count],
+            remeshed_last: 0,
+        })
+    }
+
+    /// The style in use.
+    pub fn style(&self) -> &TerrainStyle {
+        &self.style
+    }
+
+    /// Number of patches.
+    pub fn patch_count(&self) -> usize {
+        self.patches.len()
+    }
+
+    /// Number of patches re-meshed by the last [`update`](TerrainRenderer::update).
+    pub fn remeshed_last_update(&self) -> usize {
+        self.remeshed_last
+    }
+
+    /// Reports that heights (or colours) inside `rect` changed.
+    pub fn mark_dirty(&mut self, rect: GridRect) {
+        let rect = rect.intersect(&GridRect::new(0, 0, self.nx, self.nz));
+        if !rect.is_empty() {
+            self.pending.push(rect);
+        }
+    }
+
+    /// True when changes are waiting for [`update`](TerrainRenderer::update).
+    pub fn is_dirty(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    fn reach(&self) -> LightReach {
+        let steps = |metres: f32| ((metres / self.cell).ceil() as usize).max(1);
+        LightReach {
+            sky: steps(self.style.ao_radius),
+            shadow: steps(self.style.shadow_range),
+        }
+    }
+
+    /// Recomputes light in the dirty windows (plus their reach) and re-meshes the
+    /// patches they touch; everything when the sun changed. `grid` must have the
+    /// shape given to [`TerrainRenderer::new`].
+    pub fn update<C: TerrainColors + Sync + ?Sized>(
+        &mut self,
+        grid: &HeightGrid,
+        colors: &C,
+        lighting: &Lighting,
+    ) -> Result<(), RenderError> {
+        if grid.nx() != self.nx
+            || grid.nz() != self.nz
+            || grid.cell_size() != self.cell
+            || grid.origin() != self.origin
+        {
+            return Err(RenderError::InvalidParameter {
+                name: "grid",
+                reason: format!(
+                    "{} x {} samples of {} m do not match the renderer's {} x {} of {} m",
+                    grid.nx(),
+                    grid.nz(),
+                    grid.cell_size(),
+                    self.nx,
+                    self.nz,
+                    self.cell
+                ),
+            });
+        }
+        if self.lit_with != Some(lighting.sun) {
+            self.pending = vec![grid.full_rect()];
+            self.lit_with = Some(lighting.sun);
+        }
+        let reach = self.reach();
+        let sun_dir = lighting.sun.direction;
+        for rect in std::mem::take(&mut self.pending) {
+            self.light.note_heights(grid, &rect);
+            let window = self.light.affected(grid, &rect, sun_dir, reach);
+            self.light.recompute(grid, &window, sun_dir, reach);
+            self.flag_patches(&window);
+        }
+        let style = self.style;
+        let light = &self.light;
+        let flags = &self.needs_remesh;
+        self.patches
+            .par_iter_mut()
+            .zip(flags.par_iter())
+            .filter(|(_, flag)| **flag)
+            .for_each(|(patch, _)| patch.remesh(grid, colors, lighting, light, &style));
+        self.remeshed_last = self.needs_remesh.iter().filter(|f| **f).count();
+        self.needs_remesh.iter_mut().for_each(|f| *f = false);
+        Ok(())
+    }
+
+    fn flag_patches(&mut self, window: &GridRect) {
+        let p = self.style.patch_cells;
+        // A sample on a patch border belongs to both patches.
+        let pi0 = window.i0.saturating_sub(1) / p;
+        let pj0 = window.j0.saturating_sub(1) / p;
+        let pi1 = (window.i1.saturating_sub(1) / p).min(self.patches_x - 1);
+        let pz = self.patches.len() / self.patches_x;
+        let pj1 = (window.j1.saturating_sub(1) / p).min(pz - 1);
+        for pj in pj0..=pj1 {
+            for pi in pi0..=pi1 {
+                self.needs_remesh[pj * self.patches_x + pi] = true;
+            }
+        }
+    }
+
+    /// Chooses a level per patch (`None` when culled) for this camera.
+    fn choose_levels(&self, camera: &Camera) -> Vec<Option<usize>> {
+        let planes = camera.frustum_planes();
+        let focal = camera.focal_px();
+        self.patches
+            .iter()
+            .map(|patch| {
+                if patch.levels.is_empty() {
+                    return None;
+                }
+                let (min, max) = patch.bounds(self.origin, self.cell);
+                // Skirts hang below the patch; keep them in the culling box.
+                let skirt = patch.levels.last().map_or(0.0, |l| 2.0 * l.error) + self.cell;
+                let min = min - Vec3::Y * skirt;
+                if !camera.sees_box(&planes, min, max) {
+                    return None;
+                }
+                let distance = (camera.eye.clamp(min, max) - camera.eye).length().max(1e-3);
+                let px_per_metre = focal / distance;
+                let mut chosen = 0;
+                for (l, level) in patch.levels.iter().enumerate().skip(1) {
+                    let step_px = self.cell * (1 << l) as f32 * px_per_metre;
+                    let error_px = level.error * px_per_metre;
+                    if step_px > self.style.max_cell_px || error_px > self.style.max_error_px {
+                        break;
+                    }
+                    chosen = l;
+                }
+                Some(chosen)
+            })
+            .collect()
+    }
+
+    /// Projects every visible patch into screen batches (one per patch, in patch order).
+    pub(crate) fn batches(
+        &self,
+        camera: &Camera,
+        lighting: &Lighting,
+        vp: Viewport,
+    ) -> Vec<ScreenBatch> {
+        let levels = self.choose_levels(camera);
+        let view_proj = camera.view_proj();
+        let pz = self.patches.len() / self.patches_x;
+        let visible: Vec<usize> = (0..self.patches.len())
+            .filter(|&k| levels[k].is_some())
+            .collect();
+        visible
+            .par_iter()
+            .map(|&k| {
+                let (pi, pj) = (k % self.patches_x, k / self.patches_x);
+                let level = levels[k].unwrap_or(0);
+                let neighbour = |di: isize, dj: isize| -> Option<f32> {
+                    let (ni, nj) = (pi as isize + di, pj as isize + dj);
+                    if ni < 0 || nj < 0 || ni >= self.patches_x as isize || nj >= pz as isize {
+                        return None;
+                    }
+                    let n = nj as usize * self.patches_x + ni as usize;
+                    let l = levels[n]?;
+                    (l != level).then(|| self.patches[n].levels[l].error)
+                };
+                // Sides: -Z (first row), +Z (last row), -X (first column), +X (last column).
+                let skirts = [
+                    neighbour(0, -1),
+                    neighbour(0, 1),
+                    neighbour(-1, 0),
+                    neighbour(1, 0),
+                ];
+                self.patch_batch(k, level, skirts, &view_proj, camera.eye, lighting, vp)
+            })
+            .collect()
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn patch_batch(
+        &self,
+        k: usize,
+        level: usize,
+        skirts: [Option<f32>; 4],
+        view_proj: &Mat4,
+        eye: Vec3,
+        lighting: &Lighting,
+        vp: Viewport,
+    ) -> ScreenBatch {
+        let patch = &self.patches[k];
+        let lod = &patch.levels[level];
+        let (m, n) = (lod.cols.len(), lod.rows.len());
+        let mut verts = Vec::with_capacity(m * n + 2 * (m + n));
+        let world = |c: usize, r: usize, h: f32| {
+            Vec3::new(
+                self.origin.x + (patch.i0 + lod.cols[c]) as f32 * self.cell,
+                h,
+                self.origin.y + (patch.j0 + lod.rows[r]) as f32 * self.cell,
+            )
+        };
+        let vertex = |p: Vec3, color: Vec3| ClipVertex {
+            pos: to_clip(view_proj, p),
+            color: lighting.apply_fog(color, (p - eye).length()),
+        };
+        for r in 0..n {
+            for c in 0..m {
+                let v = r * m + c;
+                verts.push(vertex(world(c, r, lod.heights[v]), lod.colors[v]));
+            }
+        }
+        let mut skirt_tris = Vec::new();
+        let sides: [Vec<(usize, usize)>; 4] = [
+            (0..m).map(|c| (c, 0)).collect(),
+            (0..m).map(|c| (c, n - 1)).collect(),
+            (0..n).map(|r| (0, r)).collect(),
+            (0..n).map(|r| (m - 1, r)).collect(),
+        ];
+        for (side, neighbour_error) in sides.iter().zip(skirts) {
+            let Some(neighbour_error) = neighbour_error else {
+                continue;
+            };
+            let depth = lod.error + neighbour_error + 0.25 * self.cell;
+            let base = verts.len() as u32;
+            for &(c, r) in side {
+                let v = r * m + c;
+                verts.push(vertex(world(c, r, lod.heights[v] - depth), lod.colors[v]));
+            }
+            for (s, pair) in side.windows(2).enumerate() {
+                let top = |(c, r): (usize, usize)| (r * m + c) as u32;
+                let (a, b) = (top(pair[0]), top(pair[1]));
+                let (sa, sb) = (base + s as u32, base + s as u32 + 1);
+                skirt_tris.push([a, b, sb]);
+                skirt_tris.push([a, sb, sa]);
+            }
+        }
+        let surface = &self.indices[&(m, n)];
+        ScreenBatch::build(
+            &verts,
+            &[
+                TriangleGroup {
+                    triangles: surface,
+                    cull: CullMode::Back,
+                },
+                TriangleGroup {
+                    triangles: &skirt_tris,
+                    cull: CullMode::None,
+                },
+            ],
+            vp,
+        )
+    }
+}
+
+impl Patch {
+    /// World-space bounding box of the patch's surface.
+    fn bounds(&self, origin: glam::Vec2, cell: f32) -> (Vec3, Vec3) {
+        let x0 = origin.x + self.i0 as f32 * cell;
+        let z0 = origin.y + self.j0 as f32 * cell;
+        (
+            Vec3::new(x0, self.min_h, z0),
+            Vec3::new(
+                x0 + self.cells_x as f32 * cell,
+                self.max_h,
+                z0 + self.cells_z as f32 * cell,
+            ),
+        )
+    }
+
+    /// Rebuilds every level's heights, colours and error from the grid and light.
+    fn remesh<C: TerrainColors + ?Sized>(
+        &mut self,
+        grid: &HeightGrid,
+        colors: &C,
+        lighting: &Lighting,
+        light: &TerrainLight,
+        style: &TerrainStyle,
+    ) {
+        let rect = GridRect::new(
+            self.i0,
+            self.j0,
+            self.i0 + self.cells_x + 1,
+            self.j0 + self.cells_z + 1,
+        );
+        (self.min_h, self.max_h) = grid.min_max_in(&rect);
+        self.levels = level_steps(style.patch_cells)
+            .map(|step| {
+                let cols = offsets(self.cells_x, step);
+                let rows = offsets(self.cells_z, step);
+                let mut level = PatchLevel {
+                    heights: Vec::with_capacity(cols.len() * rows.len()),
+                    colors: Vec::with_capacity(cols.len() * rows.len()),
+                    ..Default::default()
+                };
+                for &r in &rows {
+                    for &c in &cols {
+                        let (i, j) = (self.i0 + c, self.j0 + r);
+                        let k = grid.index(i, j);
+                        let albedo = colors.albedo(i, j)
+                            * (1.0
+                                - style.disturbed_darkening
+                                    * colors.disturbance(i, j).clamp(0.0, 1.0));
+                        let radiance = lighting.radiance(
+                            albedo,
+                            grid.sample_normal(i, j),
+                            light.sky_view[k],
+                            light.sun_visible[k],
+                        );
+                        level.heights.push(grid.height(i, j));
+                        level.colors.push(encode_display(radiance));
+                    }
+                }
+                level.cols = cols;
+                level.rows = rows;
+                level.error = self.level_error(grid, &level);
+                level
+            })
+            .collect();
+    }
+
+    /// Largest vertical distance between the samples and the level's surface.
+    fn level_error(&self, grid: &HeightGrid, level: &PatchLevel) -> f32 {
+        if level.cols.len() == self.cells_x + 1 && level.rows.len() == self.cells_z + 1 {
+            return 0.0;
+        }
+        let m = level.cols.len();
+        let mut error = 0.0f32;
+        for (r, pair_r) in level.rows.windows(2).enumerate() {
+            for (c, pair_c) in level.cols.windows(2).enumerate() {
+                let h = |cc: usize, rr: usize| level.heights[rr * m + cc];
+                let (h00, h10, h01, h11) = (h(c, r), h(c + 1, r), h(c, r + 1), h(c + 1, r + 1));
+                let (w, d) = (
+                    (pair_c[1] - pair_c[0]) as f32,
+                    (pair_r[1] - pair_r[0]) as f32,
+                );
+                for b in pair_r[0]..=pair_r[1] {
+                    for a in pair_c[0]..=pair_c[1] {
+                        let fx = (a - pair_c[0]) as f32 / w;
+                        let fz = (b - pair_r[0]) as f32 / d;
+                        // Same diagonal as the triangles: (c, r) to (c + 1, r + 1).
+                        let surface = if fx >= fz {
+                            h00 + (h10 - h00) * fx + (h11 - h10) * fz
+                        } else {
+                            h00 + (h01 - h00) * fz + (h11 - h01) * fx
+                        };
+                        error = error.max((grid.height(self.i0 + a, self.j0 + b) - surface).abs());
+                    }
+                }
+            }
+        }
+        error
+    }
+}
+
+/// Sample steps of the levels of detail of a patch: 1, 2, 4 ... `patch_cells`.
+fn level_steps(patch_cells: usize) -> impl Iterator<Item = usize> {
+    (0..=patch_cells.trailing_zeros()).map(|l| 1 << l)
+}
+
+/// Offsets `0, step, 2 step, ...` below `cells`, then `cells` itself.
+fn offsets(cells: usize, step: usize) -> Vec<usize> {
+    let mut v: Vec<usize> = (0..cells).step_by(step).collect();
+    v.push(cells);
+    v
+}
+
+/// Triangles of an `m` x `n` vertex grid (row-major), counter-clockwise seen
+/// from +Y, split along the `(c, r)`-`(c + 1, r + 1)` diagonal like [`HeightGrid`].
+fn grid_triangles(m: usize, n: usize) -> Vec<[u32; 3]> {
+    let mut tris = Vec::with_capacity(2 * (m - 1) * (n - 1));
+    for r in 0..n - 1 {
+        for c in 0..m - 1 {
+            let a = (r * m + c) as u32;
+            let b = a + 1;
+            let cc = a + m as u32;
+            let d = cc + 1;
+            tris.push([a, d, b]);
+            tris.push([a, cc, d]);
+        }
+    }
+    tris
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offsets_end_on_the_border() {
+        assert_eq!(offsets(8, 4), vec![0, 4, 8]);
+        assert_eq!(offsets(5, 4), vec![0, 4, 5]);
+        assert_eq!(offsets(3, 8), vec![0, 3]);
+        assert_eq!(level_steps(8).collect::<Vec<_>>(), vec![1, 2, 4, 8]);
+    }
+
+    #[test]
+    fn grid_triangles_face_up() {
+        let tris = grid_triangles(3, 2);
+        assert_eq!(tris.len(), 4);
+        let pos = |v: u32| Vec3::new((v % 3) as f32, 0.0, (v / 3) as f32);
+        for t in tris {
+            let n = (pos(t[1]) - pos(t[0])).cross(pos(t[2]) - pos(t[0]));
+            assert!(n.y > 0.0);
+        }
+    }
+}

@@ -1,0 +1,242 @@
+//! Per-sample light visibility of a height grid: sky-view factor (horizon
+//! ambient occlusion) and soft sun shadows, recomputed only in dirty windows.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::geom::{GridRect, HeightGrid};
+
+/// Horizon distances (in samples) probed by the sky-view factor, roughly geometric.
+const SKY_STEPS: [usize; 10] = [1, 2, 3, 4, 6, 8, 11, 15, 20, 27];
+/// The eight probe directions of the sky-view factor.
+const SKY_DIRS: [(isize, isize); 8] = [
+    (1, 0),
+    (1, 1),
+    (0, 1),
+    (-1, 1),
+    (-1, 0),
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+];
+/// Half-width of the shadow penumbra, as the tangent of an angle (about 3 degrees).
+const PENUMBRA: f32 = 0.05;
+
+/// Sky and sun visibility of every sample.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct TerrainLight {
+    /// Sky-view factor per sample, `1 - mean(sin(horizon elevation))`.
+    pub sky_view: Vec<f32>,
+    /// Sun visibility per sample, 0 (shadow) to 1 (lit).
+    pub sun_visible: Vec<f32>,
+    /// Highest height seen so far (shadow rays stop above it).
+    pub max_height: f32,
+    /// Lowest height seen so far (bounds how far a shadow can fall).
+    pub min_height: f32,
+}
+
+/// How far the light probes reach, in samples.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LightReach {
+    /// Sky-view probe radius.
+    pub sky: usize,
+    /// Shadow ray length.
+    pub shadow: usize,
+}
+
+impl TerrainLight {
+    /// Light for a grid of `n` samples, all lit, to be filled by [`TerrainLight::recompute`].
+    pub fn new(grid: &HeightGrid) -> TerrainLight {
+        let n = grid.nx() * grid.nz();
+        let (min_height, max_height) = grid.min_max_in(&grid.full_rect());
+        TerrainLight {
+            sky_view: vec![1.0; n],
+            sun_visible: vec![1.0; n],
+            max_height,
+            min_height,
+        }
+    }
+
+    /// Widens the known height range by the (new) heights of `rect`. The range
+    /// only grows, so it stays conservative for heights that have since changed.
+    pub fn note_heights(&mut self, grid: &HeightGrid, rect: &GridRect) {
+        if rect.is_empty() {
+            return;
+        }
+        let (lo, hi) = grid.min_max_in(rect);
+        self.min_height = self.min_height.min(lo);
+        self.max_height = self.max_height.max(hi);
+    }
+
+    /// The samples whose light may change when heights in `rect` change:
+    /// the sky radius around it and, away from the sun, the longest shadow the
+    /// known height range can cast (at most `reach.shadow`). Call
+    /// [`TerrainLight::note_heights`] for `rect` first.
+    pub fn affected(
+        &self,
+        grid: &HeightGrid,
+        rect: &GridRect,
+        sun_dir: Vec3,
+        reach: LightReach,
+    ) -> GridRect {
+        let r = rect.expand(reach.sky + 1, grid.nx(), grid.nz());
+        let h = Vec3::new(sun_dir.x, 0.0, sun_dir.z).normalize_or_zero();
+        let horizontal = Vec3::new(sun_dir.x, 0.0, sun_dir.z).length();
+        let shadow = if sun_dir.y > 0.0 && horizontal > 1e-6 {
+            // An occluder still dims a sample while its margin is below the
+            // penumbra, so shadows reach as far as the ray's rise beyond it allows.
+            let rise = (sun_dir.y / horizontal - PENUMBRA) * grid.cell_size();
+            if rise > 0.0 {
+                let longest = ((self.max_height - self.min_height) / rise).ceil() as usize + 1;
+                longest.min(reach.shadow)
+            } else {
+                reach.shadow
+            }
+        } else {
+            0
+        };
+        let reach = LightReach { shadow, ..reach };
+        // A sample is shadowed by occluders towards the sun, so changes reach
+        // samples on the far side from the sun.
+        let back_x = (-h.x * reach.shadow as f32).ceil() as isize;
+        let back_z = (-h.z * reach.shadow as f32).ceil() as isize;
+        let shifted = GridRect::new(
+            (rect.i0 as isize + back_x.min(0)).max(0) as usize,
+            (rect.j0 as isize + back_z.min(0)).max(0) as usize,
+            ((rect.i1 as isize + back_x.max(0)).max(0) as usize).min(grid.nx()),
+            ((rect.j1 as isize + back_z.max(0)).max(0) as usize).min(grid.nz()),
+        );
+        r.union(&shifted.expand(1, grid.nx(), grid.nz()))
+    }
+
+    /// Recomputes both terms for the samples of `rect`.
+    pub fn recompute(
+        &mut self,
+        grid: &HeightGrid,
+        rect: &GridRect,
+        sun_dir: Vec3,
+        reach: LightReach,
+    ) {
+        if rect.is_empty() {
+            return;
+        }
+        self.note_heights(grid, rect);
+        let nx = grid.nx();
+        let max_height = self.max_height;
+        self.sky_view
+            .par_chunks_mut(nx)
+            .zip(self.sun_visible.par_chunks_mut(nx))
+            .enumerate()
+            .filter(|(j, _)| *j >= rect.j0 && *j < rect.j1)
+            .for_each(|(j, (sky_row, sun_row))| {
+                for i in rect.i0..rect.i1 {
+                    sky_row[i] = sky_view(grid, i, j, reach.sky);
+                    sun_row[i] = sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow);
+                }
+            });
+    }
+}
+
+/// Sky-view factor of sample `(i, j)` over horizons within `radius` samples.
+pub(crate) fn sky_view(grid: &HeightGrid, i: usize, j: usize, radius: usize) -> f32 {
+    let h0 = grid.height(i, j);
+    let cell = grid.cell_size();
+    let (nx, nz) = (grid.nx() as isize, grid.nz() as isize);
+    let mut sum = 0.0;
+    for (di, dj) in SKY_DIRS {
+        let unit = cell * ((di * di + dj * dj) as f32).sqrt();
+        let mut max_tan = 0.0f32;
+        for &k in SKY_STEPS.iter().take_while(|&&k| k <= radius) {
+            let (si, sj) = (i as isize + di * k as isize, j as isize + dj * k as isize);
+            if si < 0 || sj < 0 || si >= nx || sj >= nz {
+                break;
+            }
+            let t = (grid.height(si as usize, sj as usize) - h0) / (unit * k as f32);
+            max_tan = max_tan.max(t);
+        }
+        sum += max_tan / (1.0 + max_tan * max_tan).sqrt();
+    }
+    1.0 - sum / SKY_DIRS.len() as f32
+}
+
+/// Soft sun visibility of sample `(i, j)`: marches towards the sun over at most
+/// `max_steps` samples, stopping once nothing below `max_height` can dim it.
+pub(crate) fn sun_visibility(
+    grid: &HeightGrid,
+    i: usize,
+    j: usize,
+    sun_dir: Vec3,
+    max_height: f32,
+    max_steps: usize,
+) -> f32 {
+    let horizontal = (sun_dir.x * sun_dir.x + sun_dir.z * sun_dir.z).sqrt();
+    if sun_dir.y <= 0.0 {
+        return 0.0;
+    }
+    if horizontal < 1e-6 {
+        return 1.0;
+    }
+    let (dx, dz) = (sun_dir.x / horizontal, sun_dir.z / horizontal);
+    let rise = sun_dir.y / horizontal * grid.cell_size();
+    let h0 = grid.height(i, j);
+    let (mx, mz) = ((grid.nx() - 1) as f32, (grid.nz() - 1) as f32);
+    let mut min_margin = f32::INFINITY;
+    for k in 1..=max_steps {
+        let ray = h0 + rise * k as f32;
+        // Past this point every margin is at least the penumbra: the result is
+        // settled, whatever (conservative) `max_height` was given.
+        if ray - max_height >= PENUMBRA * k as f32 * grid.cell_size() {
+            break;
+        }
+        let (u, v) = (i as f32 + dx * k as f32, j as f32 + dz * k as f32);
+        if !(u >= 0.0 && v >= 0.0 && u <= mx && v <= mz) {
+            break;
+        }
+        let ground = bilinear(grid, u, v);
+        min_margin = min_margin.min((ray - ground) / (k as f32 * grid.cell_size()));
+    }
+    (0.5 + 0.5 * min_margin / PENUMBRA).clamp(0.0, 1.0)
+}
+
+/// Bilinear height at grid coordinates `(u, v)` inside the grid.
+#[inline]
+fn bilinear(grid: &HeightGrid, u: f32, v: f32) -> f32 {
+    let i = (u as usize).min(grid.nx() - 2);
+    let j = (v as usize).min(grid.nz() - 2);
+    let (fx, fz) = (u - i as f32, v - j as f32);
+    let a = grid.height(i, j) + (grid.height(i + 1, j) - grid.height(i, j)) * fx;
+    let b = grid.height(i, j + 1) + (grid.height(i + 1, j + 1) - grid.height(i, j + 1)) * fx;
+    a + (b - a) * fz
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec2;
+
+    fn pit() -> HeightGrid {
+        HeightGrid::from_fn(Vec2::ZERO, 0.02, 64, 64, |x, z| {
+            let d = ((x - 0.64).powi(2) + (z - 0.64).powi(2)).sqrt();
+            if d < 0.08 { -0.04 } else { 0.0 }
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn a_pit_sees_less_sky_than_flat_ground() {
+        let g = pit();
+        assert!((sky_view(&g, 5, 5, 15) - 1.0).abs() < 1e-6);
+        assert!(sky_view(&g, 32, 32, 15) < 0.8);
+    }
+
+    #[test]
+    fn the_sunward_wall_shades_the_pit_floor() {
+        let g = pit();
+        let sun = Vec3::new(0.0, 0.45, -1.0).normalize();
+        assert_eq!(sun_visibility(&g, 5, 5, sun, 0.0, 64), 1.0);
+        // Near the wall on the sun side (smaller z) the floor is in shadow.
+        assert!(sun_visibility(&g, 32, 30, sun, 0.0, 64) < 0.2);
+        // Far from that wall it is lit again.
+        assert!(sun_visibility(&g, 32, 35, sun, 0.0, 64) > 0.8);
+    }
+}
