@@ -14,3 +14,4 @@ pub mod progress;
 pub mod scene;
 pub mod scene_source;
 pub mod sim;
+pub mod view;

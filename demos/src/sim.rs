@@ -5,16 +5,20 @@
 //! character per step, the rendered [`Frame`]s and the end of every step.
 //! [`run`] returns a [`RunSummary`].
 //!
-//! The body of [`run`] here is the minimal stand-in: it advances simulated
-//! time step by step, reports the end of each step, and nothing else (no
-//! records, no frames, no hash). The full simulation replaces this body and
-//! keeps the signature.
+//! [`run`] builds the world from the scene (`Scene::build_sim`), steps the
+//! pipeline of `softwalk_systems::sim`, and draws frames with a [`SceneView`].
 
-use glam::Vec3;
+use engine::ecs::World;
+use engine::geom::HeightGrid;
+use glam::{Vec2, Vec3, Vec3Swizzles};
+use image::RgbaImage;
 use serde::Serialize;
+use softwalk_systems::sim::{SystemTimings, TerrainVolume, WalkerMetrics, world_hash};
+use softwalk_systems::terrain::Heightfield;
 use thiserror::Error;
 
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneError};
+use crate::view::{SceneView, ViewError};
 
 /// An error raised by an observer (an output writer); it stops the run.
 pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
@@ -102,19 +106,24 @@ pub struct StepRecord {
     pub terrain_volume: f64,
 }
 
-/// A rendered frame: RGBA8 pixels, row-major, top row first.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A rendered frame.
+#[derive(Debug, Clone, Copy)]
 pub struct Frame<'a> {
     /// Step the frame shows, from 0.
     pub step: u64,
     /// Simulated time of the frame, seconds.
     pub t: f64,
-    /// Width, pixels.
-    pub width: u32,
-    /// Height, pixels.
-    pub height: u32,
-    /// `width * height * 4` bytes.
-    pub rgba: &'a [u8],
+    /// The pixels (opaque RGBA).
+    pub image: &'a RgbaImage,
+}
+
+/// Which terrain a [`RunObserver::on_terrain`] call shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TerrainMoment {
+    /// Before the first step.
+    Initial,
+    /// After the last step.
+    Final,
 }
 
 /// Receives what a run produces, in order: for each step, its records (one per
@@ -128,6 +137,11 @@ pub trait RunObserver: Send {
 
     /// A rendered frame.
     fn on_frame(&mut self, _frame: &Frame<'_>) -> Result<(), ObserverError> {
+        Ok(())
+    }
+
+    /// The terrain heights before the first step and after the last.
+    fn on_terrain(&mut self, _moment: TerrainMoment, _grid: &HeightGrid) -> Result<(), ObserverError> {
         Ok(())
     }
 
@@ -150,6 +164,10 @@ impl RunObserver for Observers<'_> {
 
     fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
         self.0.iter_mut().try_for_each(|o| o.on_frame(frame))
+    }
+
+    fn on_terrain(&mut self, moment: TerrainMoment, grid: &HeightGrid) -> Result<(), ObserverError> {
+        self.0.iter_mut().try_for_each(|o| o.on_terrain(moment, grid))
     }
 
     fn on_step_end(&mut self, step: u64, t: f64) -> Result<(), ObserverError> {
@@ -199,30 +217,150 @@ pub enum SimError {
     #[error("writing the run's output failed")]
     Observer(#[source] ObserverError),
     /// The scene could not be turned into a world.
-    #[error("cannot set up the scene: {0}")]
-    Setup(String),
+    #[error("cannot set up the scene")]
+    Setup(#[source] SceneError),
+    /// A step of the simulation failed.
+    #[error("the simulation failed")]
+    Step(#[source] softwalk_systems::sim::SimError),
+    /// A frame could not be drawn.
+    #[error("rendering failed")]
+    View(#[source] ViewError),
 }
 
-/// Runs `scene` for `options.steps` fixed steps, reporting to `observer`.
-///
-/// Minimal stand-in: advances simulated time and calls
-/// [`RunObserver::on_step_end`] once per step; nothing else is simulated.
+/// Runs `scene` for `options.steps` fixed steps, reporting to `observer`:
+/// every step's records (one per character, scene order), a frame every
+/// `render_every` steps when rendering, the terrain before and after, and the
+/// end of each step. Rendering reads the world and never changes it, so a run
+/// with frames and one without end in the same world (same hash).
 pub fn run(
     scene: &Scene,
     options: &RunOptions,
     observer: &mut dyn RunObserver,
 ) -> Result<RunSummary, SimError> {
-    let _ = scene;
+    let (mut app, walkers) = scene.build_sim().map_err(SimError::Setup)?;
+    let initial = terrain_grid(&app.world);
+    observer.on_terrain(TerrainMoment::Initial, &initial).map_err(SimError::Observer)?;
+    let mut view = match options.render {
+        true => Some(
+            SceneView::new(scene, &app.world, &walkers, options.width, options.height, options.threads)
+                .map_err(SimError::View)?,
+        ),
+        false => None,
+    };
+    let mut prints = PrintTracker::new(walkers.len());
+    let mut last_frame_t = 0.0;
     for step in 0..options.steps {
-        observer
-            .on_step_end(step, options.time_after(step))
-            .map_err(SimError::Observer)?;
+        softwalk_systems::sim::step(&mut app).map_err(SimError::Step)?;
+        let t = options.time_after(step);
+        let volume = app.world.resource::<TerrainVolume>().0;
+        for (character, &entity) in walkers.iter().enumerate() {
+            let Ok(m) = app.world.get::<WalkerMetrics>(entity) else { continue };
+            prints.observe(character, &m);
+            observer.on_step(&StepRecord::new(step, t, character, &m, volume)).map_err(SimError::Observer)?;
+        }
+        if let Some(view) = view.as_mut()
+            && options.renders_step(step)
+        {
+            let image = view.render(&app.world, (t - last_frame_t) as f32).map_err(SimError::View)?;
+            last_frame_t = t;
+            observer.on_frame(&Frame { step, t, image: &image }).map_err(SimError::Observer)?;
+        }
+        observer.on_step_end(step, t).map_err(SimError::Observer)?;
     }
+    let last = terrain_grid(&app.world);
+    observer.on_terrain(TerrainMoment::Final, &last).map_err(SimError::Observer)?;
+    let timings = app
+        .world
+        .get_resource::<SystemTimings>()
+        .map(|t| t.means().into_iter().map(|(name, mean_ns)| SystemTiming { name: name.to_string(), mean_ns }).collect())
+        .unwrap_or_default();
     Ok(RunSummary {
         steps: options.steps,
         sim_seconds: options.steps as f64 * options.dt,
-        ..RunSummary::default()
+        world_hash: options.hash.then(|| world_hash(&app.world)),
+        print_depth: prints.depths(&initial, &last),
+        timings,
     })
+}
+
+/// A copy of the terrain's heights.
+fn terrain_grid(world: &World) -> HeightGrid {
+    let mut terrains = world.query::<&Heightfield>();
+    terrains.iter().next().map(|t| t.grid().clone()).expect("build_sim always adds a terrain")
+}
+
+impl StepRecord {
+    /// The row of one character's metrics after step `step`.
+    pub fn new(step: u64, t: f64, character: usize, m: &WalkerMetrics, terrain_volume: f64) -> StepRecord {
+        let c = &m.character;
+        StepRecord {
+            step,
+            t,
+            character,
+            com: c.com,
+            tilt: c.tilt,
+            tilt_rate: c.tilt_rate,
+            torque: c.torque,
+            pelvis_y: c.pelvis_y,
+            feet: c.feet,
+            contacts: c.contact,
+            target_y: c.ik_target_y,
+            platform_y: m.platform_y,
+            knee: c.knee_flexion,
+            grass_height: m.grass_height,
+            terrain_volume,
+        }
+    }
+}
+
+/// Where each character's feet lifted off (the prints they left), to measure print depths at the end.
+struct PrintTracker {
+    contact: Vec<[bool; 2]>,
+    prints: Vec<Vec<Vec3>>,
+}
+
+/// Radius around a print's centre searched for its floor, metres.
+const PRINT_RADIUS: f32 = 0.06;
+
+impl PrintTracker {
+    fn new(characters: usize) -> Self {
+        PrintTracker { contact: vec![[false; 2]; characters], prints: vec![Vec::new(); characters] }
+    }
+
+    fn observe(&mut self, character: usize, m: &WalkerMetrics) {
+        for k in 0..2 {
+            let now = m.character.contact[k];
+            if self.contact[character][k] && !now {
+                self.prints[character].push(m.character.feet[k]);
+            }
+            self.contact[character][k] = now;
+        }
+    }
+
+    /// Depth of each print: the height there before the run minus the lowest height near it after.
+    fn depths(&self, before: &HeightGrid, after: &HeightGrid) -> Vec<DepthStats> {
+        self.prints
+            .iter()
+            .map(|prints| {
+                let depths: Vec<f32> = prints
+                    .iter()
+                    .filter_map(|p| {
+                        let rect = after.rect_covering(p.xz() - Vec2::splat(PRINT_RADIUS), p.xz() + Vec2::splat(PRINT_RADIUS));
+                        if rect.is_empty() {
+                            return None;
+                        }
+                        let (floor, _) = after.min_max_in(&rect);
+                        Some((before.height_at(p.x, p.z)? - floor).max(0.0))
+                    })
+                    .collect();
+                DepthStats {
+                    prints: depths.len() as u32,
+                    mean_m: if depths.is_empty() { 0.0 } else { depths.iter().sum::<f32>() / depths.len() as f32 },
+                    max_m: depths.iter().copied().fold(0.0, f32::max),
+                }
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]

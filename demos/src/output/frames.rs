@@ -2,13 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use engine::io::write_bytes_atomic;
-use image::ImageEncoder;
-use image::codecs::png::PngEncoder;
+use engine::render::save_png;
 
 use crate::sim::{Frame, ObserverError, RunObserver};
 
-/// Writes every frame to `DIR/frame_NNNNNN.png` (NNNNNN = step).
+/// Writes every frame to `DIR/frame_NNNNNN.png` (NNNNNN = step), each file whole or not at all.
 #[derive(Debug, Clone)]
 pub struct FrameWriter {
     dir: PathBuf,
@@ -18,10 +16,7 @@ pub struct FrameWriter {
 impl FrameWriter {
     /// Frames go to `dir`, which must exist.
     pub fn new(dir: &Path) -> FrameWriter {
-        FrameWriter {
-            dir: dir.to_path_buf(),
-            written: 0,
-        }
+        FrameWriter { dir: dir.to_path_buf(), written: 0 }
     }
 
     /// Frames written so far.
@@ -33,36 +28,13 @@ impl FrameWriter {
     pub fn frame_path(&self, step: u64) -> PathBuf {
         self.dir.join(format!("frame_{step:06}.png"))
     }
-
-    /// Encodes and writes one frame.
-    pub fn write(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
-        let expected = frame.width as usize * frame.height as usize * 4;
-        if frame.rgba.len() != expected {
-            return Err(format!(
-                "frame of step {} has {} bytes, expected {expected} for {} x {} RGBA",
-                frame.step,
-                frame.rgba.len(),
-                frame.width,
-                frame.height
-            )
-            .into());
-        }
-        let mut png = Vec::new();
-        PngEncoder::new(&mut png).write_image(
-            frame.rgba,
-            frame.width,
-            frame.height,
-            image::ExtendedColorType::Rgba8,
-        )?;
-        write_bytes_atomic(&self.frame_path(frame.step), &png)?;
-        self.written += 1;
-        Ok(())
-    }
 }
 
 impl RunObserver for FrameWriter {
     fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
-        self.write(frame)
+        save_png(&self.frame_path(frame.step), frame.image)?;
+        self.written += 1;
+        Ok(())
     }
 }
 
@@ -71,30 +43,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn frames_round_trip_and_bad_sizes_are_refused() {
+    fn frames_round_trip() {
         let dir = tempfile::tempdir().unwrap();
         let mut w = FrameWriter::new(dir.path());
-        let rgba: Vec<u8> = (0..4 * 3 * 2).map(|k| k as u8 * 10).collect();
-        let frame = Frame {
-            step: 7,
-            t: 0.1,
-            width: 3,
-            height: 2,
-            rgba: &rgba,
-        };
-        w.write(&frame).unwrap();
-        let img = image::open(w.frame_path(7)).unwrap().into_rgba8();
-        assert_eq!(img.as_raw(), &rgba);
-        let short = Frame {
-            rgba: &rgba[1..],
-            ..frame
-        };
-        assert!(
-            w.write(&short)
-                .unwrap_err()
-                .to_string()
-                .contains("expected 24")
-        );
+        let image = image::RgbaImage::from_fn(3, 2, |x, y| image::Rgba([x as u8 * 40, y as u8 * 90, 7, 255]));
+        w.on_frame(&Frame { step: 7, t: 0.1, image: &image }).unwrap();
+        let back = image::open(w.frame_path(7)).unwrap().into_rgba8();
+        assert_eq!(back, image);
         assert_eq!(w.written(), 1);
     }
 }

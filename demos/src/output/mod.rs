@@ -1,14 +1,21 @@
-//! Output writers: `metrics.csv`, `summary.json`, frame PNGs and the printed summary.
-//! Every file is written whole or not at all.
+//! Output writers: `metrics.csv`, `summary.json`, frame PNGs, animations, the
+//! contact sheet, plots, heightmaps and the printed summary. Every file is
+//! written whole or not at all.
 
+mod animation;
 mod character_stats;
 mod frames;
+mod heightmaps;
 mod metrics_csv;
+mod plots;
 mod run_report;
 mod text_summary;
 
+pub use animation::{AnimationWriter, ContactSheet};
 pub use character_stats::{CharacterStats, StatsCollector};
 pub use frames::FrameWriter;
+pub use heightmaps::HeightmapWriter;
 pub use metrics_csv::{METRICS_HEADER, MetricsCsv};
+pub use plots::PlotCollector;
 pub use run_report::{CharacterReport, RunReport, TerrainReport, TimingReport, write_summary_json};
 pub use text_summary::text_summary;
