@@ -97,6 +97,11 @@ fn tilt_follows_the_slope_only_with_the_controller() {
         with[0] < 0.0 && with[4] > 0.0,
         "downhill back, uphill forward: {with:?}"
     );
+    let visible = 5.0f32.to_radians();
+    assert!(
+        with[0] < -visible && with[4] > visible,
+        "the lean at ±20° is not visible (5° or more): {with:?}"
+    );
     let spread_with = with[4] - with[0];
     let spread_without = peak_to_peak(&without);
     assert!(

@@ -43,8 +43,8 @@ mod skeleton;
 mod step;
 
 pub use balance::{
-    Balance, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, RigidProxy, animated_com,
-    balance_stage,
+    Balance, DEFAULT_LEAN_STIFFNESS, DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING,
+    DEFAULT_POSTURE_STIFFNESS, RigidProxy, animated_com, balance_stage,
 };
 pub use body::CharacterBody;
 pub use desc::CharacterDesc;
