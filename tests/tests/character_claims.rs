@@ -17,9 +17,9 @@ fn ramp(degrees: f32) -> HeightGrid {
     HeightGrid::from_fn(Vec2::new(-3.0, -3.0), 0.05, 121, 361, |_, z| grade * z).unwrap()
 }
 
-/// Gentle bumps of a few centimetres over a 12 x 12 m patch.
+/// Gentle bumps of a few centimetres over a 14 x 14 m patch.
 fn bumpy() -> HeightGrid {
-    HeightGrid::from_fn(Vec2::new(-6.0, -6.0), 0.05, 241, 241, |x, z| {
+    HeightGrid::from_fn(Vec2::new(-7.0, -7.0), 0.05, 281, 281, |x, z| {
         0.04 * (1.7 * x).sin() * (1.3 * z).cos() + 0.02 * (3.1 * x + 2.3 * z).sin()
     })
     .unwrap()
@@ -97,6 +97,11 @@ fn tilt_follows_the_slope_only_with_the_controller() {
         with[0] < 0.0 && with[4] > 0.0,
         "downhill back, uphill forward: {with:?}"
     );
+    let visible = 5.0f32.to_radians();
+    assert!(
+        with[0] < -visible && with[4] > visible,
+        "the lean at ±20° is not visible (5° or more): {with:?}"
+    );
     let spread_with = with[4] - with[0];
     let spread_without = peak_to_peak(&without);
     assert!(
@@ -128,21 +133,32 @@ fn a_higher_com_tilts_and_oscillates_more() {
     }
 }
 
-/// Largest horizontal drift of a planted sole centre over any stance, and the
-/// largest gap between a planted sole and the ground under it.
+/// A sole point counts as touching the ground within this height, metres.
+const TOUCHING: f32 = 0.005;
+
+/// Largest horizontal drift of a sole point (heel or toe) while it touches the
+/// ground during one stance, and the largest gap between a planted sole's
+/// lowest point and the ground under it. The foot rolls (heel strike, heel
+/// rise), so the part that touches changes; each touching part must stay put.
 fn stance_errors(metrics: &[CharacterMetrics], ground: &HeightGrid) -> (f32, f32) {
     let (mut drift, mut gap) = (0.0f32, 0.0f32);
+    let height = |p: Vec3| ground.height_at(p.x, p.z).unwrap();
     for k in 0..2 {
-        let mut anchor: Option<Vec3> = None;
+        let mut anchors: [Option<Vec3>; 2] = [None; 2];
         for m in metrics {
             if !m.contact[k] {
-                anchor = None;
+                anchors = [None; 2];
                 continue;
             }
-            let p = m.feet[k];
-            let a = *anchor.get_or_insert(p);
-            drift = drift.max(Vec2::new(p.x - a.x, p.z - a.z).length());
-            gap = gap.max((p.y - ground.height_at(p.x, p.z).unwrap()).abs());
+            let lowest = m.feet[k];
+            gap = gap.max((lowest.y - height(lowest)).abs());
+            for (anchor, p) in anchors.iter_mut().zip([m.soles[k].heel, m.soles[k].toe]) {
+                if (p.y - height(p)).abs() > TOUCHING {
+                    continue;
+                }
+                let a = *anchor.get_or_insert(p);
+                drift = drift.max(Vec2::new(p.x - a.x, p.z - a.z).length());
+            }
         }
     }
     (drift, gap)

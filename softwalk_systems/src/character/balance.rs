@@ -4,8 +4,9 @@
 //! Model (forward lean `theta` > 0 when leaning towards the walking direction):
 //!
 //! ```text
-//! I * theta'' = alpha * e + beta * theta' - k * theta - c * theta'
+//! I * theta'' = alpha * e + beta * theta' - k * (theta - theta_lean) - c * theta'
 //! e = (p_com - p_target) . u
+//! theta_lean = alpha * e_slow / k_lean      (controller on; 0 when off)
 //! ```
 //!
 //! - the motion plane passes through the COM and is spanned by gravity and the
@@ -21,6 +22,12 @@
 //! - `k` (posture stiffness) and `c` (passive damping, larger than any allowed
 //!   beta) are the body's own passive terms: `beta` feeds the swing, the net
 //!   damping `c - beta` stays positive and falls as beta rises;
+//! - `theta_lean` is the sustained lean the controller asks of the posture:
+//!   `e_slow` is `e` low-passed over about a step (time constant
+//!   `lean_time_constant`), so the step-frequency swing of `e` barely reaches
+//!   it while a slope's steady offset does. The steady lean is
+//!   `alpha e (1/k + 1/k_lean)`: a soft stiffness for the slow lean, the stiff
+//!   `k` (natural frequency above the step frequency) for the swing;
 //! - `I` is the proxy's pitch inertia about the ground: the body's inertia
 //!   scaled to the proxy mass plus `m_proxy * h_com²`, so a higher COM gives a
 //!   larger inertia, a lower natural frequency and a lower damping ratio.
@@ -45,6 +52,11 @@ pub struct Balance {
     pub posture_stiffness: f32,
     /// Passive damping c, N·m·s/rad; beta must stay below it.
     pub passive_damping: f32,
+    /// Stiffness k_lean of the sustained lean, N·m/rad: the posture leans by
+    /// `alpha * e_slow / k_lean` on top of the fast response (0: no sustained lean).
+    pub lean_stiffness: f32,
+    /// Time constant of the low-pass giving `e_slow`, seconds.
+    pub lean_time_constant: f32,
 }
 
 /// Default posture stiffness, N·m/rad: keeps every morphology's natural
@@ -52,6 +64,10 @@ pub struct Balance {
 pub const DEFAULT_POSTURE_STIFFNESS: f32 = 300.0;
 /// Default passive damping, N·m·s/rad (above the paper's largest beta, 6).
 pub const DEFAULT_PASSIVE_DAMPING: f32 = 12.0;
+/// Default stiffness of the sustained lean, N·m/rad (a visible 7–8° at a 20° slope).
+pub const DEFAULT_LEAN_STIFFNESS: f32 = 100.0;
+/// Default time constant of the slow COM offset, seconds (about one step).
+pub const DEFAULT_LEAN_TIME_CONSTANT: f32 = 0.5;
 
 impl Balance {
     /// The controller with the given gains, enabled, and default passive terms.
@@ -62,6 +78,8 @@ impl Balance {
             enabled: true,
             posture_stiffness: DEFAULT_POSTURE_STIFFNESS,
             passive_damping: DEFAULT_PASSIVE_DAMPING,
+            lean_stiffness: DEFAULT_LEAN_STIFFNESS,
+            lean_time_constant: DEFAULT_LEAN_TIME_CONSTANT,
         };
         b.set_gains(alpha, beta)?;
         Ok(b)
@@ -113,6 +131,8 @@ pub struct RigidProxy {
     pub torque: f32,
     /// Terrain slope along the walking direction under the pelvis, radians (uphill positive).
     pub slope: f32,
+    /// The COM offset `e` low-passed (`e_slow`), metres.
+    pub slow_offset: f32,
     /// Debug collider: capsule radius, m.
     pub capsule_radius: f32,
     /// Debug collider: capsule half height (centre to cap centre), m.
@@ -136,6 +156,7 @@ impl RigidProxy {
             tilt_rate: 0.0,
             torque: 0.0,
             slope: 0.0,
+            slow_offset: 0.0,
             capsule_radius: 0.15 * body.desc.height,
             capsule_half_height: 0.35 * body.desc.height,
         }
@@ -191,8 +212,15 @@ pub fn balance_stage(
     proxy.slope = slope;
     proxy.torque = torque;
     if dt > 0.0 {
+        let follow = 1.0 - (-dt / balance.lean_time_constant.max(dt)).exp();
+        proxy.slow_offset += (offset - proxy.slow_offset) * follow;
+        let lean = if balance.enabled && balance.lean_stiffness > 0.0 {
+            balance.alpha * proxy.slow_offset / balance.lean_stiffness
+        } else {
+            0.0
+        };
         let inertia = proxy.pitch_inertia;
-        let drive = torque - balance.posture_stiffness * proxy.tilt;
+        let drive = torque - balance.posture_stiffness * (proxy.tilt - lean);
         proxy.tilt_rate = (proxy.tilt_rate + dt * drive / inertia)
             / (1.0 + dt * balance.passive_damping / inertia);
         proxy.tilt += dt * proxy.tilt_rate;

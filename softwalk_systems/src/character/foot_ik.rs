@@ -6,14 +6,15 @@ use glam::{Quat, Vec2, Vec3};
 
 use super::balance::RigidProxy;
 use super::body::CharacterBody;
-use super::gait::{Gait, clamp_dt};
+use super::gait::{FootPlan, Gait, clamp_dt, contact_offset};
 use super::ik::solve_two_bone;
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
 use crate::foot::{FootPhase, FootSole, FootState, Side};
 
-/// Foot IK state: the smoothed pelvis drop and last ankle positions.
+/// Foot IK state: the smoothed pelvis drop, the foot roll added for reach,
+/// and last ankle positions.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootIK {
     /// How far the pelvis is lowered below its walking height, metres.
@@ -21,8 +22,16 @@ pub struct FootIK {
     /// Half-life with which the drop relaxes when less is needed, seconds
     /// (more is applied at once, so the feet always reach).
     pub drop_halflife: f32,
+    /// Foot pitch each leg added to its scheduled roll this step so that it
+    /// reaches its foot without lowering the pelvis, radians: negative is
+    /// more heel lift (a trailing leg), positive more toe lift (a leading leg).
+    /// It changes by at most 6 rad/s; the pelvis drop covers the rest.
+    pub extra_pitch: [f32; 2],
     /// Sole-centre target of each foot this step (world).
     pub sole_targets: [Vec3; 2],
+    /// Lowest point of each sole this step (world): the heel while the toe is
+    /// up, the toe while the heel is up, the sole centre when flat.
+    pub contact_points: [Vec3; 2],
     /// Ankle position of each foot last step (world), for velocities.
     pub last_ankles: [Vec3; 2],
 }
@@ -32,7 +41,9 @@ impl Default for FootIK {
         FootIK {
             pelvis_drop: 0.0,
             drop_halflife: 0.1,
+            extra_pitch: [0.0; 2],
             sole_targets: [Vec3::ZERO; 2],
+            contact_points: [Vec3::ZERO; 2],
             last_ankles: [Vec3::ZERO; 2],
         }
     }
@@ -41,46 +52,128 @@ impl Default for FootIK {
 /// How much of the upper body's lean the pelvis takes back (so the whole-body
 /// COM moves less than the trunk): a fraction of the trunk length.
 const PELVIS_COUNTER_SHIFT: f32 = 0.15;
-/// Leg reach kept in reserve when lowering the pelvis.
-const REACH_MARGIN: f32 = 0.995;
+/// Leg reach kept in reserve when lowering the pelvis or lifting a heel.
+const REACH_MARGIN: f32 = 0.999;
+/// The most a heel may be lifted (foot pitch about the toe), radians (about 63°).
+const MAX_HEEL_LIFT: f32 = 1.1;
+/// The most a toe may be lifted (foot pitch about the heel), radians (about 34°).
+const MAX_TOE_LIFT: f32 = 0.6;
+/// Fastest change of the extra foot pitch, rad/s (ankle speeds of real gait).
+const MAX_PITCH_RATE: f32 = 6.0;
+/// Bisection steps when solving the foot pitch a leg needs (resolution below 0.001 rad).
+const PITCH_STEPS: usize = 11;
 
-/// One foot's sole placed on its key: sole centre, frame and ankle target.
+/// One foot's sole placed on its key: sole, frame, ankle target and contact point.
+#[derive(Debug, Clone, Copy)]
 struct FootPlacement {
     sole: FootSole,
     centre: Vec3,
     normal: Vec3,
     ankle: Vec3,
+    lowest: Vec3,
 }
 
-fn place_foot(
-    body: &CharacterBody,
-    key: &GroundKey,
-    at: Vec2,
-    lift: f32,
-    forward: Vec3,
-) -> FootPlacement {
-    let normal = key.normal;
-    let centre = Vec3::new(at.x, key.point.y + lift, at.y);
-    let along = (forward - normal * forward.dot(normal))
-        .try_normalize()
-        .unwrap_or(forward);
-    let ankle_offset = body.ankle_above_sole();
-    let half = 0.5 * body.foot_length;
-    FootPlacement {
-        sole: FootSole {
-            heel: centre - along * half,
-            toe: centre + along * half,
-            width: body.foot_width,
-        },
-        centre,
-        normal,
-        ankle: centre + normal * ankle_offset.y + along * ankle_offset.z,
+/// Where one foot goes this step before its roll: the flat sole on the key.
+#[derive(Debug, Clone, Copy)]
+struct FootFrame {
+    /// Flat sole centre: on the key, raised by the swing lift.
+    centre: Vec3,
+    /// Ground normal of the key.
+    normal: Vec3,
+    /// Unit direction from heel to toe, in the ground's tangent plane.
+    along: Vec3,
+    /// Where along the sole the key was cast (see [`FootPlan::contact_along`]).
+    contact_along: f32,
+}
+
+impl FootFrame {
+    /// The flat sole whose scheduled contact point stands on the key
+    /// (raised by the swing lift), aligned to the key's normal.
+    fn new(key: &GroundKey, plan: &FootPlan) -> Self {
+        let normal = key.normal;
+        let along = sole_direction(plan.heading, normal);
+        let contact = key.point + Vec3::Y * plan.lift;
+        FootFrame {
+            centre: contact - along * plan.contact_along,
+            normal,
+            along,
+            contact_along: plan.contact_along,
+        }
     }
+
+    /// The foot rolled by `pitch` (toe up > 0 about the heel, heel up < 0
+    /// about the toe); the pivot stays where the flat foot has it.
+    fn place(&self, body: &CharacterBody, pitch: f32) -> FootPlacement {
+        let half = 0.5 * body.foot_length;
+        let c = if pitch == 0.0 {
+            self.contact_along
+        } else {
+            contact_offset(pitch, body.foot_length)
+        };
+        let pivot = self.centre + self.along * c;
+        let (sin, cos) = pitch.sin_cos();
+        let along = self.along * cos + self.normal * sin;
+        let normal = self.normal * cos - self.along * sin;
+        let at = |x: f32, y: f32| pivot + along * (x - c) + normal * y;
+        let ankle = body.ankle_above_sole();
+        FootPlacement {
+            sole: FootSole {
+                heel: at(-half, 0.0),
+                toe: at(half, 0.0),
+                width: body.foot_width,
+            },
+            centre: at(0.0, 0.0),
+            normal,
+            ankle: at(ankle.z, ankle.y),
+            lowest: pivot,
+        }
+    }
+
+    /// The pitch nearest `from` on the way to `limit` at which a leg of
+    /// `reach` from `hip` reaches the ankle (`limit` when none does). The
+    /// ankle comes closer to a hip behind the foot as the toe lifts (about
+    /// the heel) and to a hip ahead of it as the heel lifts (about the toe).
+    fn pitch_to_reach(
+        &self,
+        body: &CharacterBody,
+        hip: Vec3,
+        reach: f32,
+        from: f32,
+        limit: f32,
+    ) -> f32 {
+        let reaches = |pitch: f32| self.place(body, pitch).ankle.distance(hip) <= reach;
+        if reaches(from) {
+            return from;
+        }
+        let (mut missing, mut reaching) = (from, limit);
+        for _ in 0..PITCH_STEPS {
+            let mid = 0.5 * (missing + reaching);
+            if reaches(mid) {
+                reaching = mid;
+            } else {
+                missing = mid;
+            }
+        }
+        reaching
+    }
+}
+
+/// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
+/// unit `normal`: the heading projected into the ground's tangent plane.
+pub(crate) fn sole_direction(heading: Vec2, normal: Vec3) -> Vec3 {
+    let heading = Vec3::new(heading.x, 0.0, heading.y);
+    (heading - normal * heading.dot(normal))
+        .try_normalize()
+        .unwrap_or(heading)
 }
 
 /// Stage 5: builds the final pose and returns each foot's state (left first).
 /// A `dt` of 0 (see [`clamp_dt`]) poses without moving the drop spring and
 /// reports zero velocities.
+///
+/// Each foot rolls as the gait schedules it (heel strike about the heel,
+/// heel rise about the toe); a trailing stance leg that still cannot reach
+/// lifts its heel further (up to about 63°) before the pelvis is lowered.
 pub fn foot_ik_stage(
     ik: &mut FootIK,
     pose: &mut Pose,
@@ -93,10 +186,11 @@ pub fn foot_ik_stage(
     let dt = clamp_dt(dt);
     let forward = gait.pelvis.heading3();
     let right = forward.cross(Vec3::Y);
-    let feet = [0, 1].map(|k| {
-        let plan = &gait.feet[k];
-        place_foot(body, &rays.feet[k], plan.target, plan.lift, forward)
-    });
+    let relax = if dt > 0.0 {
+        1.0 - (-dt * std::f32::consts::LN_2 / ik.drop_halflife).exp()
+    } else {
+        0.0
+    };
 
     // Pelvis: walking height over the ground under it, bob, sway, and a small
     // shift back against the trunk's lean.
@@ -110,6 +204,46 @@ pub fn foot_ik_stage(
         pelvis + right * body.hip_half_width,
     ];
     let reach = REACH_MARGIN * body.leg_reach();
+
+    // Feet: the scheduled roll, plus the roll a leg needs to reach its foot
+    // before the pelvis drops: more heel lift behind the hip, more toe lift
+    // ahead of it. A planted foot only rolls further about the point its
+    // scheduled roll already stands on (where its ray was cast), so a flat
+    // planted foot does not rock.
+    let feet = [0, 1].map(|k| {
+        let plan = &gait.feet[k];
+        let frame = FootFrame::new(&rays.feet[k], plan);
+        let trailing = (frame.centre - hips[k]).dot(forward) < 0.0;
+        let swinging = plan.phase != FootPhase::Stance;
+        let pitch = if trailing && (swinging || plan.contact_along > 0.0) {
+            let from = plan.pitch.min(0.0);
+            frame.pitch_to_reach(body, hips[k], reach, from, -MAX_HEEL_LIFT.max(-from))
+        } else if !trailing && (swinging || plan.contact_along < 0.0) {
+            let from = plan.pitch.max(0.0);
+            frame.pitch_to_reach(body, hips[k], reach, from, MAX_TOE_LIFT.max(from))
+        } else {
+            plan.pitch
+        };
+        let wanted = pitch - plan.pitch;
+        let step = if dt > 0.0 {
+            MAX_PITCH_RATE * dt
+        } else {
+            f32::INFINITY
+        };
+        let last = ik.extra_pitch[k];
+        let mut extra = wanted.clamp(last - step, last + step);
+        // A planted foot rolls only about the part its ray stands on.
+        if !swinging {
+            extra = if plan.contact_along > 0.0 {
+                extra.min(0.0)
+            } else {
+                extra.max(0.0)
+            };
+        }
+        ik.extra_pitch[k] = extra;
+        frame.place(body, plan.pitch + ik.extra_pitch[k])
+    });
+
     let needed = (0..2)
         .map(|k| {
             let d = feet[k].ankle - hips[k];
@@ -121,7 +255,6 @@ pub fn foot_ik_stage(
     ik.pelvis_drop = if needed >= ik.pelvis_drop || dt == 0.0 {
         needed
     } else {
-        let relax = 1.0 - (-dt * std::f32::consts::LN_2 / ik.drop_halflife).exp();
         ik.pelvis_drop + (needed - ik.pelvis_drop) * relax
     };
     pelvis.y -= ik.pelvis_drop;
@@ -211,5 +344,6 @@ pub fn foot_ik_stage(
     });
     ik.last_ankles = ankles;
     ik.sole_targets = [feet[0].centre, feet[1].centre];
+    ik.contact_points = [0, 1].map(|k| feet[k].lowest + (soles[k].heel - feet[k].sole.heel));
     states
 }

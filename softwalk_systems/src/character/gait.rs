@@ -13,6 +13,49 @@ use crate::foot::{FootPhase, Side};
 /// The largest time step a stage accepts; longer steps are clamped to it.
 pub const MAX_STEP_DT: f32 = 0.05;
 
+/// Foot pitch at heel strike (toe up, about the heel), radians (about 20°).
+pub const HEEL_STRIKE_PITCH: f32 = 0.35;
+/// Scheduled foot pitch at toe-off (heel up, about the toe), radians (about 34°).
+pub const TOE_OFF_PITCH: f32 = 0.6;
+/// Fraction of the stance by which the foot is flat after heel strike (loading response).
+const FOOT_FLAT_AT: f32 = 0.15;
+/// Fraction of the stance at which the heel starts to rise (terminal stance).
+const HEEL_RISE_AT: f32 = 0.7;
+/// Midstance leg length (hip to ankle) as a fraction of the leg reach: nearly straight (knee flexion about 0.2 rad).
+const MIDSTANCE_LEG: f32 = 0.995;
+/// Time over which the feet roll flat once the walk has stopped, seconds.
+const STOP_SETTLE_TIME: f32 = 0.25;
+
+fn smoothstep(t: f32) -> f32 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// The scheduled foot roll at a foot's own phase `p` (see [`Gait::local_phase`])
+/// for a stance fraction `duty`: pitch in radians, positive with the toe up
+/// (the foot turns about its heel), negative with the heel up (about its toe).
+///
+/// Stance: heel strike at `HEEL_STRIKE_PITCH`, rolling flat by 15 % of the
+/// stance, flat until 70 %, then heel rise to `TOE_OFF_PITCH` at toe-off.
+/// Swing: back to flat at mid-swing, then toe up again for the next strike.
+pub fn scheduled_pitch(p: f32, duty: f32) -> f32 {
+    if p < duty {
+        let s = p / duty;
+        if s < FOOT_FLAT_AT {
+            HEEL_STRIKE_PITCH * (1.0 - smoothstep(s / FOOT_FLAT_AT))
+        } else {
+            -TOE_OFF_PITCH * smoothstep((s - HEEL_RISE_AT) / (1.0 - HEEL_RISE_AT))
+        }
+    } else {
+        let u = (p - duty) / (1.0 - duty);
+        if u < 0.5 {
+            -TOE_OFF_PITCH * (1.0 - smoothstep(2.0 * u))
+        } else {
+            HEEL_STRIKE_PITCH * smoothstep(2.0 * u - 1.0)
+        }
+    }
+}
+
 /// The step duration a stage really uses: `dt` clamped to `[0, MAX_STEP_DT]`,
 /// with NaN and negative values read as 0 (a no-op step).
 pub fn clamp_dt(dt: f32) -> f32 {
@@ -50,6 +93,19 @@ fn sane(value: f32, min: f32, max: f32, neutral: f32) -> f32 {
         value.clamp(min, max)
     } else {
         neutral
+    }
+}
+
+/// Where along the sole (metres from its centre towards the toe) a foot
+/// rolled by `pitch` touches the ground: the heel while the toe is up, the toe
+/// while the heel is up, the centre when flat.
+pub fn contact_offset(pitch: f32, foot_length: f32) -> f32 {
+    if pitch > 0.0 {
+        -0.5 * foot_length
+    } else if pitch < 0.0 {
+        0.5 * foot_length
+    } else {
+        0.0
     }
 }
 
@@ -95,16 +151,15 @@ impl GaitParams {
         }
     }
 
-    /// Hip height above the ground while walking (before bob and IK drop): the
-    /// highest at which a stance leg still reaches the farthest foothold of
-    /// its stance with 2 % of its length to spare.
+    /// Hip height above the ground at midstance, the top of the bob (before
+    /// the IK drop): the stance leg is nearly straight (99.5 % of its reach)
+    /// over a flat foot whose sole centre is under the hip. The ends of the
+    /// stance are reached by the foot roll (heel strike, heel rise), not by
+    /// lowering the whole walk.
     pub fn walking_hip_height(&self, body: &CharacterBody) -> f32 {
-        let reach = 0.98 * body.leg_reach();
-        let along = self.duty * self.stride / 2.0 + 0.25 * body.foot_length;
-        body.ankle_height
-            + (reach * reach - along * along)
-                .max(0.25 * reach * reach)
-                .sqrt()
+        let leg = MIDSTANCE_LEG * body.leg_reach();
+        let behind = body.ankle_above_sole().z;
+        body.ankle_height + (leg * leg - behind * behind).sqrt()
     }
 
     /// Duration of one walk cycle (two steps), seconds.
@@ -128,8 +183,27 @@ pub struct FootPlan {
     pub swing: f32,
     /// Sole centre (x, z) the foot should be at this step.
     pub target: Vec2,
-    /// Height of the sole above the ground key, metres (0 in stance).
+    /// Height of the sole's lowest point above the ground key, metres (0 in stance).
     pub lift: f32,
+    /// Scheduled foot roll, radians: toe up (> 0, about the heel) or heel
+    /// up (< 0, about the toe); see [`scheduled_pitch`].
+    pub pitch: f32,
+    /// Path heading (x, z) where the last stance was.
+    pub from_heading: Vec2,
+    /// Path heading (x, z) at the planned foothold.
+    pub foothold_heading: Vec2,
+    /// Unit direction (x, z) from heel to toe this step: locked in stance
+    /// (so a planted foot does not turn), turning during the swing.
+    pub heading: Vec2,
+    /// Where along the sole the foot's ray is cast, metres from the sole
+    /// centre towards the toe: the part that touches, or will touch, the
+    /// ground. In stance under the heel pad for the first half and under the
+    /// ball for the second (both touch while the foot is flat), in the swing
+    /// under the part [`contact_offset`] picks for the scheduled roll.
+    pub contact_along: f32,
+    /// That point (x, z) on the horizontal heading (the ray is cast where
+    /// the sole, lying along the ground, puts it).
+    pub contact: Vec2,
 }
 
 /// The walk-cycle state of one character.
@@ -155,6 +229,9 @@ pub struct Gait {
     pub velocity: Vec2,
     /// True once the path has ended and both feet are planted.
     pub stopped: bool,
+    /// How much of the scheduled foot roll is applied: 1 while walking,
+    /// falling to 0 over a quarter second once stopped (the feet roll flat).
+    pub roll: f32,
 }
 
 impl Gait {
@@ -174,6 +251,12 @@ impl Gait {
                 swing: 0.0,
                 target: pelvis.position,
                 lift: 0.0,
+                pitch: 0.0,
+                from_heading: pelvis.heading,
+                foothold_heading: pelvis.heading,
+                heading: pelvis.heading,
+                contact_along: 0.0,
+                contact: pelvis.position,
             }),
             pelvis,
             sway: 0.0,
@@ -181,6 +264,7 @@ impl Gait {
             arm_swing: 0.0,
             velocity: Vec2::ZERO,
             stopped: false,
+            roll: 1.0,
         };
         for k in 0..2 {
             let p = gait.local_phase(k);
@@ -192,8 +276,8 @@ impl Gait {
                 last
             };
             let plan = &mut gait.feet[k];
-            plan.from = last;
-            plan.foothold = next;
+            (plan.from, plan.from_heading) = last;
+            (plan.foothold, plan.foothold_heading) = next;
             if p >= duty {
                 plan.phase = FootPhase::SwingUp;
             }
@@ -213,8 +297,15 @@ impl Gait {
         self.feet.iter().all(|f| f.phase == FootPhase::Stance)
     }
 
-    /// The sole-centre foothold of `foot` at `ahead` metres from the current distance.
-    fn foothold_at(&self, body: &CharacterBody, path: &WalkPath, foot: usize, ahead: f32) -> Vec2 {
+    /// The sole-centre foothold of `foot` at `ahead` metres from the current
+    /// distance, and the path heading there.
+    fn foothold_at(
+        &self,
+        body: &CharacterBody,
+        path: &WalkPath,
+        foot: usize,
+        ahead: f32,
+    ) -> (Vec2, Vec2) {
         let mut s = self.distance + ahead;
         if !path.is_looped() {
             s = s.min(path.length());
@@ -222,7 +313,7 @@ impl Gait {
         let p = path.point_at(s);
         let right = Vec2::new(-p.heading.y, p.heading.x);
         let sign = if foot == 0 { -1.0 } else { 1.0 };
-        p.position + right * (sign * body.hip_half_width)
+        (p.position + right * (sign * body.hip_half_width), p.heading)
     }
 
     /// Sets each foot's phase, target and lift from the cycle phase, planning
@@ -241,13 +332,17 @@ impl Gait {
                 let next = self.foothold_at(body, path, k, stride * (1.0 + duty / 2.0 - p));
                 let plan = &mut self.feet[k];
                 plan.from = plan.foothold;
-                plan.foothold = next;
+                plan.from_heading = plan.foothold_heading;
+                (plan.foothold, plan.foothold_heading) = next;
             }
+            let pitch = self.roll * scheduled_pitch(p, duty);
             let plan = &mut self.feet[k];
+            plan.pitch = pitch;
             if in_stance {
                 plan.phase = FootPhase::Stance;
                 plan.swing = 0.0;
                 plan.target = plan.foothold;
+                plan.heading = plan.foothold_heading;
                 plan.lift = 0.0;
             } else {
                 let u = ((p - duty) / (1.0 - duty)).clamp(0.0, 1.0);
@@ -259,8 +354,20 @@ impl Gait {
                 };
                 plan.swing = u;
                 plan.target = plan.from.lerp(plan.foothold, eased);
+                plan.heading = plan
+                    .from_heading
+                    .lerp(plan.foothold_heading, eased)
+                    .try_normalize()
+                    .unwrap_or(plan.foothold_heading);
                 plan.lift = clearance * (PI * u).sin();
             }
+            plan.contact_along = if in_stance {
+                let half = 0.5 * body.foot_length;
+                if p < 0.5 * duty { -half } else { half }
+            } else {
+                contact_offset(plan.pitch, body.foot_length)
+            };
+            plan.contact = plan.target + plan.heading * plan.contact_along;
         }
     }
 
@@ -290,6 +397,10 @@ pub fn gait_stage(
     gait.params = GaitParams::new(body, modifiers);
     if dt == 0.0 || gait.stopped {
         gait.velocity = Vec2::ZERO;
+        if gait.stopped && gait.roll > 0.0 {
+            gait.roll = (gait.roll - dt / STOP_SETTLE_TIME).max(0.0);
+            gait.update_feet(body, path);
+        }
         return;
     }
     let finishing = path.is_finished(gait.distance);

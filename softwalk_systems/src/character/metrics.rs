@@ -7,7 +7,7 @@ use super::body::CharacterBody;
 use super::foot_ik::FootIK;
 use super::pose::Pose;
 use super::skeleton::Joint;
-use crate::foot::FootState;
+use crate::foot::{FootSole, FootState};
 
 /// Measurements of one character after a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -22,8 +22,12 @@ pub struct CharacterMetrics {
     pub torque: f32,
     /// Height of the pelvis (hip centre), metres.
     pub pelvis_y: f32,
-    /// Sole centre of each foot (left first).
+    /// Lowest point of each sole (left first): the heel while the toe is up
+    /// (heel strike), the toe while the heel is up (heel rise, toe-off), the
+    /// sole centre when the foot is flat. In stance it is the point on the ground.
     pub feet: [Vec3; 2],
+    /// Each sole after IK (left first), heel and toe.
+    pub soles: [FootSole; 2],
     /// Whether each foot is planted.
     pub contact: [bool; 2],
     /// Height of each foot's IK target (sole centre: ground key plus swing lift).
@@ -49,7 +53,8 @@ impl CharacterMetrics {
             tilt_rate: proxy.tilt_rate,
             torque: proxy.torque,
             pelvis_y: pose.joint(Joint::Pelvis).y,
-            feet: feet.map(|f| f.sole.center()),
+            feet: ik.contact_points,
+            soles: feet.map(|f| f.sole),
             contact: feet.map(|f| f.contact),
             ik_target_y: ik.sole_targets.map(|t| t.y),
             knee_flexion: pose.knee_flexion(),

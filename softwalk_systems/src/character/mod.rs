@@ -43,14 +43,17 @@ mod skeleton;
 mod step;
 
 pub use balance::{
-    Balance, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, RigidProxy, animated_com,
-    balance_stage,
+    Balance, DEFAULT_LEAN_STIFFNESS, DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING,
+    DEFAULT_POSTURE_STIFFNESS, RigidProxy, animated_com, balance_stage,
 };
 pub use body::CharacterBody;
 pub use desc::CharacterDesc;
 pub use error::CharacterError;
 pub use foot_ik::{FootIK, foot_ik_stage};
-pub use gait::{FootPlan, Gait, GaitModifiers, GaitParams, MAX_STEP_DT, clamp_dt, gait_stage};
+pub use gait::{
+    FootPlan, Gait, GaitModifiers, GaitParams, HEEL_STRIKE_PITCH, MAX_STEP_DT, TOE_OFF_PITCH,
+    clamp_dt, contact_offset, gait_stage, scheduled_pitch,
+};
 pub use ik::{TwoBoneSolution, solve_two_bone};
 pub use mesh::{capsule, character_mesh};
 pub use metrics::CharacterMetrics;

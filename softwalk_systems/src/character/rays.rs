@@ -4,6 +4,7 @@
 use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
+use super::foot_ik::sole_direction;
 use super::gait::Gait;
 use crate::ground::{Ground, GroundHit};
 
@@ -42,7 +43,8 @@ impl GroundKey {
 /// The ground keys of one character: one per foot (left first) and one under the pelvis.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootRays {
-    /// Under each foot's sole centre target: the IK keys.
+    /// Under the point where each sole touches the ground (see
+    /// [`super::FootPlan::contact`]): the IK keys.
     pub feet: [GroundKey; 2],
     /// Under the pelvis: the reference height and slope of the body.
     pub body: GroundKey,
@@ -66,7 +68,11 @@ impl FootRays {
 
     fn cast(&mut self, gait: &Gait, ground: &dyn Ground, from_y: impl Fn(&GroundKey) -> f32) {
         for (key, plan) in self.feet.iter_mut().zip(&gait.feet) {
-            let at = plan.target;
+            // The sole lies along the ground: its contact point is
+            // `contact_along` metres along the slope from the sole centre
+            // (using last step's normal), which is less than that horizontally.
+            let along = sole_direction(plan.heading, key.normal);
+            let at = plan.target + Vec2::new(along.x, along.z) * plan.contact_along;
             key.update(at, ground.cast_down(at.x, at.y, from_y(key)));
         }
         let at = gait.pelvis.position;
