@@ -141,6 +141,9 @@ pub enum CliError {
     /// Printing to standard output failed.
     #[error("cannot print to standard output")]
     Stdout(#[source] std::io::Error),
+    /// An animation, contact sheet or plot could not be written.
+    #[error("writing the outputs failed")]
+    Output(#[source] crate::sim::ObserverError),
 }
 
 /// Runs one parsed command line, printing to `stdout`.

@@ -8,7 +8,8 @@ use super::{scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
 use crate::out_dir::{OutputDirError, prepare_output_dir};
 use crate::output::{
-    FrameWriter, MetricsCsv, RunReport, StatsCollector, text_summary, write_summary_json,
+    AnimationWriter, HeightmapReport, ContactSheet, FrameWriter, HeightmapWriter, MetricsCsv, PlotCollector, RunReport,
+    StatsCollector, text_summary, write_summary_json,
 };
 use crate::progress::Progress;
 use crate::sim::{self, Observers};
@@ -38,13 +39,23 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut metrics = MetricsCsv::create(&dir.join("metrics.csv"), names)?;
     let mut stats = StatsCollector::new(scene.characters.len());
     let mut frames = FrameWriter::new(&frames_dir);
+    let mut plots = PlotCollector::new(scene.characters.iter().map(|c| c.name.clone()).collect());
+    let mut heightmaps = HeightmapWriter::new(&dir);
+    let frame_ms = (options.dt * f64::from(options.render_every) * 1000.0).round() as u32;
+    let render = &scene.render;
+    let gif = (options.render && render.gif).then(|| dir.join("animation.gif"));
+    let apng = (options.render && render.apng).then(|| dir.join("animation.apng"));
+    let mut animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms).map_err(CliError::Output)?;
+    let expected_frames = options.steps.div_ceil(u64::from(options.render_every.max(1)));
+    let mut sheet = ContactSheet::new(expected_frames, 12, render.contact_sheet_columns);
     let mut progress = Progress::new(options.steps);
 
     let start = Instant::now();
     let summary = {
-        let mut observers = Observers(vec![&mut metrics, &mut stats, &mut progress]);
+        let mut observers =
+            Observers(vec![&mut metrics, &mut stats, &mut plots, &mut heightmaps, &mut progress]);
         if options.render {
-            observers.0.push(&mut frames);
+            observers.0.extend([&mut frames as &mut dyn sim::RunObserver, &mut animation, &mut sheet]);
         }
         pool.install(|| sim::run(&scene, &options, &mut observers))
     };
@@ -52,8 +63,20 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let summary = summary?;
     metrics.finish()?;
     let wall = start.elapsed().as_secs_f64();
+    if options.render {
+        animation.finish().map_err(CliError::Output)?;
+        sheet.save(&dir.join("contact_sheet.png")).map_err(CliError::Output)?;
+    }
+    let plots_dir = dir.join("plots");
+    fs::create_dir_all(&plots_dir).map_err(|source| OutputDirError {
+        path: plots_dir.clone(),
+        problem: "cannot be created".into(),
+        source,
+    })?;
+    plots.save(&plots_dir).map_err(CliError::Output)?;
 
-    let report = RunReport::new(&scene, &options, &summary, &stats.stats(), wall);
+    let mut report = RunReport::new(&scene, &options, &summary, &stats.stats(), wall);
+    report.heightmaps = heightmaps.written.iter().map(|(path, info)| HeightmapReport::new(path, info)).collect();
     write_summary_json(&dir.join("summary.json"), &report)?;
     let mut text = text_summary(&report);
     if options.hash && summary.world_hash.is_none() {

@@ -17,5 +17,7 @@ pub use frames::FrameWriter;
 pub use heightmaps::HeightmapWriter;
 pub use metrics_csv::{METRICS_HEADER, MetricsCsv};
 pub use plots::PlotCollector;
-pub use run_report::{CharacterReport, RunReport, TerrainReport, TimingReport, write_summary_json};
+pub use run_report::{
+    CharacterReport, HeightmapReport, RunReport, TerrainReport, TimingReport, write_summary_json,
+};
 pub use text_summary::text_summary;

@@ -70,6 +70,43 @@ pub struct RunReport {
     pub timings: TimingReport,
     /// Hash of the final world as 16 hex digits, when computed.
     pub world_hash: Option<String>,
+    /// The 16-bit heightmaps written (`terrain_initial.png`, `terrain_final.png`) and how to read heights back.
+    pub heightmaps: Vec<HeightmapReport>,
+}
+
+/// How to turn a 16-bit heightmap's values back into heights:
+/// `height = min + value * height_scale`, metres.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HeightmapReport {
+    /// File name.
+    pub file: String,
+    /// Pixels along X and Z.
+    pub width: u32,
+    /// Pixels along Z.
+    pub height: u32,
+    /// Height of value 0, metres.
+    pub min: f32,
+    /// Height of value 65535, metres.
+    pub max: f32,
+    /// Metres per unit of the 16-bit value.
+    pub height_scale: f32,
+    /// Distance between samples, metres.
+    pub cell_size: f32,
+}
+
+impl HeightmapReport {
+    /// The report of a heightmap written to `path`.
+    pub fn new(path: &std::path::Path, info: &engine::asset::HeightmapInfo) -> Self {
+        HeightmapReport {
+            file: path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+            width: info.width,
+            height: info.height,
+            min: info.min,
+            max: info.max,
+            height_scale: info.height_scale(),
+            cell_size: info.cell,
+        }
+    }
 }
 
 impl RunReport {
@@ -123,6 +160,7 @@ impl RunReport {
                 systems: summary.timings.clone(),
             },
             world_hash: summary.world_hash.map(|h| format!("{h:016x}")),
+            heightmaps: Vec::new(),
         }
     }
 }
