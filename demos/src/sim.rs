@@ -141,7 +141,11 @@ pub trait RunObserver: Send {
     }
 
     /// The terrain heights before the first step and after the last.
-    fn on_terrain(&mut self, _moment: TerrainMoment, _grid: &HeightGrid) -> Result<(), ObserverError> {
+    fn on_terrain(
+        &mut self,
+        _moment: TerrainMoment,
+        _grid: &HeightGrid,
+    ) -> Result<(), ObserverError> {
         Ok(())
     }
 
@@ -166,8 +170,14 @@ impl RunObserver for Observers<'_> {
         self.0.iter_mut().try_for_each(|o| o.on_frame(frame))
     }
 
-    fn on_terrain(&mut self, moment: TerrainMoment, grid: &HeightGrid) -> Result<(), ObserverError> {
-        self.0.iter_mut().try_for_each(|o| o.on_terrain(moment, grid))
+    fn on_terrain(
+        &mut self,
+        moment: TerrainMoment,
+        grid: &HeightGrid,
+    ) -> Result<(), ObserverError> {
+        self.0
+            .iter_mut()
+            .try_for_each(|o| o.on_terrain(moment, grid))
     }
 
     fn on_step_end(&mut self, step: u64, t: f64) -> Result<(), ObserverError> {
@@ -239,11 +249,20 @@ pub fn run(
 ) -> Result<RunSummary, SimError> {
     let (mut app, walkers) = scene.build_sim().map_err(SimError::Setup)?;
     let initial = terrain_grid(&app.world);
-    observer.on_terrain(TerrainMoment::Initial, &initial).map_err(SimError::Observer)?;
+    observer
+        .on_terrain(TerrainMoment::Initial, &initial)
+        .map_err(SimError::Observer)?;
     let mut view = match options.render {
         true => Some(
-            SceneView::new(scene, &app.world, &walkers, options.width, options.height, options.threads)
-                .map_err(SimError::View)?,
+            SceneView::new(
+                scene,
+                &app.world,
+                &walkers,
+                options.width,
+                options.height,
+                options.threads,
+            )
+            .map_err(SimError::View)?,
         ),
         false => None,
     };
@@ -254,25 +273,47 @@ pub fn run(
         let t = options.time_after(step);
         let volume = app.world.resource::<TerrainVolume>().0;
         for (character, &entity) in walkers.iter().enumerate() {
-            let Ok(m) = app.world.get::<WalkerMetrics>(entity) else { continue };
+            let Ok(m) = app.world.get::<WalkerMetrics>(entity) else {
+                continue;
+            };
             prints.observe(character, &m);
-            observer.on_step(&StepRecord::new(step, t, character, &m, volume)).map_err(SimError::Observer)?;
+            observer
+                .on_step(&StepRecord::new(step, t, character, &m, volume))
+                .map_err(SimError::Observer)?;
         }
         if let Some(view) = view.as_mut()
             && options.renders_step(step)
         {
-            let image = view.render(&app.world, (t - last_frame_t) as f32).map_err(SimError::View)?;
+            let image = view
+                .render(&app.world, (t - last_frame_t) as f32)
+                .map_err(SimError::View)?;
             last_frame_t = t;
-            observer.on_frame(&Frame { step, t, image: &image }).map_err(SimError::Observer)?;
+            observer
+                .on_frame(&Frame {
+                    step,
+                    t,
+                    image: &image,
+                })
+                .map_err(SimError::Observer)?;
         }
         observer.on_step_end(step, t).map_err(SimError::Observer)?;
     }
     let last = terrain_grid(&app.world);
-    observer.on_terrain(TerrainMoment::Final, &last).map_err(SimError::Observer)?;
+    observer
+        .on_terrain(TerrainMoment::Final, &last)
+        .map_err(SimError::Observer)?;
     let timings = app
         .world
         .get_resource::<SystemTimings>()
-        .map(|t| t.means().into_iter().map(|(name, mean_ns)| SystemTiming { name: name.to_string(), mean_ns }).collect())
+        .map(|t| {
+            t.means()
+                .into_iter()
+                .map(|(name, mean_ns)| SystemTiming {
+                    name: name.to_string(),
+                    mean_ns,
+                })
+                .collect()
+        })
         .unwrap_or_default();
     Ok(RunSummary {
         steps: options.steps,
@@ -286,12 +327,22 @@ pub fn run(
 /// A copy of the terrain's heights.
 fn terrain_grid(world: &World) -> HeightGrid {
     let mut terrains = world.query::<&Heightfield>();
-    terrains.iter().next().map(|t| t.grid().clone()).expect("build_sim always adds a terrain")
+    terrains
+        .iter()
+        .next()
+        .map(|t| t.grid().clone())
+        .expect("build_sim always adds a terrain")
 }
 
 impl StepRecord {
     /// The row of one character's metrics after step `step`.
-    pub fn new(step: u64, t: f64, character: usize, m: &WalkerMetrics, terrain_volume: f64) -> StepRecord {
+    pub fn new(
+        step: u64,
+        t: f64,
+        character: usize,
+        m: &WalkerMetrics,
+        terrain_volume: f64,
+    ) -> StepRecord {
         let c = &m.character;
         StepRecord {
             step,
@@ -324,7 +375,10 @@ const PRINT_RADIUS: f32 = 0.06;
 
 impl PrintTracker {
     fn new(characters: usize) -> Self {
-        PrintTracker { contact: vec![[false; 2]; characters], prints: vec![Vec::new(); characters] }
+        PrintTracker {
+            contact: vec![[false; 2]; characters],
+            prints: vec![Vec::new(); characters],
+        }
     }
 
     fn observe(&mut self, character: usize, m: &WalkerMetrics) {
@@ -345,7 +399,10 @@ impl PrintTracker {
                 let depths: Vec<f32> = prints
                     .iter()
                     .filter_map(|p| {
-                        let rect = after.rect_covering(p.xz() - Vec2::splat(PRINT_RADIUS), p.xz() + Vec2::splat(PRINT_RADIUS));
+                        let rect = after.rect_covering(
+                            p.xz() - Vec2::splat(PRINT_RADIUS),
+                            p.xz() + Vec2::splat(PRINT_RADIUS),
+                        );
                         if rect.is_empty() {
                             return None;
                         }
@@ -355,7 +412,11 @@ impl PrintTracker {
                     .collect();
                 DepthStats {
                     prints: depths.len() as u32,
-                    mean_m: if depths.is_empty() { 0.0 } else { depths.iter().sum::<f32>() / depths.len() as f32 },
+                    mean_m: if depths.is_empty() {
+                        0.0
+                    } else {
+                        depths.iter().sum::<f32>() / depths.len() as f32
+                    },
                     max_m: depths.iter().copied().fold(0.0, f32::max),
                 }
             })

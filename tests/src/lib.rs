@@ -5,7 +5,9 @@ use engine::schedule::App;
 use glam::{Vec2, Vec3};
 use softwalk_systems::character::{CharacterDesc, WalkPath};
 use softwalk_systems::sim::{SimBuilder, WalkerMetrics, run_steps};
-use softwalk_systems::terrain::{GaitResponse, Heightfield, MaterialTable, TerrainMaterial, generate};
+use softwalk_systems::terrain::{
+    GaitResponse, Heightfield, MaterialTable, TerrainMaterial, generate,
+};
 use softwalk_systems::vegetation::{GrassSettings, XzRect};
 
 /// The fixed step of every test scene.
@@ -41,7 +43,13 @@ pub struct TestScene {
 impl TestScene {
     /// Flat ground of `material`, an adult walking along +X.
     pub fn flat(material: &'static str) -> Self {
-        TestScene { material, slope_deg: 0.0, grass: None, body: CharacterDesc::adult(), controller: true }
+        TestScene {
+            material,
+            slope_deg: 0.0,
+            grass: None,
+            body: CharacterDesc::adult(),
+            controller: true,
+        }
     }
 }
 
@@ -50,17 +58,30 @@ pub fn build(scene: &TestScene) -> App {
     let mut table = MaterialTable::with_presets();
     table.add(rigid()).unwrap();
     let id = table.id(scene.material).unwrap();
-    let spec = generate::GridSpec { origin: Vec2::ZERO, cell: 0.02, nx: 451, nz: 151 };
+    let spec = generate::GridSpec {
+        origin: Vec2::ZERO,
+        cell: 0.02,
+        nx: 451,
+        nz: 151,
+    };
     let grid = generate::slope(spec, 1.0, scene.slope_deg, Vec2::X).unwrap();
     let mut sim = SimBuilder::new(DT).unwrap();
-    sim.terrain(Heightfield::from_grid(grid, table, id).unwrap()).unwrap();
+    sim.terrain(Heightfield::from_grid(grid, table, id).unwrap())
+        .unwrap();
     if let Some(settings) = scene.grass {
-        sim.grass(XzRect::new(Vec2::new(0.0, 0.8), Vec2::new(9.0, 2.2)), settings).unwrap();
+        sim.grass(
+            XzRect::new(Vec2::new(0.0, 0.8), Vec2::new(9.0, 2.2)),
+            settings,
+        )
+        .unwrap();
     }
     let path = WalkPath::straight(Vec3::new(1.0, 0.0, 1.5), Vec3::X, 6.0).unwrap();
     let walker = sim.character("walker", scene.body, path).unwrap();
     let app = sim.build().unwrap();
-    app.world.get_mut::<softwalk_systems::character::Balance>(walker).unwrap().enabled = scene.controller;
+    app.world
+        .get_mut::<softwalk_systems::character::Balance>(walker)
+        .unwrap()
+        .enabled = scene.controller;
     app
 }
 
@@ -77,7 +98,9 @@ pub fn walk(app: &mut App, steps: usize) -> Vec<WalkerMetrics> {
 
 /// Mean of a series.
 pub fn mean(xs: impl IntoIterator<Item = f32>) -> f32 {
-    let (sum, n) = xs.into_iter().fold((0.0f64, 0usize), |(s, n), x| (s + f64::from(x), n + 1));
+    let (sum, n) = xs
+        .into_iter()
+        .fold((0.0f64, 0usize), |(s, n), x| (s + f64::from(x), n + 1));
     (sum / n.max(1) as f64) as f32
 }
 

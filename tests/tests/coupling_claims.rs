@@ -14,13 +14,28 @@ fn snow_lowers_the_pelvis_and_bends_the_knees_more_than_rigid_ground() {
         walk(&mut app, STEPS)
     };
     let (snow, rigid) = (run("snow"), run("rigid"));
-    let pelvis = |m: &[softwalk_systems::sim::WalkerMetrics]| mean(m[SETTLE..].iter().map(|s| s.character.pelvis_y));
+    let pelvis = |m: &[softwalk_systems::sim::WalkerMetrics]| {
+        mean(m[SETTLE..].iter().map(|s| s.character.pelvis_y))
+    };
     // The more bent knee each step: the swing leg lifting out of the print.
     let knees = |m: &[softwalk_systems::sim::WalkerMetrics]| {
-        mean(m[SETTLE..].iter().map(|s| s.character.knee_flexion[0].max(s.character.knee_flexion[1])))
+        mean(
+            m[SETTLE..]
+                .iter()
+                .map(|s| s.character.knee_flexion[0].max(s.character.knee_flexion[1])),
+        )
     };
-    println!("pelvis: snow {:.4} rigid {:.4}; knees: snow {:.4} rigid {:.4}", pelvis(&snow), pelvis(&rigid), knees(&snow), knees(&rigid));
-    assert!(pelvis(&snow) < pelvis(&rigid) - 0.02, "the pelvis is lower on snow");
+    println!(
+        "pelvis: snow {:.4} rigid {:.4}; knees: snow {:.4} rigid {:.4}",
+        pelvis(&snow),
+        pelvis(&rigid),
+        knees(&snow),
+        knees(&rigid)
+    );
+    assert!(
+        pelvis(&snow) < pelvis(&rigid) - 0.02,
+        "the pelvis is lower on snow"
+    );
     assert!(knees(&snow) > knees(&rigid), "the knees bend more on snow");
 }
 
@@ -47,12 +62,18 @@ fn stance_feet_follow_the_carved_surface() {
     }
     println!("worst stance gap {worst:.4} m over {planted_steps} planted foot-steps");
     assert!(planted_steps > 100);
-    assert!(worst <= 0.01, "a planted sole is {worst} m off the carved ground");
+    assert!(
+        worst <= 0.01,
+        "a planted sole is {worst} m off the carved ground"
+    );
 }
 
 /// Peak swing clearance (sole above the real ground) and peak knee flexion.
 fn swing_peaks(grass: Option<GrassSettings>) -> (f32, f32, f32) {
-    let scene = TestScene { grass, ..TestScene::flat("rigid") };
+    let scene = TestScene {
+        grass,
+        ..TestScene::flat("rigid")
+    };
     let mut app = build(&scene);
     let metrics = walk(&mut app, STEPS);
     let ground_y = 1.0;
@@ -78,7 +99,16 @@ fn knees_rise_higher_in_taller_grass_and_the_body_swings_less() {
     println!("clearance: bare {bare_clear:.3} small {small_clear:.3} medium {medium_clear:.3}");
     println!("knee: bare {bare_knee:.3} small {small_knee:.3} medium {medium_knee:.3}");
     println!("tilt std: bare {bare_swing:.5} medium {medium_swing:.5}");
-    assert!(small_clear > bare_clear && medium_clear > small_clear, "swing clearance grows with grass height");
-    assert!(small_knee > bare_knee && medium_knee > small_knee, "knee flexion grows with grass height");
-    assert!(medium_swing < bare_swing, "the body swings less in medium grass");
+    assert!(
+        small_clear > bare_clear && medium_clear > small_clear,
+        "swing clearance grows with grass height"
+    );
+    assert!(
+        small_knee > bare_knee && medium_knee > small_knee,
+        "knee flexion grows with grass height"
+    );
+    assert!(
+        medium_swing < bare_swing,
+        "the body swings less in medium grass"
+    );
 }

@@ -8,8 +8,8 @@ use super::{scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
 use crate::out_dir::{OutputDirError, prepare_output_dir};
 use crate::output::{
-    AnimationWriter, HeightmapReport, ContactSheet, FrameWriter, HeightmapWriter, MetricsCsv, PlotCollector, RunReport,
-    StatsCollector, text_summary, write_summary_json,
+    AnimationWriter, ContactSheet, FrameWriter, HeightmapReport, HeightmapWriter, MetricsCsv,
+    PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
 };
 use crate::progress::Progress;
 use crate::sim::{self, Observers};
@@ -45,17 +45,29 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let render = &scene.render;
     let gif = (options.render && render.gif).then(|| dir.join("animation.gif"));
     let apng = (options.render && render.apng).then(|| dir.join("animation.apng"));
-    let mut animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms).map_err(CliError::Output)?;
-    let expected_frames = options.steps.div_ceil(u64::from(options.render_every.max(1)));
+    let mut animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms)
+        .map_err(CliError::Output)?;
+    let expected_frames = options
+        .steps
+        .div_ceil(u64::from(options.render_every.max(1)));
     let mut sheet = ContactSheet::new(expected_frames, 12, render.contact_sheet_columns);
     let mut progress = Progress::new(options.steps);
 
     let start = Instant::now();
     let summary = {
-        let mut observers =
-            Observers(vec![&mut metrics, &mut stats, &mut plots, &mut heightmaps, &mut progress]);
+        let mut observers = Observers(vec![
+            &mut metrics,
+            &mut stats,
+            &mut plots,
+            &mut heightmaps,
+            &mut progress,
+        ]);
         if options.render {
-            observers.0.extend([&mut frames as &mut dyn sim::RunObserver, &mut animation, &mut sheet]);
+            observers.0.extend([
+                &mut frames as &mut dyn sim::RunObserver,
+                &mut animation,
+                &mut sheet,
+            ]);
         }
         pool.install(|| sim::run(&scene, &options, &mut observers))
     };
@@ -65,7 +77,9 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let wall = start.elapsed().as_secs_f64();
     if options.render {
         animation.finish().map_err(CliError::Output)?;
-        sheet.save(&dir.join("contact_sheet.png")).map_err(CliError::Output)?;
+        sheet
+            .save(&dir.join("contact_sheet.png"))
+            .map_err(CliError::Output)?;
     }
     let plots_dir = dir.join("plots");
     fs::create_dir_all(&plots_dir).map_err(|source| OutputDirError {
@@ -76,7 +90,11 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     plots.save(&plots_dir).map_err(CliError::Output)?;
 
     let mut report = RunReport::new(&scene, &options, &summary, &stats.stats(), wall);
-    report.heightmaps = heightmaps.written.iter().map(|(path, info)| HeightmapReport::new(path, info)).collect();
+    report.heightmaps = heightmaps
+        .written
+        .iter()
+        .map(|(path, info)| HeightmapReport::new(path, info))
+        .collect();
     write_summary_json(&dir.join("summary.json"), &report)?;
     let mut text = text_summary(&report);
     if options.hash && summary.world_hash.is_none() {

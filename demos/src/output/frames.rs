@@ -16,7 +16,10 @@ pub struct FrameWriter {
 impl FrameWriter {
     /// Frames go to `dir`, which must exist.
     pub fn new(dir: &Path) -> FrameWriter {
-        FrameWriter { dir: dir.to_path_buf(), written: 0 }
+        FrameWriter {
+            dir: dir.to_path_buf(),
+            written: 0,
+        }
     }
 
     /// Frames written so far.
@@ -46,8 +49,15 @@ mod tests {
     fn frames_round_trip() {
         let dir = tempfile::tempdir().unwrap();
         let mut w = FrameWriter::new(dir.path());
-        let image = image::RgbaImage::from_fn(3, 2, |x, y| image::Rgba([x as u8 * 40, y as u8 * 90, 7, 255]));
-        w.on_frame(&Frame { step: 7, t: 0.1, image: &image }).unwrap();
+        let image = image::RgbaImage::from_fn(3, 2, |x, y| {
+            image::Rgba([x as u8 * 40, y as u8 * 90, 7, 255])
+        });
+        w.on_frame(&Frame {
+            step: 7,
+            t: 0.1,
+            image: &image,
+        })
+        .unwrap();
         let back = image::open(w.frame_path(7)).unwrap().into_rgba8();
         assert_eq!(back, image);
         assert_eq!(w.written(), 1);

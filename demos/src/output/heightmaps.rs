@@ -18,12 +18,19 @@ pub struct HeightmapWriter {
 impl HeightmapWriter {
     /// Heightmaps go to `dir`.
     pub fn new(dir: &Path) -> Self {
-        HeightmapWriter { dir: dir.to_path_buf(), written: Vec::new() }
+        HeightmapWriter {
+            dir: dir.to_path_buf(),
+            written: Vec::new(),
+        }
     }
 }
 
 impl RunObserver for HeightmapWriter {
-    fn on_terrain(&mut self, moment: TerrainMoment, grid: &HeightGrid) -> Result<(), ObserverError> {
+    fn on_terrain(
+        &mut self,
+        moment: TerrainMoment,
+        grid: &HeightGrid,
+    ) -> Result<(), ObserverError> {
         let name = match moment {
             TerrainMoment::Initial => "terrain_initial.png",
             TerrainMoment::Final => "terrain_final.png",

@@ -28,9 +28,27 @@ struct Quantity {
 }
 
 const QUANTITIES: [Quantity; 5] = [
-    Quantity { file: "tilt.png", title: "Forward tilt of the proxy", y_label: "degrees", labels: &[""], read: |r| vec![r.tilt.to_degrees()] },
-    Quantity { file: "torque.png", title: "Balance torque (eq. 1)", y_label: "N m", labels: &[""], read: |r| vec![r.torque] },
-    Quantity { file: "pelvis.png", title: "Pelvis height", y_label: "m", labels: &[""], read: |r| vec![r.pelvis_y] },
+    Quantity {
+        file: "tilt.png",
+        title: "Forward tilt of the proxy",
+        y_label: "degrees",
+        labels: &[""],
+        read: |r| vec![r.tilt.to_degrees()],
+    },
+    Quantity {
+        file: "torque.png",
+        title: "Balance torque (eq. 1)",
+        y_label: "N m",
+        labels: &[""],
+        read: |r| vec![r.torque],
+    },
+    Quantity {
+        file: "pelvis.png",
+        title: "Pelvis height",
+        y_label: "m",
+        labels: &[""],
+        read: |r| vec![r.pelvis_y],
+    },
     Quantity {
         file: "knees.png",
         title: "Knee flexion",
@@ -56,7 +74,10 @@ pub struct PlotCollector {
 impl PlotCollector {
     /// A collector for characters named `names` (scene order).
     pub fn new(names: Vec<String>) -> Self {
-        PlotCollector { names, records: Vec::new() }
+        PlotCollector {
+            names,
+            records: Vec::new(),
+        }
     }
 
     /// Writes `DIR/<quantity>.png` for every quantity; returns the files written.
@@ -73,10 +94,19 @@ impl PlotCollector {
                         .map(|r| (r.t as f32, (q.read)(r)[k]))
                         .collect();
                     let color = COLORS[(c * q.labels.len() + k) % COLORS.len()];
-                    series.push(Series { name: format!("{name}{label}"), points, color });
+                    series.push(Series {
+                        name: format!("{name}{label}"),
+                        points,
+                        color,
+                    });
                 }
             }
-            let plot = LinePlot { title: q.title.into(), x_label: "time (s)".into(), y_label: q.y_label.into(), series };
+            let plot = LinePlot {
+                title: q.title.into(),
+                x_label: "time (s)".into(),
+                y_label: q.y_label.into(),
+                series,
+            };
             save_png(&dir.join(q.file), &plot.render(720, 360))?;
             written.push(q.file.to_string());
         }

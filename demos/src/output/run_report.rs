@@ -98,7 +98,10 @@ impl HeightmapReport {
     /// The report of a heightmap written to `path`.
     pub fn new(path: &std::path::Path, info: &engine::asset::HeightmapInfo) -> Self {
         HeightmapReport {
-            file: path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+            file: path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
             width: info.width,
             height: info.height,
             min: info.min,

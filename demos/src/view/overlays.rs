@@ -22,7 +22,14 @@ const TORQUE_SCALE: f32 = 0.02;
 pub fn draw_overlays(world: &World, camera: &Camera, image: &mut RgbaImage) {
     let project = |p: Vec3| camera.project(p);
     let mut overlay = Overlay::new(image);
-    let mut walkers = world.query::<(&RigidProxy, &FootRays, &FootIK, &Gait, &WalkerMetrics, Option<&Platforms>)>();
+    let mut walkers = world.query::<(
+        &RigidProxy,
+        &FootRays,
+        &FootIK,
+        &Gait,
+        &WalkerMetrics,
+        Option<&Platforms>,
+    )>();
     for (proxy, rays, ik, gait, metrics, platforms) in walkers.iter() {
         let com = metrics.character.com;
         let forward = gait.pelvis.heading3();
@@ -37,7 +44,13 @@ pub fn draw_overlays(world: &World, camera: &Camera, image: &mut RgbaImage) {
             overlay.fill_circle(c, 6.0, COM);
         }
         // Torque about the character's right axis, drawn along the walking direction.
-        overlay.world_arrow(&project, com, com + forward * proxy.torque * TORQUE_SCALE, TORQUE, 3.0);
+        overlay.world_arrow(
+            &project,
+            com,
+            com + forward * proxy.torque * TORQUE_SCALE,
+            TORQUE,
+            3.0,
+        );
         // Foot rays from above each foot down to the key, and the IK targets.
         for k in 0..2 {
             let key = rays.feet[k].point;
@@ -46,7 +59,9 @@ pub fn draw_overlays(world: &World, camera: &Camera, image: &mut RgbaImage) {
         }
         if let Some(platforms) = platforms {
             for (k, y) in metrics.platform_y.iter().enumerate() {
-                let (Some(y), Some(p)) = (y, platforms.0.get(k)) else { continue };
+                let (Some(y), Some(p)) = (y, platforms.0.get(k)) else {
+                    continue;
+                };
                 let c = p.centre();
                 let h = 0.15;
                 let corners = [(-h, -h), (h, -h), (h, h), (-h, h), (-h, -h)]

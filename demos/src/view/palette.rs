@@ -11,7 +11,9 @@ pub fn material_albedo(name: &str) -> Vec3 {
         "mud" => Vec3::new(0.26, 0.19, 0.13),
         "snow" => Vec3::new(0.90, 0.92, 0.96),
         other => {
-            let h = other.bytes().fold(0x811c_9dc5u32, |h, b| (h ^ u32::from(b)).wrapping_mul(0x0100_0193));
+            let h = other.bytes().fold(0x811c_9dc5u32, |h, b| {
+                (h ^ u32::from(b)).wrapping_mul(0x0100_0193)
+            });
             let c = |shift: u32| 0.25 + 0.5 * ((h >> shift) & 0xff) as f32 / 255.0;
             Vec3::new(c(0), c(8), c(16))
         }

@@ -3,8 +3,8 @@
 use engine::ecs::{Entity, World};
 use engine::geom::{GridRect, TriMesh};
 use engine::render::{
-    Camera, CameraFollow, FrameScene, GrassBlade, Lighting, MeshInstance, RenderError, Renderer, SampleColors,
-    TerrainRenderer, TerrainStyle,
+    Camera, CameraFollow, FrameScene, GrassBlade, Lighting, MeshInstance, RenderError, Renderer,
+    SampleColors, TerrainRenderer, TerrainStyle,
 };
 use glam::{Mat4, Vec3};
 use image::RgbaImage;
@@ -70,22 +70,50 @@ impl SceneView {
         let mut terrains = world.query::<&Heightfield>();
         let hf = terrains.iter().next().ok_or(ViewError::NoTerrain)?;
         let grid = hf.grid();
-        let palette: Vec<Vec3> = hf.table().materials().iter().map(|m| material_albedo(&m.name)).collect();
-        let albedo: Vec<Vec3> = hf.material_map().iter().map(|&id| palette[usize::from(id)]).collect();
-        let disturbed: Vec<f32> = hf.disturbed().iter().map(|&d| f32::from(d) / 255.0).collect();
+        let palette: Vec<Vec3> = hf
+            .table()
+            .materials()
+            .iter()
+            .map(|m| material_albedo(&m.name))
+            .collect();
+        let albedo: Vec<Vec3> = hf
+            .material_map()
+            .iter()
+            .map(|&id| palette[usize::from(id)])
+            .collect();
+        let disturbed: Vec<f32> = hf
+            .disturbed()
+            .iter()
+            .map(|&d| f32::from(d) / 255.0)
+            .collect();
         let lighting = Lighting::default();
         let mut terrain = TerrainRenderer::new(grid, TerrainStyle::default())?;
-        let camera = Camera::perspective(scene.camera.fov_deg.to_radians(), width, height, 0.05, 200.0)?;
+        let camera = Camera::perspective(
+            scene.camera.fov_deg.to_radians(),
+            width,
+            height,
+            0.05,
+            200.0,
+        )?;
         let (camera, follow) = match &scene.camera.mode {
-            CameraMode::Fixed { eye, target } => {
-                (camera.look_at(Vec3::from(*eye), Vec3::from(*target), Vec3::Y), None)
-            }
+            CameraMode::Fixed { eye, target } => (
+                camera.look_at(Vec3::from(*eye), Vec3::from(*target), Vec3::Y),
+                None,
+            ),
             CameraMode::Follow { character, offset } => {
                 let index = character
                     .as_ref()
                     .and_then(|name| scene.characters.iter().position(|c| &c.name == name))
                     .unwrap_or(0);
-                let follow = walkers.get(index).map(|&e| (CameraFollow { offset: Vec3::from(*offset), smoothing: 0.4 }, e));
+                let follow = walkers.get(index).map(|&e| {
+                    (
+                        CameraFollow {
+                            offset: Vec3::from(*offset),
+                            smoothing: 0.4,
+                        },
+                        e,
+                    )
+                });
                 (camera, follow)
             }
         };
@@ -93,15 +121,26 @@ impl SceneView {
             .iter()
             .filter_map(|&entity| {
                 let body = world.get::<CharacterBody>(entity).ok()?;
-                let enabled = world.get::<Balance>(entity).map(|b| b.enabled).unwrap_or(true);
+                let enabled = world
+                    .get::<Balance>(entity)
+                    .map(|b| b.enabled)
+                    .unwrap_or(true);
                 Some(Figure {
                     entity,
                     mesh: character_mesh(&body),
-                    color: if enabled { WITH_CONTROLLER } else { WITHOUT_CONTROLLER },
+                    color: if enabled {
+                        WITH_CONTROLLER
+                    } else {
+                        WITHOUT_CONTROLLER
+                    },
                 })
             })
             .collect();
-        let colors = SampleColors { nx: grid.nx(), albedo: &albedo, disturbed: &disturbed };
+        let colors = SampleColors {
+            nx: grid.nx(),
+            albedo: &albedo,
+            disturbed: &disturbed,
+        };
         terrain.update(grid, &colors, &lighting)?;
         let mut view = SceneView {
             renderer: Renderer::new(width, height)?.with_threads(threads)?,
@@ -117,10 +156,10 @@ impl SceneView {
             overlays: scene.render.overlays,
         };
         drop(terrains);
-        if let Some((follow, entity)) = view.follow {
-            if let Some(target) = followed_point(world, entity) {
-                follow.snap(&mut view.camera, target);
-            }
+        if let Some((follow, entity)) = view.follow
+            && let Some(target) = followed_point(world, entity)
+        {
+            follow.snap(&mut view.camera, target);
         }
         Ok(view)
     }
@@ -138,7 +177,12 @@ impl SceneView {
             .figures
             .iter()
             .enumerate()
-            .filter_map(|(k, f)| world.get::<Pose>(f.entity).ok().map(|p| (k, p.part_transforms())))
+            .filter_map(|(k, f)| {
+                world
+                    .get::<Pose>(f.entity)
+                    .ok()
+                    .map(|p| (k, p.part_transforms()))
+            })
             .collect();
         let meshes: Vec<MeshInstance<'_>> = poses
             .iter()
@@ -147,7 +191,12 @@ impl SceneView {
                 MeshInstance::new(&f.mesh, Mat4::IDENTITY, f.color).with_parts(parts)
             })
             .collect();
-        let scene = FrameScene { terrain: Some(&self.terrain), meshes: &meshes, blades: &self.blades, lighting: self.lighting };
+        let scene = FrameScene {
+            terrain: Some(&self.terrain),
+            meshes: &meshes,
+            blades: &self.blades,
+            lighting: self.lighting,
+        };
         let mut image = self.renderer.render(&scene, &self.camera);
         if self.overlays {
             draw_overlays(world, &self.camera, &mut image);
@@ -162,7 +211,10 @@ impl SceneView {
 
     /// Re-meshes and re-lights only the terrain patches the simulation changed since the last frame.
     fn update_terrain(&mut self, world: &World) -> Result<(), ViewError> {
-        let rect: GridRect = world.get_resource_mut::<TerrainDirty>().map(|mut d| d.take()).unwrap_or_default();
+        let rect: GridRect = world
+            .get_resource_mut::<TerrainDirty>()
+            .map(|mut d| d.take())
+            .unwrap_or_default();
         if rect.is_empty() {
             return Ok(());
         }
@@ -174,7 +226,11 @@ impl SceneView {
             self.disturbed[k] = f32::from(marks[k]) / 255.0;
         }
         self.terrain.mark_dirty(rect);
-        let colors = SampleColors { nx: self.nx, albedo: &self.albedo, disturbed: &self.disturbed };
+        let colors = SampleColors {
+            nx: self.nx,
+            albedo: &self.albedo,
+            disturbed: &self.disturbed,
+        };
         self.terrain.update(hf.grid(), &colors, &self.lighting)?;
         Ok(())
     }
@@ -182,18 +238,22 @@ impl SceneView {
     fn collect_blades(&mut self, world: &World) {
         self.blades.clear();
         for patch in world.query::<&GrassPatch>().iter() {
-            self.blades.extend(patch.blade_polylines().map(|b| GrassBlade {
-                root: b.points[0],
-                mid: b.points[1],
-                tip: b.points[2],
-                width: b.width,
-                color: Vec3::from(b.colour),
-            }));
+            self.blades
+                .extend(patch.blade_polylines().map(|b| GrassBlade {
+                    root: b.points[0],
+                    mid: b.points[1],
+                    tip: b.points[2],
+                    width: b.width,
+                    color: Vec3::from(b.colour),
+                }));
         }
     }
 }
 
 /// The point a follow camera aims at: the character's centre of mass.
 fn followed_point(world: &World, entity: Entity) -> Option<Vec3> {
-    world.get::<WalkerMetrics>(entity).ok().map(|m| m.character.com)
+    world
+        .get::<WalkerMetrics>(entity)
+        .ok()
+        .map(|m| m.character.com)
 }
