@@ -101,7 +101,7 @@ fn build_world() -> Result<App, Box<dyn Error>> {
 fn log_com_each_second(world: &mut World) {
     let time = *world.resource::<Time>();
     let steps_per_second = (1.0 / f64::from(time.dt)).round() as u64;
-    if time.step % steps_per_second != 0 {
+    if !time.step.is_multiple_of(steps_per_second) {
         return;
     }
     for (name, pose, body) in world
