@@ -1,0 +1,278 @@
+//! A custom terrain system and a user material, added to the pipeline's
+//! schedule without editing it.
+//!
+//! - `wet-sand`: a material added as data to the `MaterialTable`;
+//! - `rain`: a system placed after `settle` and before `refit` (so the foot
+//!   rays of the next step see its change through the BVH). It slowly fills
+//!   footprints: inside the windows the feet have trodden, every sample lower
+//!   than the mean of its four neighbours is raised at the rain's rate (mass
+//!   is added), and the changed window is reported with
+//!   `Heightfield::mark_dirty`. Its work follows the trodden area, never the
+//!   terrain size;
+//! - a third run also drops a pipeline system by name
+//!   (`schedule.remove(labels::SETTLE)`): wet sand holds steep print walls.
+//!
+//! The same walk is run three times and the print depths are printed.
+//!
+//! ```text
+//! cargo run --release -p demos --example custom_terrain_system [OUT_DIR]
+//! ```
+//!
+//! Writes `prints.csv` (one row per run) to `OUT_DIR`
+//! (default `target/examples/custom_terrain_system/`).
+
+mod common;
+
+use std::collections::BTreeSet;
+use std::error::Error;
+
+use engine::ecs::World;
+use engine::geom::{GridRect, HeightGrid};
+use engine::io::write_bytes_atomic;
+use engine::schedule::{App, Time};
+use glam::{Vec2, Vec3};
+use softwalk_systems::character::{CharacterDesc, WalkPath};
+use softwalk_systems::sim::{SimBuilder, TerrainVolume, labels, run_steps};
+use softwalk_systems::terrain::{
+    DISTURBED_PRESSED, GaitResponse, Heightfield, MaterialTable, TerrainMaterial, generate,
+};
+
+/// Fixed step: 60 Hz.
+const DT: f32 = 1.0 / 60.0;
+/// Steps of each run (5 s).
+const STEPS: u64 = 300;
+/// Rain rate, metres of height per second in a print's floor (a heavy,
+/// sped-up downpour, so the effect shows within a few seconds).
+const RAIN_RATE: f32 = 0.01;
+
+/// Resource of the `rain` system: its rate, the windows trodden so far and the
+/// volume it added.
+struct Rain {
+    /// Metres per second.
+    rate: f32,
+    /// Grid windows the feet changed, merged where they touch.
+    windows: Vec<GridRect>,
+    /// Cubic metres added so far.
+    added_volume: f64,
+}
+
+impl Rain {
+    fn new(rate: f32) -> Self {
+        Rain {
+            rate,
+            windows: Vec::new(),
+            added_volume: 0.0,
+        }
+    }
+
+    /// Remembers a changed window, merging it into the last one when they touch.
+    fn remember(&mut self, rect: GridRect, nx: usize, nz: usize) {
+        if rect.is_empty() {
+            return;
+        }
+        match self.windows.last_mut() {
+            Some(last) if !last.expand(1, nx, nz).intersect(&rect).is_empty() => {
+                *last = last.union(&rect);
+            }
+            _ => self.windows.push(rect),
+        }
+    }
+}
+
+/// System `rain`: fills the footprints a little each step (see the file's doc).
+fn rain_system(world: &mut World) {
+    let dt = world.resource::<Time>().dt;
+    let mut rain = world.resource_mut::<Rain>();
+    let mut terrains = world.query::<&mut Heightfield>();
+    let Some(hf) = terrains.iter().next() else {
+        return;
+    };
+    let (nx, nz) = (hf.grid().nx(), hf.grid().nz());
+    // What carve/smooth/settle changed this step, and the samples under a
+    // planted sole (the foot holds them; leave them alone).
+    let changed = hf.changes().rect;
+    rain.remember(changed, nx, nz);
+    let held: BTreeSet<usize> = hf.changes().held.iter().copied().collect();
+    let fill = rain.rate * dt;
+    let cell_area = f64::from(hf.grid().cell_size().powi(2));
+    let mut added = 0.0;
+    for &window in &rain.windows {
+        // Raises are computed from the heights before this pass (no order
+        // dependence), then applied.
+        let raises = fill_raises(hf.grid(), window, fill, &held);
+        if raises.is_empty() {
+            continue;
+        }
+        let heights = hf.grid_mut().heights_mut();
+        for &(k, dh) in &raises {
+            heights[k] += dh;
+            added += f64::from(dh) * cell_area;
+        }
+        hf.mark_dirty(window);
+    }
+    rain.added_volume += added;
+    // Keep the pipeline's volume book-keeping right: rain adds mass.
+    world.resource_mut::<TerrainVolume>().0 += added;
+}
+
+/// Per sample of `window` (grid border excluded) lower than its four
+/// neighbours' mean and not held by a foot: `(index, raise)`, the raise
+/// capped by `fill` and by the gap to the mean.
+fn fill_raises(
+    grid: &HeightGrid,
+    window: GridRect,
+    fill: f32,
+    held: &BTreeSet<usize>,
+) -> Vec<(usize, f32)> {
+    let (nx, nz) = (grid.nx(), grid.nz());
+    let inner = window.intersect(&GridRect::new(1, 1, nx - 1, nz - 1));
+    inner
+        .iter()
+        .filter_map(|(i, j)| {
+            let k = grid.index(i, j);
+            let h = grid.height(i, j);
+            let mean = 0.25
+                * (grid.height(i - 1, j)
+                    + grid.height(i + 1, j)
+                    + grid.height(i, j - 1)
+                    + grid.height(i, j + 1));
+            (h < mean && !held.contains(&k)).then(|| (k, fill.min(mean - h)))
+        })
+        .collect()
+}
+
+/// The user material, as data: deeper and more compacting than dry sand,
+/// holding steeper walls, a little slower to walk on.
+fn wet_sand() -> TerrainMaterial {
+    TerrainMaterial {
+        name: "wet-sand".into(),
+        depth: 0.8,
+        compression: 0.7,
+        smoothness: 1.0,
+        repose_deg: 55.0,
+        gait: GaitResponse {
+            speed_scale: 0.9,
+            step_length_scale: 0.95,
+            extra_clearance: 0.03,
+        },
+    }
+}
+
+/// The pipeline as shipped, with rain added, or with rain and without settling.
+#[derive(Debug, Clone, Copy)]
+enum Variant {
+    Pipeline,
+    Rain,
+    RainWithoutSettle,
+}
+
+impl Variant {
+    const ALL: [Variant; 3] = [Variant::Pipeline, Variant::Rain, Variant::RainWithoutSettle];
+
+    fn label(self) -> &'static str {
+        match self {
+            Variant::Pipeline => "pipeline",
+            Variant::Rain => "pipeline + rain",
+            Variant::RainWithoutSettle => "pipeline + rain - settle",
+        }
+    }
+}
+
+/// A flat 6 x 3 m field of wet sand, an adult walking 4.5 m along +X, and the
+/// schedule changes of `variant`.
+fn build(variant: Variant) -> Result<App, Box<dyn Error>> {
+    let mut table = MaterialTable::with_presets();
+    let wet = table.add(wet_sand())?;
+    let spec = generate::GridSpec {
+        origin: Vec2::ZERO,
+        cell: 0.02,
+        nx: 301,
+        nz: 151,
+    };
+    let terrain = Heightfield::from_grid(generate::flat(spec, 1.0)?, table, wet)?;
+    let mut sim = SimBuilder::new(DT)?;
+    sim.terrain(terrain)?;
+    let path = WalkPath::straight(Vec3::new(0.5, 0.0, 1.5), Vec3::X, 4.5)?;
+    sim.character("walker", CharacterDesc::adult(), path)?;
+    let mut app = sim.build()?;
+
+    if matches!(variant, Variant::Rain | Variant::RainWithoutSettle) {
+        app.world.insert_resource(Rain::new(RAIN_RATE));
+        app.add_system("rain", rain_system)
+            .after(labels::SETTLE)
+            .before(labels::REFIT);
+    }
+    if matches!(variant, Variant::RainWithoutSettle) {
+        // Constraints naming `settle` are dropped with it: `rain` keeps its
+        // place before `refit`.
+        app.schedule.remove(labels::SETTLE)?;
+    }
+    app.schedule.build()?;
+    Ok(app)
+}
+
+/// Print depths of a run: mean and deepest, over the samples a sole pressed,
+/// measured from the height before the walk.
+struct PrintDepths {
+    mean: f32,
+    deepest: f32,
+    pressed: usize,
+}
+
+fn measure(before: &HeightGrid, after: &Heightfield) -> PrintDepths {
+    let depths: Vec<f32> = after
+        .disturbed()
+        .iter()
+        .zip(before.heights().iter().zip(after.grid().heights()))
+        .filter(|(mark, _)| **mark == DISTURBED_PRESSED)
+        .map(|(_, (h0, h))| h0 - h)
+        .collect();
+    let pressed = depths.len();
+    PrintDepths {
+        mean: depths.iter().sum::<f32>() / pressed.max(1) as f32,
+        deepest: depths.iter().copied().fold(0.0, f32::max),
+        pressed,
+    }
+}
+
+fn main() -> Result<(), Box<dyn Error>> {
+    let out = common::output_dir("custom_terrain_system")?;
+    let mut csv = String::from("run,mean_depth_m,deepest_m,pressed_samples,rain_volume_m3\n");
+    for variant in Variant::ALL {
+        let mut app = build(variant)?;
+        println!("{}: {}", variant.label(), app.schedule.order().join(" -> "));
+        let before = terrain_of(&app.world, |hf| hf.grid().clone())?;
+        run_steps(&mut app, STEPS)?;
+        let depths = terrain_of(&app.world, |hf| measure(&before, hf))?;
+        let rained = app
+            .world
+            .get_resource::<Rain>()
+            .map_or(0.0, |r| r.added_volume);
+        println!(
+            "  mean print depth {:.1} cm, deepest {:.1} cm over {} pressed samples; rain added {:.2} L\n",
+            100.0 * depths.mean,
+            100.0 * depths.deepest,
+            depths.pressed,
+            1000.0 * rained
+        );
+        csv += &format!(
+            "{},{:.5},{:.5},{},{:.6}\n",
+            variant.label(),
+            depths.mean,
+            depths.deepest,
+            depths.pressed,
+            rained
+        );
+    }
+    let path = out.join("prints.csv");
+    write_bytes_atomic(&path, csv.as_bytes())?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// Runs `f` on the world's terrain.
+fn terrain_of<T>(world: &World, f: impl FnOnce(&Heightfield) -> T) -> Result<T, Box<dyn Error>> {
+    let mut terrains = world.query::<&Heightfield>();
+    let hf = terrains.iter().next().ok_or("the world has no terrain")?;
+    Ok(f(hf))
+}
