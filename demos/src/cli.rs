@@ -55,7 +55,7 @@ pub struct RunArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Output folder (created if missing; must be writable).
-    #[arg(long, short)]
+    #[arg(long, short, default_value = "out")]
     pub out: PathBuf,
     /// Do not render frames (metrics and summary only).
     #[arg(long)]

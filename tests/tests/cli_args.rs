@@ -64,7 +64,17 @@ fn run_accepts_every_option() {
 
 #[test]
 fn bad_arguments_are_refused_by_the_parser() {
-    assert!(parse(&["run"]).is_err(), "--out is required");
+    match parse(&["run"])
+        .expect("`softwalk run` alone runs the default scene")
+        .command
+    {
+        Command::Run(args) => assert_eq!(
+            args.out,
+            std::path::PathBuf::from("out"),
+            "--out defaults to `out`"
+        ),
+        other => panic!("parsed as {other:?}"),
+    }
     assert!(parse(&["run", "--out", "o", "--steps", "3", "--seconds", "1"]).is_err());
     assert!(parse(&["run", "--out", "o", "--threads", "0"]).is_err());
     assert!(parse(&["run", "--out", "o", "--seconds", "nan"]).is_err());

@@ -61,5 +61,13 @@ pub use error::SimError;
 pub use ground_view::SceneGround;
 pub use pipeline::add_pipeline;
 pub use run::{run_steps, step};
+pub use systems_character::{
+    balance_system, foot_ik_system, foot_raycast_system, gait_system, ground_response_system,
+    metrics_system,
+};
+pub use systems_terrain::{
+    TerrainWindows, carve_system, refit_system, settle_system, smooth_system,
+};
+pub use systems_vegetation::{grass_deform_system, platform_system};
 pub use timing::SystemTimings;
 pub use world_hash::{WorldHasher, world_hash};

@@ -69,9 +69,10 @@ pub fn settle_system(world: &mut World) {
     let Some(hf) = terrains.iter().next() else {
         return;
     };
-    for (&carved, &smoothed) in windows.carved.iter().zip(&windows.smoothed) {
-        let window = stage_window(hf, carved);
-        settle_from(hf, window, smoothed);
+    for (k, &carved) in windows.carved.iter().enumerate() {
+        // Without a smooth system (removed or replaced), settling starts from the carved window.
+        let seeds = windows.smoothed.get(k).copied().unwrap_or(carved);
+        settle_from(hf, stage_window(hf, carved), seeds);
     }
 }
 
