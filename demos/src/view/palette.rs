@@ -9,7 +9,7 @@ pub fn material_albedo(name: &str) -> Vec3 {
         "sand" => Vec3::new(0.72, 0.58, 0.36),
         "soil" => Vec3::new(0.36, 0.26, 0.17),
         "mud" => Vec3::new(0.26, 0.19, 0.13),
-        "snow" => Vec3::new(0.90, 0.92, 0.96),
+        "snow" => Vec3::new(0.80, 0.83, 0.88),
         other => {
             let h = other.bytes().fold(0x811c_9dc5u32, |h, b| {
                 (h ^ u32::from(b)).wrapping_mul(0x0100_0193)
