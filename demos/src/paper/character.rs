@@ -35,7 +35,11 @@ fn deg(list: &[f32]) -> String {
 /// controller (`walker`), one without (`uncontrolled`) and a child (`child`).
 pub fn slope_scene(angle_deg: f32) -> Result<Scene, PaperError> {
     let mut scene = with_slope(with_material(builtin("sand-flat")?, RIGID), angle_deg);
-    scene.name = format!("paper-slope-{angle_deg:+.0}");
+    scene.name = match angle_deg {
+        a if a < 0.0 => format!("paper-slope-down-{:.0}", -a),
+        a if a > 0.0 => format!("paper-slope-up-{a:.0}"),
+        _ => "paper-slope-flat".to_owned(),
+    };
     scene.description = format!("Rigid {angle_deg}° slope: controller on, off, and a child");
     scene.sim.duration = WALK_S;
     scene.characters = vec![

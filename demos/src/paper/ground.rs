@@ -259,17 +259,18 @@ fn asymmetry_claim(options: &PaperOptions) -> Result<Claim, PaperError> {
         let scene = across_slope_scene(angle)?;
         options.say(&format!("walking {}", scene.name));
         let t = trace(&scene, scene.steps() as usize, |_| {})?;
-        let ratio = mean(prints(&t, 0).iter().map(|&c| {
+        let (down, up) = prints(&t, 0).iter().fold((0.0, 0.0), |(d, u), &c| {
             let (down, up) = rim_low_high_x(&t.last, &t.initial, c);
-            down / up.max(1e-9)
-        }));
-        ratios.push(ratio);
+            (d + down, u + up)
+        });
+        ratios.push(down / f32::max(up, 1e-9));
     }
     Ok(Claim {
         title: "Prints on a slope slump downhill".into(),
         statement: "On sloped sand the displaced material ends up downhill of the print.".into(),
         method: "Scenes `paper-sand-across-0` and `paper-sand-across-25` (adult walking across the slope); \
-                 raised volume within 0.3 m of each print, downhill side over uphill side."
+                 raised volume within 0.3 m of each print, summed over the prints (left and right \
+                 feet mirror each other), downhill side over uphill side."
             .into(),
         checks: vec![
             Check::new("flat: downhill/uphill rim", format!("{:.2}", ratios[0]), "in [0.8, 1.25)", (0.8..1.25).contains(&ratios[0])),

@@ -78,7 +78,8 @@ pub fn sharpness(before: &HeightGrid, after: &HeightGrid, c: Vec2) -> Option<f32
     if depth <= 0.0 {
         return None;
     }
-    let rect = after.rect_covering(c - Vec2::new(0.0, 0.2), c + Vec2::new(0.0, 0.2));
+    let half_cell = 0.5 * after.cell_size();
+    let rect = after.rect_covering(c - Vec2::new(half_cell, 0.2), c + Vec2::new(half_cell, 0.2));
     let i = after.to_grid(c.x, c.y).round().x as usize;
     let steepest = (rect.j0..rect.j1.saturating_sub(1))
         .map(|j| (after.height(i, j + 1) - after.height(i, j)).abs() / after.cell_size())
