@@ -29,6 +29,8 @@ pub enum Command {
     Scenes(ScenesArgs),
     /// Run a scene without rendering and print per-step costs.
     Bench(BenchArgs),
+    /// Reproduce the paper's claims: measure them, render a gallery, write paper-results.md.
+    Paper(PaperArgs),
 }
 
 /// Which scene and for how long; shared by `run` and `bench`.
@@ -87,6 +89,17 @@ pub struct BenchArgs {
     pub scene: SceneArgs,
 }
 
+/// Arguments of `softwalk paper`.
+#[derive(Debug, Clone, Args)]
+pub struct PaperArgs {
+    /// Output folder for paper-results.md and gallery/ (use `docs` in the repository).
+    #[arg(long, short, default_value = "docs")]
+    pub out: PathBuf,
+    /// Shorten the ten-minute robustness walk to one minute.
+    #[arg(long)]
+    pub quick: bool,
+}
+
 fn parse_seconds(text: &str) -> Result<f64, String> {
     let v: f64 = text
         .parse()
@@ -138,6 +151,9 @@ pub enum CliError {
         #[source]
         source: rayon::ThreadPoolBuildError,
     },
+    /// The paper report could not be produced.
+    #[error("the paper report failed")]
+    Paper(#[source] Box<crate::paper::PaperError>),
     /// Printing to standard output failed.
     #[error("cannot print to standard output")]
     Stdout(#[source] std::io::Error),
@@ -152,6 +168,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
         Command::Run(args) => commands::run::run(&args, stdout),
         Command::Scenes(args) => commands::scenes::scenes(&args, stdout),
         Command::Bench(args) => commands::bench::bench(&args, stdout),
+        Command::Paper(args) => commands::paper::paper(&args, stdout),
     }
 }
 

@@ -3,6 +3,7 @@
 //! - [`scene`]: scene files (TOML), validation and the built-in scenes;
 //! - [`sim`]: the interface between the command line and the simulation;
 //! - [`output`]: `metrics.csv`, `summary.json`, frames and the printed summary;
+//! - [`paper`]: the paper's claims measured on reproduction scenes (`softwalk paper`);
 //! - [`cli`]: the `softwalk` command line.
 #![warn(missing_docs)]
 
@@ -10,6 +11,7 @@ pub mod cli;
 pub mod commands;
 pub mod out_dir;
 pub mod output;
+pub mod paper;
 pub mod progress;
 pub mod scene;
 pub mod scene_source;

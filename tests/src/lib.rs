@@ -5,25 +5,13 @@ use engine::schedule::App;
 use glam::{Vec2, Vec3};
 use softwalk_systems::character::{CharacterDesc, WalkPath};
 use softwalk_systems::sim::{SimBuilder, WalkerMetrics, run_steps};
-use softwalk_systems::terrain::{
-    GaitResponse, Heightfield, MaterialTable, TerrainMaterial, generate,
-};
+use softwalk_systems::terrain::{Heightfield, MaterialTable, generate};
 use softwalk_systems::vegetation::{GrassSettings, XzRect};
 
 /// The fixed step of every test scene.
 pub const DT: f32 = 1.0 / 60.0;
 
-/// A material that does not deform: the "rigid ground" of the comparisons.
-pub fn rigid() -> TerrainMaterial {
-    TerrainMaterial {
-        name: "rigid".into(),
-        depth: 0.0,
-        compression: 1.0,
-        smoothness: 0.0,
-        repose_deg: 90.0,
-        gait: GaitResponse::NEUTRAL,
-    }
-}
+pub use demos::paper::variants::rigid_material as rigid;
 
 /// What a test scene is made of.
 #[derive(Clone)]
@@ -96,16 +84,4 @@ pub fn walk(app: &mut App, steps: usize) -> Vec<WalkerMetrics> {
         .collect()
 }
 
-/// Mean of a series.
-pub fn mean(xs: impl IntoIterator<Item = f32>) -> f32 {
-    let (sum, n) = xs
-        .into_iter()
-        .fold((0.0f64, 0usize), |(s, n), x| (s + f64::from(x), n + 1));
-    (sum / n.max(1) as f64) as f32
-}
-
-/// Standard deviation of a series.
-pub fn std_dev(xs: &[f32]) -> f32 {
-    let m = mean(xs.iter().copied());
-    mean(xs.iter().map(|x| (x - m) * (x - m))).sqrt()
-}
+pub use demos::paper::stats::{mean, std_dev};

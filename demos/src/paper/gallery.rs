@@ -1,0 +1,105 @@
+//! The gallery: one rendered frame per scene, after a few seconds of walking.
+
+use std::path::Path;
+
+use image::RgbaImage;
+
+use super::report::GalleryImage;
+use super::variants::builtin;
+use super::{PaperError, PaperOptions};
+use crate::scene::Scene;
+use crate::sim::{self, Frame, ObserverError, RunObserver, RunOptions};
+
+/// Frame size of the gallery, pixels.
+pub const GALLERY_SIZE: (u32, u32) = (480, 270);
+/// When each frame is taken, seconds of walking.
+pub const GALLERY_AT_S: f32 = 4.0;
+
+/// The gallery's scenes: built-in scene name, caption.
+pub const GALLERY: [(&str, &str); 9] = [
+    ("sand-flat", "sand: medium prints, rims raised around them"),
+    ("soil-flat", "soil: the shallowest prints"),
+    ("mud-flat", "mud: deep, sharp-edged prints"),
+    ("snow-flat", "snow: the deepest, smoothed prints"),
+    (
+        "grass-small",
+        "small grass (0.5 m): trampled trail behind the walker",
+    ),
+    (
+        "grass-medium",
+        "medium grass (0.9 m): higher knees, wider trail",
+    ),
+    (
+        "controller-compare",
+        "balance controller on (front) and off (back), sand slope into snow",
+    ),
+    (
+        "morphology",
+        "morphologies of 1.0, 1.4 and 1.9 m side by side up a sand slope",
+    ),
+    ("default", "the default scene"),
+];
+
+/// Keeps the last frame a run renders.
+#[derive(Default)]
+struct LastFrame(Option<RgbaImage>);
+
+impl RunObserver for LastFrame {
+    fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
+        self.0 = Some(frame.image.clone());
+        Ok(())
+    }
+}
+
+/// The frame of `scene` after `seconds` of walking, at `width` x `height`.
+pub fn render_at(
+    scene: &Scene,
+    seconds: f32,
+    width: u32,
+    height: u32,
+) -> Result<RgbaImage, PaperError> {
+    let mut options = RunOptions::from_scene(scene);
+    let at = scene.sim.steps_for(f64::from(seconds)).max(1);
+    options.steps = at + 1;
+    options.render_every = u32::try_from(at).unwrap_or(u32::MAX);
+    options.width = width;
+    options.height = height;
+    let mut last = LastFrame::default();
+    sim::run(scene, &options, &mut last).map_err(|source| PaperError::Run {
+        scene: scene.name.clone(),
+        source,
+    })?;
+    Ok(last.0.expect("the run renders its last step"))
+}
+
+/// Renders every gallery scene into `dir/<name>.png`.
+pub fn write_gallery(dir: &Path, options: &PaperOptions) -> Result<Vec<GalleryImage>, PaperError> {
+    std::fs::create_dir_all(dir).map_err(|source| PaperError::Dir {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut images = Vec::new();
+    for (name, caption) in GALLERY {
+        let scene = builtin(name)?;
+        options.say(&format!("rendering {name}"));
+        let image = render_at(&scene, GALLERY_AT_S, GALLERY_SIZE.0, GALLERY_SIZE.1)?;
+        let path = dir.join(format!("{name}.png"));
+        let mut bytes = Vec::new();
+        image::DynamicImage::ImageRgba8(image)
+            .to_rgb8()
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .map_err(|e| PaperError::Encode {
+                path: path.clone(),
+                reason: e.to_string(),
+            })?;
+        engine::io::write_bytes_atomic(&path, &bytes)?;
+        images.push(GalleryImage {
+            name: name.to_owned(),
+            caption: caption.to_owned(),
+        });
+    }
+    Ok(images)
+}
