@@ -12,8 +12,10 @@
 
 mod area;
 mod blade;
+mod columns;
 mod error;
 mod field;
+mod foot_motion;
 mod friction;
 mod grid;
 mod patch;
