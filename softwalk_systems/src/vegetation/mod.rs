@@ -15,6 +15,7 @@ mod blade;
 mod columns;
 mod error;
 mod field;
+mod field_memo;
 mod foot_motion;
 mod friction;
 mod grid;

@@ -10,6 +10,7 @@ use super::area::XzRect;
 use super::blade::{Bend, Blade, BladeState};
 use super::columns::BladeColumns;
 use super::error::VegetationError;
+use super::field_memo::FieldMemo;
 use super::foot_motion::FootMotion;
 use super::grid::BladeGrid;
 use super::recovery::time_to_settle;
@@ -353,15 +354,11 @@ impl GrassPatch {
     /// The combined field of `feet` at blade `i`'s upright middle and tip.
     fn field_at(&self, i: usize, feet: &[Vec3]) -> FieldMemo {
         let blade = &self.blades[i];
-        let field = &self.settings.field;
-        let bend = Bend {
-            mid: field.combined(blade.rest_mid(), feet),
-            tip: field.combined(blade.rest_tip(), feet),
-        };
-        FieldMemo {
-            bend,
-            size: bend.size(),
-        }
+        let [mid, tip] = self
+            .settings
+            .field
+            .on_upright_blade(blade.root, blade.height, feet);
+        FieldMemo::new(Bend { mid, tip })
     }
 
     /// Pushes blade `i` with `field`; true if it was pushed (non-zero field).
@@ -376,14 +373,14 @@ impl GrassPatch {
         let new_tread = state.count_tread(now, s.tread_gap);
         // The field that already holds the blade keeps holding it; otherwise
         // the larger of the field and the recovering bend wins.
-        let held_on = state.active && field.bend == state.held;
-        let reanchored = held_on || field.size >= state.bend_size_at(now, omega);
-        if reanchored {
+        let mut bend_changed = false;
+        if field.takes_over(state, now, omega) {
+            bend_changed = state.held != field.bend;
             state.held = field.bend;
             state.anchor_time = now;
         }
         // Damage depends on the held bend and the treads only.
-        if (reanchored && !held_on) || new_tread {
+        if bend_changed || new_tread {
             self.apply_damage(i);
         }
         let state = &mut self.states[i];
@@ -437,14 +434,6 @@ impl GrassPatch {
         }
         retired
     }
-}
-
-/// A blade's field from the feet of one step: the bend it pushes to, and the
-/// bend's size (`|mid| + |tip|`).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct FieldMemo {
-    bend: Bend,
-    size: f32,
 }
 
 /// Sorts `ranges` and merges overlapping or touching ones, so that every
