@@ -29,7 +29,9 @@ impl BladeColumns {
     }
 
     /// ORs `bits` into `flags[k]` for every blade `blades.start + k` whose
-    /// upright segment (root to tip) is closer than `radius` to `p`.
+    /// upright middle or tip is closer than `radius` to `p`: exactly the blades
+    /// a foot at `p` pushes (same arithmetic as
+    /// [`DeformationField::on_upright_blade`](super::DeformationField::on_upright_blade)).
     /// `flags` has one entry per blade of the range.
     pub(crate) fn mark_near(
         &self,
@@ -46,11 +48,10 @@ impl BladeColumns {
             .zip(&self.z[blades.clone()])
             .zip(&self.height[blades]);
         for (flag, (((&x, &y), &z), &h)) in flags.iter_mut().zip(roots) {
-            let dx = x - p.x;
-            let dz = z - p.z;
-            // Height of the segment's point closest to the foot, relative to it.
-            let dy = (p.y - y).max(0.0).min(h) + y - p.y;
-            let near = dx * dx + dz * dz + dy * dy < r2;
+            let (dx, dz) = (x - p.x, z - p.z);
+            let flat_sq = dx * dx + dz * dz;
+            let (mid, tip) = (y + 0.5 * h - p.y, y + h - p.y);
+            let near = (flat_sq + mid * mid < r2) | (flat_sq + tip * tip < r2);
             *flag |= bits & u8::from(near).wrapping_neg();
         }
     }
@@ -61,7 +62,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn marks_blades_whose_segment_is_within_the_radius() {
+    fn marks_blades_whose_middle_or_tip_is_within_the_radius() {
         let blade = |x: f32, y: f32, height: f32| Blade {
             root: Vec3::new(x, y, 0.0),
             height,
@@ -69,17 +70,19 @@ mod tests {
             stiffness: 1.0,
             colour: [0.0; 3],
         };
-        // Beside the foot; below it (tip reaches up); far above it; far aside.
+        // Beside the foot; below it (tip reaches up); far above it; far
+        // aside; root and tip out of reach with the foot between them.
         let blades = [
             blade(0.3, 0.0, 0.5),
             blade(0.0, -1.0, 0.9),
             blade(0.0, 1.0, 0.5),
             blade(2.0, 0.0, 0.5),
+            blade(0.0, -0.8, 3.2),
         ];
         let columns = BladeColumns::new(&blades);
-        let mut flags = vec![4u8; 4];
-        columns.mark_near(0..4, Vec3::new(0.0, 0.2, 0.0), 0.5, 1, &mut flags);
-        assert_eq!(flags, [5, 5, 4, 4]);
+        let mut flags = vec![4u8; 5];
+        columns.mark_near(0..5, Vec3::new(0.0, 0.2, 0.0), 0.5, 1, &mut flags);
+        assert_eq!(flags, [5, 5, 4, 4, 4]);
         let mut tail = vec![0u8; 2];
         columns.mark_near(2..4, Vec3::new(2.0, 0.1, 0.0), 0.5, 2, &mut tail);
         assert_eq!(tail, [0, 2]);
