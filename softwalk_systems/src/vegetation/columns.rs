@@ -49,9 +49,8 @@ impl BladeColumns {
             .zip(&self.height[blades]);
         for (flag, (((&x, &y), &z), &h)) in flags.iter_mut().zip(roots) {
             let (dx, dz) = (x - p.x, z - p.z);
-            let flat_sq = dx * dx + dz * dz;
             let (mid, tip) = (y + 0.5 * h - p.y, y + h - p.y);
-            let near = (flat_sq + mid * mid < r2) | (flat_sq + tip * tip < r2);
+            let near = (dx * dx + mid * mid + dz * dz < r2) | (dx * dx + tip * tip + dz * dz < r2);
             *flag |= bits & u8::from(near).wrapping_neg();
         }
     }
