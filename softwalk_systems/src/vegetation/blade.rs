@@ -118,8 +118,6 @@ pub struct BladeState {
     pub broken: bool,
     /// True while the blade is recovering (it is in the patch's active list).
     pub active: bool,
-    /// Step stamp: the blade was already handled in this step.
-    pub(crate) stamp: u32,
 }
 
 impl Default for BladeState {
@@ -132,7 +130,6 @@ impl Default for BladeState {
             treads: 0,
             broken: false,
             active: false,
-            stamp: 0,
         }
     }
 }
@@ -146,6 +143,29 @@ impl BladeState {
         }
         let k = remaining_fraction(omega, (now - self.anchor_time) as f32);
         self.rest.lerp(self.held, k)
+    }
+
+    /// `self.bend_at(now, omega).size()`, without rebuilding the bend of a
+    /// healthy blade (whose bend is `held * k`, of size `|held| * k`).
+    #[inline]
+    pub(crate) fn bend_size_at(&self, now: f64, omega: f32) -> f32 {
+        if self.active && !self.broken {
+            self.held.size() * remaining_fraction(omega, (now - self.anchor_time) as f32)
+        } else {
+            self.bend_at(now, omega).size()
+        }
+    }
+
+    /// Records a push at `now`; true if it starts a new tread (the previous
+    /// push is more than `tread_gap` seconds ago, or there was none).
+    #[inline]
+    pub(crate) fn count_tread(&mut self, now: f64, tread_gap: f32) -> bool {
+        let new_tread = self.last_push < 0.0 || now - self.last_push > tread_gap as f64;
+        if new_tread {
+            self.treads = self.treads.saturating_add(1);
+        }
+        self.last_push = now;
+        new_tread
     }
 }
 

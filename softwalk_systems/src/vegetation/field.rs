@@ -38,7 +38,12 @@ impl DeformationField {
     /// ```
     #[inline]
     pub fn at(&self, p: Vec3, foot: Vec3) -> Vec3 {
-        let d = p - foot;
+        self.for_offset(p - foot)
+    }
+
+    /// The field for the offset `d = p - foot`.
+    #[inline]
+    fn for_offset(&self, d: Vec3) -> Vec3 {
         let dist_sq = d.length_squared();
         let radius = self.radius();
         if dist_sq >= radius * radius {
@@ -58,11 +63,48 @@ impl DeformationField {
     #[inline]
     pub fn combined(&self, p: Vec3, feet: &[Vec3]) -> Vec3 {
         let sum: Vec3 = feet.iter().map(|&f| self.at(p, f)).sum();
-        let len_sq = sum.length_squared();
+        self.capped(sum)
+    }
+
+    /// [`DeformationField::combined`] at the middle and the tip of an upright
+    /// blade (`root + (0, height/2, 0)` and `root + (0, height, 0)`), in one
+    /// pass over the feet: feet out of horizontal reach are skipped at once.
+    /// The result is bit-identical to the two `combined` calls.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use softwalk_systems::vegetation::DeformationField;
+    /// let field = DeformationField { t_max: 0.4, gamma: 1.0 };
+    /// let (root, feet) = (Vec3::new(0.1, 0.0, 0.0), [Vec3::new(0.0, 0.2, 0.0), Vec3::X]);
+    /// let [mid, tip] = field.on_upright_blade(root, 0.5, &feet);
+    /// assert_eq!(mid, field.combined(root + Vec3::Y * 0.25, &feet));
+    /// assert_eq!(tip, field.combined(root + Vec3::Y * 0.5, &feet));
+    /// ```
+    #[inline]
+    pub fn on_upright_blade(&self, root: Vec3, height: f32, feet: &[Vec3]) -> [Vec3; 2] {
+        let radius_sq = self.radius() * self.radius();
+        let (mid_y, tip_y) = (root.y + 0.5 * height, root.y + height);
+        let (mut mid, mut tip) = (Vec3::ZERO, Vec3::ZERO);
+        for foot in feet {
+            let (dx, dz) = (root.x - foot.x, root.z - foot.z);
+            let flat_sq = dx * dx + dz * dz;
+            if flat_sq >= radius_sq {
+                continue;
+            }
+            mid += self.for_offset(Vec3::new(dx, mid_y - foot.y, dz));
+            tip += self.for_offset(Vec3::new(dx, tip_y - foot.y, dz));
+        }
+        [self.capped(mid), self.capped(tip)]
+    }
+
+    /// `v` with its length capped at `t_max`.
+    #[inline]
+    fn capped(&self, v: Vec3) -> Vec3 {
+        let len_sq = v.length_squared();
         if len_sq > self.t_max * self.t_max {
-            sum * (self.t_max / len_sq.sqrt())
+            v * (self.t_max / len_sq.sqrt())
         } else {
-            sum
+            v
         }
     }
 }

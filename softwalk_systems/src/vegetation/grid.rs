@@ -81,20 +81,39 @@ impl BladeGrid {
         j * self.nx + i
     }
 
-    /// Ranges of stored blade indices in the cells overlapping the square
-    /// `centre ± radius` (one range per row). Every blade within `radius` of
+    /// Ranges of stored blade indices near `centre`, one per grid row the
+    /// disc of `radius` reaches: in each row, the cells overlapping the disc's
+    /// chord over that row's Z extent. Every blade closer than `radius` to
     /// `centre` is in them; callers filter by exact distance.
     pub fn ranges_near(
         &self,
         centre: Vec2,
         radius: f32,
     ) -> impl Iterator<Item = Range<usize>> + '_ {
-        let (i0, j0) = self.cell_coords(centre - Vec2::splat(radius));
-        let (i1, j1) = self.cell_coords(centre + Vec2::splat(radius));
-        (j0..=j1).map(move |j| {
+        let (_, j0) = self.cell_coords(centre - Vec2::splat(radius));
+        let (_, j1) = self.cell_coords(centre + Vec2::splat(radius));
+        (j0..=j1).filter_map(move |j| {
+            // Distance from the centre to the row's Z band (0 inside it),
+            // padded against rounding; the edge rows are open-ended (their
+            // cells hold the blades clamped into the grid).
+            let z0 = self.origin.y + j as f32 * self.cell;
+            let pad = 1e-3 * self.cell;
+            let below = if j == 0 { f32::NEG_INFINITY } else { z0 - pad };
+            let above = if j + 1 == self.nz {
+                f32::INFINITY
+            } else {
+                z0 + self.cell + pad
+            };
+            let dz = (below - centre.y).max(centre.y - above).max(0.0);
+            if dz >= radius {
+                return None;
+            }
+            let half = (radius * radius - dz * dz).sqrt();
+            let (i0, _) = self.cell_coords(Vec2::new(centre.x - half, z0));
+            let (i1, _) = self.cell_coords(Vec2::new(centre.x + half, z0));
             let a = self.starts[self.cell_index((i0, j))] as usize;
             let b = self.starts[self.cell_index((i1, j)) + 1] as usize;
-            a..b
+            Some(a..b)
         })
     }
 }

@@ -12,8 +12,11 @@
 
 mod area;
 mod blade;
+mod columns;
 mod error;
 mod field;
+mod field_memo;
+mod foot_motion;
 mod friction;
 mod grid;
 mod patch;

@@ -2,16 +2,18 @@
 //! paper's deformation field, recovering in closed form, breaking when trodden.
 
 use std::collections::VecDeque;
-
 use std::ops::Range;
 
-use glam::{Vec2, Vec3, Vec3Swizzles, Vec4};
+use glam::{Vec2, Vec3, Vec3Swizzles};
 
 use super::area::XzRect;
 use super::blade::{Bend, Blade, BladeState};
+use super::columns::BladeColumns;
 use super::error::VegetationError;
+use super::field_memo::FieldMemo;
+use super::foot_motion::FootMotion;
 use super::grid::BladeGrid;
-use super::recovery::{remaining_fraction, time_to_settle};
+use super::recovery::time_to_settle;
 use super::rng::SplitMix64;
 use super::settings::GrassSettings;
 use crate::foot::FootState;
@@ -22,6 +24,13 @@ pub const MAX_BLADES: usize = 1 << 26;
 
 /// Colour a broken blade fades towards (dry straw, linear RGB).
 const STRAW: [f32; 3] = [0.55, 0.48, 0.25];
+
+/// Candidate flag: some foot of this step reaches the blade.
+const REACHED: u8 = 1;
+/// Candidate flag: a foot that moved, or the previous position of one, reaches
+/// the blade: its field must be computed anew (otherwise the blade is reached
+/// by exactly the feet of the previous step, at the same places).
+const DISTURBED: u8 = 2;
 
 /// A blade ready to draw: a thin strip tapering from `width` at the root to a
 /// point at the tip, through the three points.
@@ -42,6 +51,9 @@ pub struct DeformStats {
     pub visited: usize,
     /// Blades the field pushed this step.
     pub pushed: usize,
+    /// Reached blades whose field was reused from the previous step, not
+    /// recomputed: only feet that did not move reach them.
+    pub reused: usize,
     /// Blades that settled and left the active list this step.
     pub retired: usize,
 }
@@ -52,21 +64,25 @@ pub struct GrassPatch {
     area: XzRect,
     settings: GrassSettings,
     blades: Vec<Blade>,
-    /// Hot copy of each blade's root and height `(x, y, z, height)` for the
-    /// candidate test (16 bytes a blade instead of a whole `Blade`).
-    spans: Vec<Vec4>,
+    /// Hot copy of the blades' roots and heights for the candidate test.
+    columns: BladeColumns,
     states: Vec<BladeState>,
+    /// Per blade, the field of the last step that reached it (valid for the
+    /// blades the previous step reached).
+    fields: Vec<FieldMemo>,
     grid: BladeGrid,
     /// Lowest root and highest tip, to skip feet far above or below.
     y_range: (f32, f32),
     clock: f64,
-    step: u32,
     active_count: usize,
     /// Recovering blades with the time they may settle (lazy: re-queued when pushed again).
     retire_queue: VecDeque<(u32, f64)>,
-    foot_points: Vec<Vec3>,
-    /// Scratch list of grid ranges (kept to avoid allocating each step).
+    motion: FootMotion,
+    /// Scratch buffers kept to avoid allocating each step: sole centres,
+    /// grid ranges, candidate flags.
+    sole_centres: Vec<Vec3>,
     ranges: Vec<Range<usize>>,
+    flags: Vec<u8>,
 }
 
 impl GrassPatch {
@@ -144,16 +160,18 @@ impl GrassPatch {
             area,
             settings,
             states: vec![BladeState::default(); blades.len()],
-            spans: blades.iter().map(|b| b.root.extend(b.height)).collect(),
+            fields: vec![FieldMemo::default(); blades.len()],
+            columns: BladeColumns::new(&blades),
             blades,
             grid,
             y_range,
             clock: 0.0,
-            step: 0,
             active_count: 0,
             retire_queue: VecDeque::new(),
-            foot_points: Vec::new(),
+            motion: FootMotion::default(),
+            sole_centres: Vec::new(),
             ranges: Vec::new(),
+            flags: Vec::new(),
         })
     }
 
@@ -248,8 +266,12 @@ impl GrassPatch {
     /// One `grass_deform` step: advances the clock by `dt` and pushes blades
     /// with every foot. The foot position `p_f` is the sole centre.
     pub fn deform(&mut self, feet: &[FootState], dt: f32) -> DeformStats {
-        let points: Vec<Vec3> = feet.iter().map(|f| f.sole.center()).collect();
-        self.deform_points(&points, dt)
+        let mut centres = std::mem::take(&mut self.sole_centres);
+        centres.clear();
+        centres.extend(feet.iter().map(|f| f.sole.center()));
+        let stats = self.deform_points(&centres, dt);
+        self.sole_centres = centres;
+        stats
     }
 
     /// One step with explicit foot positions `p_f` (world).
@@ -257,38 +279,63 @@ impl GrassPatch {
     /// Each blade within reach of a foot gets the combined field of all feet
     /// at its upright middle and tip. Its bend becomes the larger (by
     /// `|mid| + |tip|`) of the field and its current recovering bend; a larger
-    /// field re-anchors the recovery at this time. Blades not reached are not
-    /// visited: their recovery is evaluated in closed form when read.
+    /// field re-anchors the recovery at this time, and so does the field that
+    /// already holds the blade. Blades not reached are not visited: their
+    /// recovery is evaluated in closed form when read.
+    ///
+    /// Feet are matched across steps by their index in `feet`. A blade that
+    /// only feet standing still reach (a planted stance foot) was reached by
+    /// exactly these feet at the same places in the previous step: its field
+    /// is reused from then, not recomputed.
     pub fn deform_points(&mut self, feet: &[Vec3], dt: f32) -> DeformStats {
         self.clock += dt as f64;
-        self.step = self.step.wrapping_add(1).max(1);
         let mut stats = DeformStats {
             retired: self.retire_settled(),
             ..DeformStats::default()
         };
         let radius = self.settings.field.radius();
-        let mut foot_points = std::mem::take(&mut self.foot_points);
-        foot_points.clear();
-        foot_points.extend(
-            feet.iter()
-                .copied()
-                .filter(|p| self.within_reach(*p, radius)),
-        );
+        let mut motion = std::mem::take(&mut self.motion);
+        motion.update(feet, |p| self.within_reach(p, radius));
         let mut ranges = std::mem::take(&mut self.ranges);
-        for foot in &foot_points {
-            ranges.clear();
+        ranges.clear();
+        for foot in &motion.feet {
             ranges.extend(self.grid.ranges_near(foot.xz(), radius));
-            for range in ranges.drain(..) {
-                stats.visited += range.len();
-                for i in range {
-                    if self.blade_near(i, *foot, radius) && self.push(i, &foot_points) {
-                        stats.pushed += 1;
-                    }
+        }
+        merge_ranges(&mut ranges);
+        let mut flags = std::mem::take(&mut self.flags);
+        for range in &ranges {
+            flags.clear();
+            flags.resize(range.len(), 0);
+            for (&foot, &moved) in motion.feet.iter().zip(&motion.moved) {
+                let bits = if moved { REACHED | DISTURBED } else { REACHED };
+                self.columns
+                    .mark_near(range.clone(), foot, radius, bits, &mut flags);
+            }
+            for &foot in &motion.departed {
+                self.columns
+                    .mark_near(range.clone(), foot, radius, DISTURBED, &mut flags);
+            }
+            stats.visited += range.len();
+            for (i, &flag) in range.clone().zip(&flags) {
+                if flag & REACHED == 0 {
+                    continue;
+                }
+                let field = if flag & DISTURBED == 0 {
+                    stats.reused += 1;
+                    self.fields[i]
+                } else {
+                    let field = self.field_at(i, &motion.feet);
+                    self.fields[i] = field;
+                    field
+                };
+                if self.push(i, field) {
+                    stats.pushed += 1;
                 }
             }
         }
-        self.foot_points = foot_points;
+        self.motion = motion;
         self.ranges = ranges;
+        self.flags = flags;
         stats
     }
 
@@ -304,51 +351,54 @@ impl GrassPatch {
             && p.z - radius < self.area.max.y
     }
 
-    /// Cheap reject: the blade's vertical segment is farther than `radius` from `foot`
-    /// (or the blade was already handled this step).
-    #[inline]
-    fn blade_near(&self, i: usize, foot: Vec3, radius: f32) -> bool {
-        let b = self.spans[i];
-        let dx = b.x - foot.x;
-        let dz = b.z - foot.z;
-        let dy = (foot.y - b.y).clamp(0.0, b.w) + b.y - foot.y;
-        dx * dx + dz * dz + dy * dy < radius * radius && self.states[i].stamp != self.step
+    /// The combined field of `feet` at blade `i`'s upright middle and tip.
+    fn field_at(&self, i: usize, feet: &[Vec3]) -> FieldMemo {
+        let blade = &self.blades[i];
+        let [mid, tip] = self
+            .settings
+            .field
+            .on_upright_blade(blade.root, blade.height, feet);
+        FieldMemo::new(Bend { mid, tip })
     }
 
-    /// Applies the combined field of `feet` to blade `i`; true if it was pushed.
-    fn push(&mut self, i: usize, feet: &[Vec3]) -> bool {
-        let blade = self.blades[i];
-        let s = &self.settings;
-        let field = Bend {
-            mid: s.field.combined(blade.rest_mid(), feet),
-            tip: s.field.combined(blade.rest_tip(), feet),
-        };
-        let state = &mut self.states[i];
-        state.stamp = self.step;
-        let size = field.size();
-        if size <= 0.0 {
+    /// Pushes blade `i` with `field`; true if it was pushed (non-zero field).
+    fn push(&mut self, i: usize, field: FieldMemo) -> bool {
+        if field.size <= 0.0 {
             return false;
         }
+        let s = &self.settings;
         let now = self.clock;
-        if state.last_push < 0.0 || now - state.last_push > s.tread_gap as f64 {
-            state.treads = state.treads.saturating_add(1);
-        }
-        state.last_push = now;
-        let omega = s.recovery_omega * blade.stiffness;
-        // Fast path (a planted foot): the same field again on a healthy blade,
-        // whose recovering bend is `held * k <= held`: just re-anchor.
-        // A healthy recovering blade's bend is `held * k`, so its size is
-        // `|held| * k`: no need to rebuild the bend to compare.
-        let same_push = state.active && !state.broken && field == state.held;
-        let current_size = if state.broken || !state.active {
-            state.bend_at(now, omega).size()
-        } else {
-            state.held.size() * remaining_fraction(omega, (now - state.anchor_time) as f32)
-        };
-        if same_push || size >= current_size {
-            state.held = field;
+        let omega = s.recovery_omega * self.blades[i].stiffness;
+        let state = &mut self.states[i];
+        let new_tread = state.count_tread(now, s.tread_gap);
+        // The field that already holds the blade keeps holding it; otherwise
+        // the larger of the field and the recovering bend wins.
+        let mut bend_changed = false;
+        if field.takes_over(state, now, omega) {
+            bend_changed = state.held != field.bend;
+            state.held = field.bend;
             state.anchor_time = now;
         }
+        // Damage depends on the held bend and the treads only.
+        if bend_changed || new_tread {
+            self.apply_damage(i);
+        }
+        let state = &mut self.states[i];
+        if !state.active {
+            state.active = true;
+            self.active_count += 1;
+            let deadline = state.anchor_time + time_to_settle(omega) as f64;
+            self.retire_queue.push_back((i as u32, deadline));
+        }
+        true
+    }
+
+    /// Breaks blade `i` if its held bend or its treads say so, and gives a
+    /// broken blade its permanent residual bend.
+    fn apply_damage(&mut self, i: usize) {
+        let blade = &self.blades[i];
+        let s = &self.settings;
+        let state = &mut self.states[i];
         let break_at = s.break_bend * blade.stiffness * blade.height;
         let bent_too_far = state.held.tip.length_squared() > break_at * break_at;
         if bent_too_far || state.treads >= s.treads_to_break {
@@ -360,13 +410,6 @@ impl GrassPatch {
                 state.rest = residual;
             }
         }
-        if !state.active {
-            state.active = true;
-            self.active_count += 1;
-            let deadline = state.anchor_time + time_to_settle(omega) as f64;
-            self.retire_queue.push_back((i as u32, deadline));
-        }
-        true
     }
 
     /// Takes settled blades off the active list; returns how many.
@@ -391,6 +434,23 @@ impl GrassPatch {
         }
         retired
     }
+}
+
+/// Sorts `ranges` and merges overlapping or touching ones, so that every
+/// blade index appears in at most one of them.
+fn merge_ranges(ranges: &mut Vec<Range<usize>>) {
+    ranges.retain(|r| !r.is_empty());
+    ranges.sort_unstable_by_key(|r| (r.start, r.end));
+    let mut merged = 0;
+    for k in 0..ranges.len() {
+        if merged > 0 && ranges[k].start <= ranges[merged - 1].end {
+            ranges[merged - 1].end = ranges[merged - 1].end.max(ranges[k].end);
+        } else {
+            ranges[merged] = ranges[k].clone();
+            merged += 1;
+        }
+    }
+    ranges.truncate(merged);
 }
 
 /// The vegetation height sensed at `(x, z)` over several patches (the tallest).
