@@ -1,14 +1,20 @@
 //! Ray-cast benchmarks (single thread):
-//! vertical foot rays on 512² and 4096² grids, arbitrary rays on a 100k-triangle
-//! mesh and on the grid per tile size, and the refit after a 40x40-cell edit.
+//! vertical foot rays on 512² and 4096² grids, rays against a 100k-triangle
+//! mesh (ours and obvhs's own CwBvh path, in CPU time), arbitrary rays on the
+//! grid per tile size, and the refit after a 40x40-cell edit.
 //!
 //! `cargo bench -p engine --bench raycast`
 
 use std::hint::black_box;
+use std::time::{Duration, Instant};
 
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{Bencher, Criterion, Throughput, criterion_group, criterion_main};
 use engine::geom::{GridBvh, GridRect, HeightGrid, MeshBvh, Ray, TriMesh};
-use engine::glam::{Vec2, Vec3};
+use engine::glam::{Vec2, Vec3, Vec3A};
+use obvhs::BvhBuildParams;
+use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::ray::{Ray as ObRay, RayHit};
+use obvhs::triangle::Triangle;
 
 /// SplitMix64: seeded, so every run measures the same rays.
 struct Rng(u64);
@@ -110,66 +116,116 @@ fn blob(n: usize) -> TriMesh {
     TriMesh::new(positions, triangles).unwrap()
 }
 
-/// Rays from random points around the object towards random points inside it.
+/// Incoherent rays: from random points in a cube of 3 radii around the object
+/// towards random points of its central half-radius cube (every ray meets the
+/// mesh from outside, each in an unrelated place).
 fn arbitrary_rays(rng: &mut Rng, centre: Vec3, radius: f32) -> Vec<Ray> {
+    let mut point = |scale: f32| {
+        centre
+            + Vec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            ) * radius
+                * scale
+    };
     (0..RAYS)
         .map(|_| {
-            let o = centre
-                + Vec3::new(
-                    rng.range(-1.0, 1.0),
-                    rng.range(-1.0, 1.0),
-                    rng.range(-1.0, 1.0),
-                ) * radius
-                    * 3.0;
-            let target = centre
-                + Vec3::new(
-                    rng.range(-1.0, 1.0),
-                    rng.range(-1.0, 1.0),
-                    rng.range(-1.0, 1.0),
-                ) * radius
-                    * 0.5;
-            Ray::new(o, target - o).unwrap()
+            let o = point(3.0);
+            Ray::new(o, point(0.5) - o).unwrap()
         })
         .collect()
+}
+
+/// Primary rays of a `w` x `h` pinhole camera framing the unit blob, in
+/// scanline order (a renderer's rays).
+fn camera_rays(w: usize, h: usize) -> Vec<Ray> {
+    let eye = Vec3::new(0.3, 0.8, 3.0);
+    (0..w * h)
+        .map(|k| {
+            let px = (k % w) as f32 / (w - 1) as f32 - 0.5;
+            let py = (k / w) as f32 / (h - 1) as f32 - 0.5;
+            Ray::new(eye, Vec3::new(px * 0.9, py * 0.9 - 0.25, -1.0)).unwrap()
+        })
+        .collect()
+}
+
+/// CPU time of this thread (Linux), so that other processes on a loaded
+/// machine do not count; wall time elsewhere.
+fn thread_cpu_time() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns = stat.split_whitespace().next()?.parse().ok()?;
+    Some(Duration::from_nanos(ns))
+}
+
+/// Times `iters` runs of `f` in thread CPU time (wall time if unavailable).
+fn cpu_timed(b: &mut Bencher, mut f: impl FnMut() -> f32) {
+    b.iter_custom(|iters| {
+        let (cpu, wall) = (thread_cpu_time(), Instant::now());
+        for _ in 0..iters {
+            black_box(f());
+        }
+        match (cpu, thread_cpu_time()) {
+            (Some(start), Some(end)) => end - start,
+            _ => wall.elapsed(),
+        }
+    });
 }
 
 fn mesh(c: &mut Criterion) {
     let mesh = blob(224);
     assert!(mesh.triangles.len() >= 100_000);
-    let bvh = MeshBvh::build(&mesh).unwrap();
-    let rays = arbitrary_rays(&mut Rng(2), Vec3::ZERO, 1.0);
-    let mut group = c.benchmark_group("mesh_100k");
-    group.throughput(Throughput::Elements(RAYS as u64));
-    group.bench_function("arbitrary_rays", |b| {
-        b.iter(|| {
-            let mut sum = 0.0;
-            for ray in &rays {
-                if let Some(h) = bvh.cast(ray, f32::INFINITY) {
-                    sum += h.distance;
-                }
-            }
-            black_box(sum)
-        })
-    });
-    // Coherent primary rays of a 64 x 64 pinhole camera framing the mesh.
-    let eye = Vec3::new(0.3, 0.8, 3.0);
-    let camera: Vec<Ray> = (0..RAYS)
-        .map(|k| {
-            let (px, py) = ((k % 64) as f32 / 63.0 - 0.5, (k / 64) as f32 / 63.0 - 0.5);
-            Ray::new(eye, Vec3::new(px * 0.9, py * 0.9 - 0.25, -1.0)).unwrap()
+    let ours = MeshBvh::build(&mesh).unwrap();
+    // obvhs's own fast path, for comparison: CwBvh (medium preset) over its
+    // triangles, stored in primitive order, with its triangle test.
+    let triangles: Vec<Triangle> = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let [v0, v1, v2] = t.map(|v| Vec3A::from(mesh.positions[v as usize]));
+            Triangle { v0, v1, v2 }
         })
         .collect();
-    group.bench_function("camera_rays", |b| {
-        b.iter(|| {
-            let mut sum = 0.0;
-            for ray in &camera {
-                if let Some(h) = bvh.cast(ray, f32::INFINITY) {
-                    sum += h.distance;
+    let cwbvh = build_cwbvh_from_tris(
+        &triangles,
+        BvhBuildParams::medium_build(),
+        &mut Duration::default(),
+    );
+    let ordered: Vec<Triangle> = cwbvh
+        .primitive_indices
+        .iter()
+        .map(|&k| triangles[k as usize])
+        .collect();
+    let workloads = [
+        ("arbitrary", arbitrary_rays(&mut Rng(2), Vec3::ZERO, 1.0)),
+        ("camera_64x64", camera_rays(64, 64)),
+        ("camera_640x480", camera_rays(640, 480)),
+    ];
+    let mut group = c.benchmark_group("mesh_100k");
+    for (name, rays) in &workloads {
+        group.throughput(Throughput::Elements(rays.len() as u64));
+        group.bench_function(format!("{name}/ours"), |b| {
+            cpu_timed(b, || {
+                rays.iter()
+                    .filter_map(|ray| ours.cast(ray, f32::INFINITY))
+                    .map(|h| h.distance)
+                    .sum()
+            })
+        });
+        group.bench_function(format!("{name}/obvhs_cwbvh"), |b| {
+            cpu_timed(b, || {
+                let mut sum = 0.0;
+                for ray in rays {
+                    let ray = ObRay::new_inf(ray.origin().into(), ray.dir().into());
+                    let mut hit = RayHit::none();
+                    if cwbvh.ray_traverse(ray, &mut hit, |r, k| ordered[k].intersect(r)) {
+                        sum += hit.t;
+                    }
                 }
-            }
-            black_box(sum)
-        })
-    });
+                sum
+            })
+        });
+    }
     group.finish();
 }
 

@@ -179,7 +179,7 @@ pub(crate) fn closer(a: &Hit, b: &Hit) -> bool {
     }
 }
 
-pub(crate) fn to_obvhs(ray: &Ray, max_t: f32) -> ObRay {
+fn to_obvhs(ray: &Ray, max_t: f32) -> ObRay {
     ObRay::new(
         Vec3A::from(ray.origin()),
         Vec3A::from(ray.dir()),

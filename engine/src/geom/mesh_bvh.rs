@@ -3,22 +3,31 @@ use std::time::Duration;
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb as ObAabb;
-use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::builder::build_cwbvh;
-use obvhs::ray::RayHit;
+use obvhs::bvh2::builder::build_bvh2;
 
-use super::grid_bvh::to_obvhs;
 use super::ray::usable_max_t;
-use super::{Aabb, GeomError, Hit, HitTarget, MeshId, Ray, TriMesh, ray_triangle};
+use super::triangle::ray_triangle_edges;
+use super::wide_bvh::WideBvh;
+use super::{Aabb, GeomError, Hit, HitTarget, MeshId, Ray, TriMesh};
 
-/// A BVH over a static [`TriMesh`] (an obvhs compressed wide BVH).
+/// Build preset: obvhs's medium preset with leaves of at most 4 triangles,
+/// collapsed at a lower traversal cost than the preset's: with 4-wide nodes a
+/// node test is cheap next to a triangle test (chosen by measurement).
+const LEAF_BUILD: BvhBuildParams = BvhBuildParams {
+    max_prims_per_leaf: 4,
+    collapse_traversal_cost: 2.0,
+    ..BvhBuildParams::medium_build()
+};
+
+/// A BVH over a static [`TriMesh`]: an obvhs PLOC binary BVH (medium preset)
+/// collapsed into a 4-wide BVH with full-precision boxes.
 ///
-/// Triangles are copied in traversal order; hits name the triangle's index in
-/// the source mesh.
+/// Triangles are copied in traversal order, prepared as a corner and two
+/// edges; hits name the triangle's index in the source mesh.
 #[derive(Clone)]
 pub struct MeshBvh {
-    bvh: CwBvh,
-    /// Triangle corners in BVH slot order.
+    bvh: WideBvh,
+    /// Triangles in BVH slot order, as `[a, b - a, c - a]`.
     triangles: Vec<[Vec3A; 3]>,
     /// Source triangle index of each slot.
     source: Vec<u32>,
@@ -55,13 +64,16 @@ impl MeshBvh {
             .iter()
             .map(|&[a, b, c]| ObAabb::new(a.min(b).min(c) - pad, a.max(b).max(c) + pad))
             .collect();
-        let bvh = build_cwbvh(
-            &boxes,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        );
-        let source = bvh.primitive_indices.clone();
-        let triangles = source.iter().map(|&k| corners[k as usize]).collect();
+        let bvh2 = build_bvh2(&boxes, LEAF_BUILD, &mut Duration::default());
+        let bvh = WideBvh::from_bvh2(&bvh2);
+        let source = bvh2.primitive_indices;
+        let triangles = source
+            .iter()
+            .map(|&k| {
+                let [a, b, c] = corners[k as usize];
+                [a, b - a, c - a]
+            })
+            .collect();
         Ok(MeshBvh {
             bvh,
             triangles,
@@ -94,39 +106,32 @@ impl MeshBvh {
 
     /// The closest hit of `ray` within `max_t` (triangles are two-sided).
     pub fn cast(&self, ray: &Ray, max_t: f32) -> Option<Hit> {
-        if !usable_max_t(max_t) {
-            return None;
-        }
-        let (o, d) = (Vec3A::from(ray.origin()), Vec3A::from(ray.dir()));
-        let mut hit = RayHit::none();
-        let found = self
-            .bvh
-            .ray_traverse(to_obvhs(ray, max_t), &mut hit, |r, slot| {
-                ray_triangle(o, d, self.triangles[slot], r.tmax).unwrap_or(f32::INFINITY)
-            });
-        found.then(|| {
-            let slot = hit.primitive_id as usize;
-            let [a, b, c] = self.triangles[slot];
-            Hit {
-                point: ray.at(hit.t),
-                normal: Vec3::from((b - a).cross(c - a)).normalize_or(Vec3::Y),
-                distance: hit.t,
-                target: HitTarget::Mesh {
-                    mesh: self.id,
-                    triangle: self.source[slot],
-                },
-            }
+        let (t, slot) = self.traverse::<false>(ray, max_t)?;
+        let [_, e1, e2] = self.triangles[slot];
+        Some(Hit {
+            point: ray.at(t),
+            normal: Vec3::from(e1.cross(e2)).normalize_or(Vec3::Y),
+            distance: t,
+            target: HitTarget::Mesh {
+                mesh: self.id,
+                triangle: self.source[slot],
+            },
         })
     }
 
     /// True when `ray` meets the mesh within `max_t`.
     pub fn any_hit(&self, ray: &Ray, max_t: f32) -> bool {
+        self.traverse::<true>(ray, max_t).is_some()
+    }
+
+    /// The closest (or with `ANY` the first found) hit as `(distance, slot)`.
+    fn traverse<const ANY: bool>(&self, ray: &Ray, max_t: f32) -> Option<(f32, usize)> {
         if !usable_max_t(max_t) {
-            return false;
+            return None;
         }
         let (o, d) = (Vec3A::from(ray.origin()), Vec3A::from(ray.dir()));
-        !self.bvh.ray_traverse_miss(to_obvhs(ray, max_t), |r, slot| {
-            ray_triangle(o, d, self.triangles[slot], r.tmax).unwrap_or(f32::INFINITY)
+        self.bvh.traverse::<ANY>(o, d, max_t, |slot, t_max| {
+            ray_triangle_edges(o, d, self.triangles[slot], t_max)
         })
     }
 }

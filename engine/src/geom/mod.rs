@@ -13,6 +13,7 @@ mod ray;
 mod ray_scene;
 mod tri_mesh;
 mod triangle;
+mod wide_bvh;
 
 pub use aabb::Aabb;
 pub use error::GeomError;

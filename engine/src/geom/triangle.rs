@@ -11,11 +11,24 @@ const EDGE_SLACK: f32 = 1e-6;
 /// neighbours never let a ray slip between them.
 #[inline]
 pub fn ray_triangle(origin: Vec3A, dir: Vec3A, [a, b, c]: [Vec3A; 3], max_t: f32) -> Option<f32> {
-    let e1 = b - a;
-    let e2 = c - a;
+    ray_triangle_edges(origin, dir, [a, b - a, c - a], max_t)
+}
+
+/// [`ray_triangle`] for a triangle given as its first corner and the edges
+/// to the other two (`[a, b - a, c - a]`), so a BVH can store them prepared.
+/// Bit-identical to [`ray_triangle`] on the same triangle.
+#[inline]
+pub(crate) fn ray_triangle_edges(
+    origin: Vec3A,
+    dir: Vec3A,
+    [a, e1, e2]: [Vec3A; 3],
+    max_t: f32,
+) -> Option<f32> {
     let p = dir.cross(e2);
     let det = e1.dot(p);
-    if det == 0.0 || !det.is_finite() {
+    // Rejects a zero, infinite or NaN determinant (NaN fails both comparisons).
+    let size = det.abs();
+    if !(size > 0.0 && size < f32::INFINITY) {
         return None;
     }
     let inv = 1.0 / det;
