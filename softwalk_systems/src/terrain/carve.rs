@@ -178,6 +178,14 @@ pub fn carve(
             }
         }
     }
+    // Everything this contact has pressed stays held until the foot lifts, not
+    // only what is under the sole now: a rolling foot lifts its heel
+    // mid-stance, and smoothing must not pour the rim back under it every step.
+    for (i, j) in print.window.iter() {
+        if !print.reference[print.local(i, j)].is_nan() {
+            parts.changes.held.push(j * nx + i);
+        }
+    }
     if removed == 0.0 {
         return Ok(GridRect::EMPTY);
     }
