@@ -99,6 +99,18 @@ impl Archetype {
         column.downcast_mut::<Vec<T>>()
     }
 
+    /// The column at `index`, after checking that it stores `T`.
+    fn column_of<T: 'static>(&self, index: usize) -> &ArchetypeColumn {
+        let column = &self.columns[index];
+        assert!(
+            column.ty.type_id == TypeId::of::<T>(),
+            "column {index} stores `{}`, not `{}`",
+            column.ty.type_name,
+            std::any::type_name::<T>()
+        );
+        column
+    }
+
     /// Typed shared access to the column of `T`.
     ///
     /// # Safety
@@ -106,9 +118,8 @@ impl Archetype {
     /// mutable borrow possible) for the returned lifetime.
     pub(crate) unsafe fn column_slice<T: 'static>(&self) -> Option<&[T]> {
         let index = self.column_index(TypeId::of::<T>())?;
-        // SAFETY: forwarded to the caller: a shared borrow of `T` is held.
-        let column: &dyn Any = unsafe { &**self.columns[index].data.get() };
-        column.downcast_ref::<Vec<T>>().map(Vec::as_slice)
+        // SAFETY: forwarded to the caller.
+        Some(unsafe { self.column_slice_at(index) })
     }
 
     /// Typed mutable access to the column of `T` through `&self`.
@@ -119,9 +130,46 @@ impl Archetype {
     #[allow(clippy::mut_from_ref)] // guarded by the runtime borrow flag, see `# Safety`
     pub(crate) unsafe fn column_slice_mut<T: 'static>(&self) -> Option<&mut [T]> {
         let index = self.column_index(TypeId::of::<T>())?;
+        // SAFETY: forwarded to the caller.
+        Some(unsafe { self.column_slice_mut_at(index) })
+    }
+
+    /// Typed shared access to column `index` (from [`Archetype::column_index`]),
+    /// without looking the type up: what cached queries use.
+    ///
+    /// # Panics
+    /// If column `index` does not store `T`.
+    ///
+    /// # Safety
+    /// As [`Archetype::column_slice`].
+    pub(crate) unsafe fn column_slice_at<T: 'static>(&self, index: usize) -> &[T] {
+        let column = self.column_of::<T>(index);
+        // SAFETY: forwarded to the caller: a shared borrow of `T` is held.
+        let data: &dyn Column = unsafe { &**column.data.get() };
+        // SAFETY: `column_of` checked that the column's `ComponentType` is
+        // `T`'s. `ComponentType::of::<T>` is its only constructor, and the
+        // world creates every column with that type's `new_column`, which
+        // boxes a `Vec<T>`; a column is never replaced. So the trait object
+        // points at a `Vec<T>` (the unchecked form of `downcast_ref`).
+        let vec = unsafe { &*(data as *const dyn Column).cast::<Vec<T>>() };
+        vec.as_slice()
+    }
+
+    /// Typed mutable access to column `index` through `&self`.
+    ///
+    /// # Panics
+    /// If column `index` does not store `T`.
+    ///
+    /// # Safety
+    /// As [`Archetype::column_slice_mut`].
+    #[allow(clippy::mut_from_ref)] // guarded by the runtime borrow flag, see `# Safety`
+    pub(crate) unsafe fn column_slice_mut_at<T: 'static>(&self, index: usize) -> &mut [T] {
+        let column = self.column_of::<T>(index);
         // SAFETY: forwarded to the caller: the unique borrow of `T` is held.
-        let column: &mut dyn Any = unsafe { &mut **self.columns[index].data.get_mut() };
-        column.downcast_mut::<Vec<T>>().map(Vec::as_mut_slice)
+        let data: &mut dyn Column = unsafe { &mut **column.data.get_mut() };
+        // SAFETY: as in `column_slice_at`: the column holds a `Vec<T>`.
+        let vec = unsafe { &mut *(data as *mut dyn Column).cast::<Vec<T>>() };
+        vec.as_mut_slice()
     }
 
     pub(crate) fn reserve(&mut self, additional: usize) {
@@ -143,5 +191,31 @@ impl Archetype {
     pub(crate) fn swap_remove_entity(&mut self, row: usize) -> Option<Entity> {
         self.entities.swap_remove(row);
         self.entities.get(row).copied()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::world::World;
+
+    #[test]
+    fn a_column_position_is_checked_against_the_requested_type() {
+        let mut world = World::new();
+        world.spawn((1u32, 2.0f64));
+        let archetype = &world.archetypes()[1];
+        let position = archetype
+            .column_index(std::any::TypeId::of::<f64>())
+            .unwrap();
+        // SAFETY: `world` is borrowed shared and nothing writes to it.
+        assert_eq!(
+            unsafe { archetype.column_slice_at::<f64>(position) },
+            &[2.0]
+        );
+        let wrong = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            // SAFETY: as above; the call must panic before touching the data.
+            unsafe { archetype.column_slice_at::<u32>(position).len() }
+        }));
+        let message = *wrong.unwrap_err().downcast::<String>().unwrap();
+        assert!(message.contains("stores `f64`, not `u32`"), "{message}");
     }
 }

@@ -4,7 +4,7 @@
 use std::marker::PhantomData;
 
 use super::error::EcsError;
-use super::query::{Access, Query, QueryFilter, archetype_matches};
+use super::query::{Access, Query, QueryFilter, prepare_archetype};
 use super::query_iter::{ArchetypeCursor, QueryBorrow, QueryIter};
 use super::world::World;
 
@@ -27,7 +27,9 @@ use super::world::World;
 pub struct PreparedQuery<Q: Query, F: QueryFilter = ()> {
     world_id: Option<u64>,
     seen: usize,
-    matching: Vec<u32>,
+    /// Matching archetypes (index in the world) with the query's column
+    /// positions in each, so a run looks nothing up.
+    matching: Vec<(u32, Q::State)>,
     accesses: Vec<Access>,
     _marker: PhantomData<fn() -> (Q, F)>,
 }
@@ -61,8 +63,8 @@ impl<Q: Query, F: QueryFilter> PreparedQuery<Q, F> {
         }
         let archetypes = world.archetypes();
         for (index, archetype) in archetypes.iter().enumerate().skip(self.seen) {
-            if archetype_matches::<Q, F>(archetype) {
-                self.matching.push(index as u32);
+            if let Some(state) = prepare_archetype::<Q, F>(archetype) {
+                self.matching.push((index as u32, state));
             }
         }
         self.seen = archetypes.len();
