@@ -99,16 +99,20 @@ impl Archetype {
         column.downcast_mut::<Vec<T>>()
     }
 
-    /// The column at `index`, after checking that it stores `T`.
-    fn column_of<T: 'static>(&self, index: usize) -> &ArchetypeColumn {
-        let column = &self.columns[index];
-        assert!(
-            column.ty.type_id == TypeId::of::<T>(),
+    /// The column at `index`, which must store `T` (checked in debug builds).
+    ///
+    /// # Safety
+    /// `index` is the position of `T`'s column in this archetype.
+    #[inline]
+    unsafe fn column_of<T: 'static>(&self, index: usize) -> &ArchetypeColumn {
+        debug_assert!(
+            self.columns[index].ty.type_id == TypeId::of::<T>(),
             "column {index} stores `{}`, not `{}`",
-            column.ty.type_name,
+            self.columns[index].ty.type_name,
             std::any::type_name::<T>()
         );
-        column
+        // SAFETY: by the caller's contract `index` is a column position.
+        unsafe { self.columns.get_unchecked(index) }
     }
 
     /// Typed shared access to the column of `T`.
@@ -118,7 +122,8 @@ impl Archetype {
     /// mutable borrow possible) for the returned lifetime.
     pub(crate) unsafe fn column_slice<T: 'static>(&self) -> Option<&[T]> {
         let index = self.column_index(TypeId::of::<T>())?;
-        // SAFETY: forwarded to the caller.
+        // SAFETY: `index` is `T`'s column (just looked up); the borrow is
+        // forwarded to the caller.
         Some(unsafe { self.column_slice_at(index) })
     }
 
@@ -130,23 +135,24 @@ impl Archetype {
     #[allow(clippy::mut_from_ref)] // guarded by the runtime borrow flag, see `# Safety`
     pub(crate) unsafe fn column_slice_mut<T: 'static>(&self) -> Option<&mut [T]> {
         let index = self.column_index(TypeId::of::<T>())?;
-        // SAFETY: forwarded to the caller.
+        // SAFETY: `index` is `T`'s column (just looked up); the borrow is
+        // forwarded to the caller.
         Some(unsafe { self.column_slice_mut_at(index) })
     }
 
-    /// Typed shared access to column `index` (from [`Archetype::column_index`]),
-    /// without looking the type up: what cached queries use.
-    ///
-    /// # Panics
-    /// If column `index` does not store `T`.
+    /// Typed shared access to column `index`, without looking the type up:
+    /// what cached queries use.
     ///
     /// # Safety
-    /// As [`Archetype::column_slice`].
+    /// `index` is the position of `T`'s column in this archetype (what
+    /// [`Archetype::column_index`] returned for `T`; debug builds check it),
+    /// and the borrow contract of [`Archetype::column_slice`] holds.
     pub(crate) unsafe fn column_slice_at<T: 'static>(&self, index: usize) -> &[T] {
-        let column = self.column_of::<T>(index);
+        // SAFETY: forwarded to the caller: `index` is `T`'s column.
+        let column = unsafe { self.column_of::<T>(index) };
         // SAFETY: forwarded to the caller: a shared borrow of `T` is held.
         let data: &dyn Column = unsafe { &**column.data.get() };
-        // SAFETY: `column_of` checked that the column's `ComponentType` is
+        // SAFETY: by the caller's contract the column's `ComponentType` is
         // `T`'s. `ComponentType::of::<T>` is its only constructor, and the
         // world creates every column with that type's `new_column`, which
         // boxes a `Vec<T>`; a column is never replaced. So the trait object
@@ -157,14 +163,14 @@ impl Archetype {
 
     /// Typed mutable access to column `index` through `&self`.
     ///
-    /// # Panics
-    /// If column `index` does not store `T`.
-    ///
     /// # Safety
-    /// As [`Archetype::column_slice_mut`].
+    /// `index` is the position of `T`'s column in this archetype (debug
+    /// builds check it), and the borrow contract of
+    /// [`Archetype::column_slice_mut`] holds.
     #[allow(clippy::mut_from_ref)] // guarded by the runtime borrow flag, see `# Safety`
     pub(crate) unsafe fn column_slice_mut_at<T: 'static>(&self, index: usize) -> &mut [T] {
-        let column = self.column_of::<T>(index);
+        // SAFETY: forwarded to the caller: `index` is `T`'s column.
+        let column = unsafe { self.column_of::<T>(index) };
         // SAFETY: forwarded to the caller: the unique borrow of `T` is held.
         let data: &mut dyn Column = unsafe { &mut **column.data.get_mut() };
         // SAFETY: as in `column_slice_at`: the column holds a `Vec<T>`.
@@ -199,7 +205,8 @@ mod tests {
     use super::super::world::World;
 
     #[test]
-    fn a_column_position_is_checked_against_the_requested_type() {
+    #[cfg(debug_assertions)]
+    fn a_column_position_is_checked_against_the_requested_type_in_debug_builds() {
         let mut world = World::new();
         world.spawn((1u32, 2.0f64));
         let archetype = &world.archetypes()[1];
@@ -212,7 +219,7 @@ mod tests {
             &[2.0]
         );
         let wrong = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            // SAFETY: as above; the call must panic before touching the data.
+            // SAFETY: as above; the debug check panics before the data is touched.
             unsafe { archetype.column_slice_at::<u32>(position).len() }
         }));
         let message = *wrong.unwrap_err().downcast::<String>().unwrap();

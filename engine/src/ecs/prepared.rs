@@ -31,6 +31,8 @@ pub struct PreparedQuery<Q: Query, F: QueryFilter = ()> {
     /// positions in each, so a run looks nothing up.
     matching: Vec<(u32, Q::State)>,
     accesses: Vec<Access>,
+    /// Whether `Q` names a component twice with a `&mut` (checked once).
+    aliasing: Result<(), EcsError>,
     _marker: PhantomData<fn() -> (Q, F)>,
 }
 
@@ -49,6 +51,7 @@ impl<Q: Query, F: QueryFilter> PreparedQuery<Q, F> {
             world_id: None,
             seen: 0,
             matching: Vec::new(),
+            aliasing: World::check_aliasing(&accesses),
             accesses,
             _marker: PhantomData,
         }
@@ -96,7 +99,9 @@ impl<Q: Query, F: QueryFilter> PreparedQuery<Q, F> {
     /// # Panics
     /// If `Q` names a component twice with at least one `&mut`.
     pub fn query_mut<'q>(&'q mut self, world: &'q mut World) -> QueryIter<'q, Q, F> {
-        World::check_aliasing(&self.accesses).unwrap_or_else(|error| panic!("{error}"));
+        if let Err(error) = &self.aliasing {
+            panic!("{error}");
+        }
         self.update(world);
         // SAFETY: `&mut World` excludes every other borrow, and `Q` does not
         // alias itself (checked above).

@@ -60,9 +60,10 @@ pub trait Fetch: Send + Sized {
     fn next_item(&mut self) -> Self::Item;
     /// Splits into rows `..mid` and `mid..` (for parallel batches).
     fn split_at(self, mid: usize) -> (Self, Self);
-    /// Folds the next `rows` rows (which the caller guarantees exist).
-    /// Single-column fetches override it with a plain slice walk, which the
-    /// compiler can vectorise.
+    /// Folds the remaining rows; `rows` is their number (the rows the fetch
+    /// was made or split for, minus those taken by [`Fetch::next_item`]).
+    /// Single-column fetches override it with a plain walk of their slice,
+    /// which the compiler can vectorise.
     #[inline]
     fn fold_rows<B>(mut self, rows: usize, init: B, mut g: impl FnMut(B, Self::Item) -> B) -> B {
         let mut acc = init;
@@ -92,7 +93,8 @@ impl<'q, T: Sync> Fetch for ReadFetch<'q, T> {
     }
     #[inline]
     fn fold_rows<B>(self, rows: usize, init: B, g: impl FnMut(B, &'q T) -> B) -> B {
-        self.0[..rows].iter().fold(init, g)
+        debug_assert_eq!(rows, self.0.len(), "{ROW_COUNT}");
+        self.0.iter().fold(init, g)
     }
 }
 
@@ -114,7 +116,8 @@ impl<'q, T: Send> Fetch for WriteFetch<'q, T> {
     }
     #[inline]
     fn fold_rows<B>(self, rows: usize, init: B, g: impl FnMut(B, &'q mut T) -> B) -> B {
-        self.0[..rows].iter_mut().fold(init, g)
+        debug_assert_eq!(rows, self.0.len(), "{ROW_COUNT}");
+        self.0.iter_mut().fold(init, g)
     }
 }
 
@@ -162,7 +165,8 @@ impl<T: Component> Query for &T {
         archetype.column_index(TypeId::of::<T>())
     }
     unsafe fn fetch<'q>(archetype: &'q Archetype, column: usize) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds a shared borrow of `T` for `'q`.
+        // SAFETY: `column` is `T`'s position (from `prepare`, by the caller's
+        // contract), and the caller holds a shared borrow of `T` for `'q`.
         ReadFetch(unsafe { archetype.column_slice_at::<T>(column) })
     }
 }
@@ -178,7 +182,8 @@ impl<T: Component> Query for &mut T {
         archetype.column_index(TypeId::of::<T>())
     }
     unsafe fn fetch<'q>(archetype: &'q Archetype, column: usize) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds the unique borrow of `T` for `'q`.
+        // SAFETY: `column` is `T`'s position (from `prepare`, by the caller's
+        // contract), and the caller holds the unique borrow of `T` for `'q`.
         WriteFetch(unsafe { archetype.column_slice_mut_at::<T>(column) })
     }
 }
@@ -194,7 +199,7 @@ impl<T: Component> Query for Option<&T> {
         Some(archetype.column_index(TypeId::of::<T>()))
     }
     unsafe fn fetch<'q>(archetype: &'q Archetype, column: Option<usize>) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds a shared borrow of `T` for `'q`.
+        // SAFETY: as for `&T`.
         column.map(|column| ReadFetch(unsafe { archetype.column_slice_at::<T>(column) }))
     }
 }
@@ -210,7 +215,7 @@ impl<T: Component> Query for Option<&mut T> {
         Some(archetype.column_index(TypeId::of::<T>()))
     }
     unsafe fn fetch<'q>(archetype: &'q Archetype, column: Option<usize>) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds the unique borrow of `T` for `'q`.
+        // SAFETY: as for `&mut T`.
         column.map(|column| WriteFetch(unsafe { archetype.column_slice_mut_at::<T>(column) }))
     }
 }

@@ -116,30 +116,31 @@ impl<'q, Q: Query, F: QueryFilter> QueryIter<'q, Q, F> {
         }
     }
 
-    /// The next non-empty matching archetype: its row count and a fetch over it.
+    /// A fetch over `archetype` (with the query's `state` for it) and its row count.
+    #[inline]
+    fn fetch(archetype: &'q Archetype, state: Q::State) -> (usize, Q::Fetch<'q>) {
+        // SAFETY: `state` was prepared for this archetype (by the cursor's
+        // scan, or by the prepared query for this world), and the borrows
+        // are held for `'q` by the contract of `QueryIter::new`.
+        (archetype.len(), unsafe { Q::fetch(archetype, state) })
+    }
+
+    /// The next matching archetype: its row count and a fetch over it.
+    /// Empty archetypes are not skipped: they yield no rows.
     #[inline]
     fn next_archetype(&mut self) -> Option<(usize, Q::Fetch<'q>)> {
-        loop {
-            let (archetype, state) = match &mut self.cursor {
-                ArchetypeCursor::Scan(range) => {
-                    let archetype = &self.archetypes[range.next()?];
-                    match prepare_archetype::<Q, F>(archetype) {
-                        Some(state) => (archetype, state),
-                        None => continue,
-                    }
-                }
-                ArchetypeCursor::Cached(list) => {
-                    let &(index, state) = list.next()?;
-                    (&self.archetypes[index as usize], state)
-                }
-            };
-            if !archetype.is_empty() {
-                // SAFETY: `state` was prepared for this archetype (just now,
-                // or by the prepared query for this world), and the borrows
-                // are held for `'q` by the contract of `QueryIter::new`.
-                return Some((archetype.len(), unsafe { Q::fetch(archetype, state) }));
+        let archetypes = self.archetypes;
+        let (archetype, state) = match &mut self.cursor {
+            ArchetypeCursor::Scan(range) => range.find_map(|index| {
+                let archetype = &archetypes[index];
+                prepare_archetype::<Q, F>(archetype).map(|state| (archetype, state))
+            })?,
+            ArchetypeCursor::Cached(list) => {
+                let &(index, state) = list.next()?;
+                (&archetypes[index as usize], state)
             }
-        }
+        };
+        Some(Self::fetch(archetype, state))
     }
 
     /// Calls `f` on every remaining item, in parallel batches of `batch_size` rows
@@ -198,9 +199,23 @@ impl<'q, Q: Query, F: QueryFilter> Iterator for QueryIter<'q, Q, F> {
         if let Some(fetch) = self.current.take() {
             acc = fetch.fold_rows(self.remaining, acc, &mut g);
         }
-        while let Some((rows, fetch)) = self.next_archetype() {
-            acc = fetch.fold_rows(rows, acc, &mut g);
+        let archetypes = self.archetypes;
+        let mut visit = |acc, archetype, state| {
+            let (rows, fetch) = Self::fetch(archetype, state);
+            fetch.fold_rows(rows, acc, &mut g)
+        };
+        // One loop per cursor kind, so the walk does not re-dispatch per archetype.
+        match self.cursor {
+            ArchetypeCursor::Cached(list) => list.fold(acc, |acc, &(index, state)| {
+                visit(acc, &archetypes[index as usize], state)
+            }),
+            ArchetypeCursor::Scan(range) => range.fold(acc, |acc, index| {
+                let archetype = &archetypes[index];
+                match prepare_archetype::<Q, F>(archetype) {
+                    Some(state) => visit(acc, archetype, state),
+                    None => acc,
+                }
+            }),
         }
-        acc
     }
 }
