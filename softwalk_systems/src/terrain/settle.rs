@@ -174,50 +174,58 @@ impl<'p> Relaxation<'p> {
     /// Relaxes the four forward edges of sample `(c, r)`.
     #[inline]
     fn relax_sample(&mut self, c: usize, r: usize) {
-        let l = r * self.width + c;
+        let (w, l) = (self.width, r * self.width + c);
         if self.held[l] {
             return;
         }
         let diagonal = std::f32::consts::SQRT_2;
-        if c + 1 < self.width {
-            self.relax_edge((c, r), (c + 1, r), 1.0);
+        if c + 1 < w {
+            self.relax_edge(l, l + 1, 1.0);
         }
         if r + 1 < self.height {
-            self.relax_edge((c, r), (c, r + 1), 1.0);
-            if c + 1 < self.width {
-                self.relax_edge((c, r), (c + 1, r + 1), diagonal);
+            self.relax_edge(l, l + w, 1.0);
+            if c + 1 < w {
+                self.relax_edge(l, l + w + 1, diagonal);
             }
             if c > 0 {
-                self.relax_edge((c, r), (c - 1, r + 1), diagonal);
+                self.relax_edge(l, l + w - 1, diagonal);
             }
         }
     }
 
-    /// Moves half the excess across the edge `a`-`b` (local column, row;
-    /// `length` in cells) if it is steeper than repose.
-    #[inline]
-    fn relax_edge(&mut self, a: (usize, usize), b: (usize, usize), length: f32) {
-        let (la, lb) = (a.1 * self.width + a.0, b.1 * self.width + b.0);
-        if (self.disturbed[la] | self.disturbed[lb]) == 0 || self.held[lb] {
+    /// Moves part of the excess across the edge between local samples `a`
+    /// and `b` (`length` in cells) if it is steeper than repose.
+    #[inline(always)]
+    fn relax_edge(&mut self, a: usize, b: usize, length: f32) {
+        if (self.disturbed[a] | self.disturbed[b]) == 0 || self.held[b] {
             return;
         }
-        let h = &mut *self.heights;
-        let (hi, lo) = if h[la] >= h[lb] { (la, lb) } else { (lb, la) };
-        let excess = h[hi] - h[lo] - self.limit[hi] * length;
-        if excess <= 0.0 {
-            return;
+        let (ha, hb) = (self.heights[a], self.heights[b]);
+        let (hi, lo, drop) = if ha >= hb {
+            (a, b, ha - hb)
+        } else {
+            (b, a, hb - ha)
+        };
+        let excess = drop - self.limit[hi] * length;
+        if excess > 0.0 {
+            self.transfer(hi, lo, excess, length);
         }
+    }
+
+    /// Moves [`SETTLE_OVERRELAXATION`] / 2 of `excess` from `hi` to `lo` and
+    /// queues the samples whose edges this touches.
+    #[cold]
+    fn transfer(&mut self, hi: usize, lo: usize, excess: f32, length: f32) {
         let moved = 0.5 * SETTLE_OVERRELAXATION * (excess + self.settle_to * length);
-        h[hi] -= moved;
-        h[lo] += moved;
-        for l in [la, lb] {
-            self.disturbed[l] = self.disturbed[l].max(DISTURBED_SLUMPED);
-        }
+        self.heights[hi] -= moved;
+        self.heights[lo] += moved;
         self.transfers += 1;
-        let pair = GridRect::new(a.0.min(b.0), a.1, a.0.max(b.0) + 1, b.1 + 1);
-        self.changed = self.changed.union(&pair);
-        self.mark_owners(a);
-        self.mark_owners(b);
+        for l in [hi, lo] {
+            self.disturbed[l] = self.disturbed[l].max(DISTURBED_SLUMPED);
+            let (c, r) = (l % self.width, l / self.width);
+            self.changed = self.changed.union(&GridRect::new(c, r, c + 1, r + 1));
+            self.mark_owners((c, r));
+        }
     }
 
     /// Marks for the next sweep every sample owning a forward edge that
