@@ -92,6 +92,9 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
     let mut relax = Relaxation::new(&mut patch, limit, SETTLE_TOLERANCE * cell);
     relax.run(local_seeds);
     let (changed, transfers, visits) = (relax.changed, relax.transfers, relax.visits);
+    if !changed.is_empty() {
+        relax.mark_slumped();
+    }
     parts.changes.settle_transfers += transfers;
     parts.changes.settle_visits += visits;
     if changed.is_empty() {
@@ -103,11 +106,20 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
     changed
 }
 
-/// The relaxation sweeps of one [`settle_from`] call, on a [`Patch`].
+/// Flag of a sample that is disturbed (its edges may move).
+const DISTURBED: u8 = 1;
+/// Flag of a sample held by a sole (its edges never move).
+const HELD: u8 = 2;
+/// Flag of a sample moved by this call.
+const MOVED: u8 = 4;
+
+/// The relaxation sweeps of one [`settle_from`] call, on a [`Patch`]'s heights.
 struct Relaxation<'p> {
     heights: &'p mut [f32],
+    /// Trodden marks, written once at the end ([`Relaxation::mark_slumped`]).
     disturbed: &'p mut [u8],
-    held: &'p [bool],
+    /// [`DISTURBED`], [`HELD`] and [`MOVED`] bits per sample.
+    flags: Vec<u8>,
     /// Steepest stable side difference per sample, metres.
     limit: Vec<f32>,
     /// How far below the limit a transfer leaves a pair, per unit length, metres.
@@ -126,12 +138,26 @@ struct Relaxation<'p> {
 }
 
 impl<'p> Relaxation<'p> {
+    /// Relaxation of the heights of `patch` (their flags taken from it) with
+    /// the steepest stable side difference `limit` per sample.
     fn new(patch: &'p mut Patch, limit: Vec<f32>, settle_to: f32) -> Self {
         let (width, height) = (patch.width, patch.rect.height());
+        let flags = patch
+            .disturbed
+            .iter()
+            .zip(&patch.held)
+            .map(|(&d, &held)| {
+                if held {
+                    HELD
+                } else {
+                    u8::from(d != 0) * DISTURBED
+                }
+            })
+            .collect();
         Relaxation {
             heights: &mut patch.heights,
             disturbed: &mut patch.disturbed,
-            held: &patch.held,
+            flags,
             limit,
             settle_to,
             width,
@@ -171,20 +197,30 @@ impl<'p> Relaxation<'p> {
         }
     }
 
+    /// Marks every sample moved by the run as slumped.
+    fn mark_slumped(&mut self) {
+        for (d, &f) in self.disturbed.iter_mut().zip(&self.flags) {
+            if f & MOVED != 0 {
+                *d = (*d).max(DISTURBED_SLUMPED);
+            }
+        }
+    }
+
     /// Relaxes the four forward edges of sample `(c, r)`.
     #[inline]
     fn relax_sample(&mut self, c: usize, r: usize) {
         let (w, l) = (self.width, r * self.width + c);
-        if self.held[l] {
+        if self.flags[l] & HELD != 0 {
             return;
         }
         let diagonal = std::f32::consts::SQRT_2;
-        if c + 1 < w {
+        let right = c + 1 < w;
+        if right {
             self.relax_edge(l, l + 1, 1.0);
         }
         if r + 1 < self.height {
             self.relax_edge(l, l + w, 1.0);
-            if c + 1 < w {
+            if right {
                 self.relax_edge(l, l + w + 1, diagonal);
             }
             if c > 0 {
@@ -197,7 +233,8 @@ impl<'p> Relaxation<'p> {
     /// and `b` (`length` in cells) if it is steeper than repose.
     #[inline(always)]
     fn relax_edge(&mut self, a: usize, b: usize, length: f32) {
-        if (self.disturbed[a] | self.disturbed[b]) == 0 || self.held[b] {
+        // Moves only if one end is disturbed and neither is held.
+        if (self.flags[a] | self.flags[b]) & (DISTURBED | HELD) != DISTURBED {
             return;
         }
         let (ha, hb) = (self.heights[a], self.heights[b]);
@@ -221,10 +258,10 @@ impl<'p> Relaxation<'p> {
         self.heights[lo] += moved;
         self.transfers += 1;
         for l in [hi, lo] {
-            self.disturbed[l] = self.disturbed[l].max(DISTURBED_SLUMPED);
+            self.flags[l] |= DISTURBED | MOVED;
             let (c, r) = (l % self.width, l / self.width);
-            self.changed = self.changed.union(&GridRect::new(c, r, c + 1, r + 1));
-            self.mark_owners((c, r));
+            self.changed = grow(self.changed, c, r, c + 1, r + 1);
+            self.mark_owners(c, r);
         }
     }
 
@@ -232,18 +269,32 @@ impl<'p> Relaxation<'p> {
     /// touches `(c, r)`: itself, its left neighbour and the three samples
     /// of the row above.
     #[inline]
-    fn mark_owners(&mut self, (c, r): (usize, usize)) {
-        let c0 = c.saturating_sub(1);
-        let c1 = (c + 2).min(self.width);
-        self.next[r * self.width + c0] = true;
-        self.next[r * self.width + c] = true;
-        let mut marked = GridRect::new(c0, r, c + 1, r + 1);
+    fn mark_owners(&mut self, c: usize, r: usize) {
+        let w = self.width;
+        let (c0, c1) = (c.saturating_sub(1), (c + 1).min(w - 1));
+        self.next[r * w + c0] = true;
+        self.next[r * w + c] = true;
+        let r0 = r.saturating_sub(1);
         if r > 0 {
-            let above = (r - 1) * self.width;
-            self.next[above + c0..above + c1].fill(true);
-            marked = GridRect::new(c0, r - 1, c1, r + 1);
+            self.next[r0 * w + c0] = true;
+            self.next[r0 * w + c] = true;
+            self.next[r0 * w + c1] = true;
         }
-        self.next_rect = self.next_rect.union(&marked);
+        self.next_rect = grow(self.next_rect, c0, r0, c1 + 1, r + 1);
+    }
+}
+
+/// `rect` grown to hold the non-empty rectangle `i0..i1` x `j0..j1`.
+#[inline]
+fn grow(rect: GridRect, i0: usize, j0: usize, i1: usize, j1: usize) -> GridRect {
+    if rect.is_empty() {
+        return GridRect { i0, j0, i1, j1 };
+    }
+    GridRect {
+        i0: rect.i0.min(i0),
+        j0: rect.j0.min(j0),
+        i1: rect.i1.max(i1),
+        j1: rect.j1.max(j1),
     }
 }
 
@@ -298,6 +349,22 @@ mod tests {
         let held = hf.grid().clone();
         assert!(settle(&mut hf, GridRect::new(5, 5, 36, 36)).is_empty());
         assert_eq!(hf.grid(), &held);
+    }
+
+    #[test]
+    fn a_settled_window_is_stable_and_the_result_is_deterministic() {
+        let window = GridRect::new(5, 5, 36, 36);
+        let mut first = pillar(0);
+        let mut second = pillar(0);
+        settle(&mut first, window);
+        settle(&mut second, window);
+        assert_eq!(first.grid(), second.grid());
+        assert_eq!(first.disturbed(), second.disturbed());
+        // The work list stops only when no edge moves: a second call finds nothing.
+        let transfers = first.changes().settle_transfers;
+        assert!(settle(&mut first, window).is_empty());
+        assert_eq!(first.changes().settle_transfers, transfers);
+        assert_eq!(first.grid(), second.grid());
     }
 
     #[test]
