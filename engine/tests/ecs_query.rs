@@ -218,6 +218,42 @@ fn prepared_query_updates_incrementally_and_follows_world_swaps() {
 }
 
 #[test]
+fn prepared_query_finds_columns_at_every_position_and_in_late_archetypes() {
+    // Archetypes sort their columns by type id, so `Pos` and `Vel` sit at
+    // different column positions in each of these; the prepared query keeps
+    // one position per archetype and must agree with a plain query.
+    #[derive(Clone, Copy)]
+    struct Extra<const N: usize>;
+    let mut world = World::new();
+    world.spawn((Pos(1.0), Vel(1.0)));
+    world.spawn((Extra::<0>, Pos(2.0)));
+    world.spawn((Vel(3.0), Extra::<1>, Pos(3.0), Tag));
+    let mut prepared = PreparedQuery::<(Entity, &mut Pos, Option<&Vel>)>::new();
+    let rows = |world: &World| -> Vec<(Entity, f32, Option<f32>)> {
+        world
+            .query::<(Entity, &Pos, Option<&Vel>)>()
+            .iter()
+            .map(|(e, p, v)| (e, p.0, v.map(|v| v.0)))
+            .collect()
+    };
+    for round in 0..3 {
+        for (_, pos, vel) in prepared.query_mut(&mut world) {
+            pos.0 += vel.map_or(10.0, |v| v.0);
+        }
+        let seen: Vec<(Entity, f32, Option<f32>)> = prepared
+            .query(&world)
+            .iter()
+            .map(|(e, p, v)| (e, p.0, v.map(|v| v.0)))
+            .collect();
+        assert_eq!(seen, rows(&world), "round {round}");
+        world.spawn((Extra::<2>, Vel(0.5), Pos(0.0), Extra::<3>));
+    }
+    let positions: Vec<f32> = rows(&world).iter().map(|row| row.1).collect();
+    // Each run adds `Vel` (or 10 without it); late entities miss earlier runs.
+    assert_eq!(positions, vec![4.0, 32.0, 12.0, 1.0, 0.5, 0.0]);
+}
+
+#[test]
 fn empty_archetypes_are_skipped() {
     let mut world = World::new();
     let a = world.spawn((Pos(1.0),));

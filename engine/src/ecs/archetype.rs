@@ -99,6 +99,22 @@ impl Archetype {
         column.downcast_mut::<Vec<T>>()
     }
 
+    /// The column at `index`, which must store `T` (checked in debug builds).
+    ///
+    /// # Safety
+    /// `index` is the position of `T`'s column in this archetype.
+    #[inline]
+    unsafe fn column_of<T: 'static>(&self, index: usize) -> &ArchetypeColumn {
+        debug_assert!(
+            self.columns[index].ty.type_id == TypeId::of::<T>(),
+            "column {index} stores `{}`, not `{}`",
+            self.columns[index].ty.type_name,
+            std::any::type_name::<T>()
+        );
+        // SAFETY: by the caller's contract `index` is a column position.
+        unsafe { self.columns.get_unchecked(index) }
+    }
+
     /// Typed shared access to the column of `T`.
     ///
     /// # Safety
@@ -106,9 +122,9 @@ impl Archetype {
     /// mutable borrow possible) for the returned lifetime.
     pub(crate) unsafe fn column_slice<T: 'static>(&self) -> Option<&[T]> {
         let index = self.column_index(TypeId::of::<T>())?;
-        // SAFETY: forwarded to the caller: a shared borrow of `T` is held.
-        let column: &dyn Any = unsafe { &**self.columns[index].data.get() };
-        column.downcast_ref::<Vec<T>>().map(Vec::as_slice)
+        // SAFETY: `index` is `T`'s column (just looked up); the borrow is
+        // forwarded to the caller.
+        Some(unsafe { self.column_slice_at(index) })
     }
 
     /// Typed mutable access to the column of `T` through `&self`.
@@ -119,9 +135,47 @@ impl Archetype {
     #[allow(clippy::mut_from_ref)] // guarded by the runtime borrow flag, see `# Safety`
     pub(crate) unsafe fn column_slice_mut<T: 'static>(&self) -> Option<&mut [T]> {
         let index = self.column_index(TypeId::of::<T>())?;
+        // SAFETY: `index` is `T`'s column (just looked up); the borrow is
+        // forwarded to the caller.
+        Some(unsafe { self.column_slice_mut_at(index) })
+    }
+
+    /// Typed shared access to column `index`, without looking the type up:
+    /// what cached queries use.
+    ///
+    /// # Safety
+    /// `index` is the position of `T`'s column in this archetype (what
+    /// [`Archetype::column_index`] returned for `T`; debug builds check it),
+    /// and the borrow contract of [`Archetype::column_slice`] holds.
+    pub(crate) unsafe fn column_slice_at<T: 'static>(&self, index: usize) -> &[T] {
+        // SAFETY: forwarded to the caller: `index` is `T`'s column.
+        let column = unsafe { self.column_of::<T>(index) };
+        // SAFETY: forwarded to the caller: a shared borrow of `T` is held.
+        let data: &dyn Column = unsafe { &**column.data.get() };
+        // SAFETY: by the caller's contract the column's `ComponentType` is
+        // `T`'s. `ComponentType::of::<T>` is its only constructor, and the
+        // world creates every column with that type's `new_column`, which
+        // boxes a `Vec<T>`; a column is never replaced. So the trait object
+        // points at a `Vec<T>` (the unchecked form of `downcast_ref`).
+        let vec = unsafe { &*(data as *const dyn Column).cast::<Vec<T>>() };
+        vec.as_slice()
+    }
+
+    /// Typed mutable access to column `index` through `&self`.
+    ///
+    /// # Safety
+    /// `index` is the position of `T`'s column in this archetype (debug
+    /// builds check it), and the borrow contract of
+    /// [`Archetype::column_slice_mut`] holds.
+    #[allow(clippy::mut_from_ref)] // guarded by the runtime borrow flag, see `# Safety`
+    pub(crate) unsafe fn column_slice_mut_at<T: 'static>(&self, index: usize) -> &mut [T] {
+        // SAFETY: forwarded to the caller: `index` is `T`'s column.
+        let column = unsafe { self.column_of::<T>(index) };
         // SAFETY: forwarded to the caller: the unique borrow of `T` is held.
-        let column: &mut dyn Any = unsafe { &mut **self.columns[index].data.get_mut() };
-        column.downcast_mut::<Vec<T>>().map(Vec::as_mut_slice)
+        let data: &mut dyn Column = unsafe { &mut **column.data.get_mut() };
+        // SAFETY: as in `column_slice_at`: the column holds a `Vec<T>`.
+        let vec = unsafe { &mut *(data as *mut dyn Column).cast::<Vec<T>>() };
+        vec.as_mut_slice()
     }
 
     pub(crate) fn reserve(&mut self, additional: usize) {
@@ -143,5 +197,32 @@ impl Archetype {
     pub(crate) fn swap_remove_entity(&mut self, row: usize) -> Option<Entity> {
         self.entities.swap_remove(row);
         self.entities.get(row).copied()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::world::World;
+
+    #[test]
+    #[cfg(debug_assertions)]
+    fn a_column_position_is_checked_against_the_requested_type_in_debug_builds() {
+        let mut world = World::new();
+        world.spawn((1u32, 2.0f64));
+        let archetype = &world.archetypes()[1];
+        let position = archetype
+            .column_index(std::any::TypeId::of::<f64>())
+            .unwrap();
+        // SAFETY: `world` is borrowed shared and nothing writes to it.
+        assert_eq!(
+            unsafe { archetype.column_slice_at::<f64>(position) },
+            &[2.0]
+        );
+        let wrong = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            // SAFETY: as above; the debug check panics before the data is touched.
+            unsafe { archetype.column_slice_at::<u32>(position).len() }
+        }));
+        let message = *wrong.unwrap_err().downcast::<String>().unwrap();
+        assert!(message.contains("stores `f64`, not `u32`"), "{message}");
     }
 }

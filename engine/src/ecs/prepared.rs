@@ -4,7 +4,7 @@
 use std::marker::PhantomData;
 
 use super::error::EcsError;
-use super::query::{Access, Query, QueryFilter, archetype_matches};
+use super::query::{Access, Query, QueryFilter, prepare_archetype};
 use super::query_iter::{ArchetypeCursor, QueryBorrow, QueryIter};
 use super::world::World;
 
@@ -27,8 +27,12 @@ use super::world::World;
 pub struct PreparedQuery<Q: Query, F: QueryFilter = ()> {
     world_id: Option<u64>,
     seen: usize,
-    matching: Vec<u32>,
+    /// Matching archetypes (index in the world) with the query's column
+    /// positions in each, so a run looks nothing up.
+    matching: Vec<(u32, Q::State)>,
     accesses: Vec<Access>,
+    /// Whether `Q` names a component twice with a `&mut` (checked once).
+    aliasing: Result<(), EcsError>,
     _marker: PhantomData<fn() -> (Q, F)>,
 }
 
@@ -47,6 +51,7 @@ impl<Q: Query, F: QueryFilter> PreparedQuery<Q, F> {
             world_id: None,
             seen: 0,
             matching: Vec::new(),
+            aliasing: World::check_aliasing(&accesses),
             accesses,
             _marker: PhantomData,
         }
@@ -61,8 +66,8 @@ impl<Q: Query, F: QueryFilter> PreparedQuery<Q, F> {
         }
         let archetypes = world.archetypes();
         for (index, archetype) in archetypes.iter().enumerate().skip(self.seen) {
-            if archetype_matches::<Q, F>(archetype) {
-                self.matching.push(index as u32);
+            if let Some(state) = prepare_archetype::<Q, F>(archetype) {
+                self.matching.push((index as u32, state));
             }
         }
         self.seen = archetypes.len();
@@ -94,7 +99,9 @@ impl<Q: Query, F: QueryFilter> PreparedQuery<Q, F> {
     /// # Panics
     /// If `Q` names a component twice with at least one `&mut`.
     pub fn query_mut<'q>(&'q mut self, world: &'q mut World) -> QueryIter<'q, Q, F> {
-        World::check_aliasing(&self.accesses).unwrap_or_else(|error| panic!("{error}"));
+        if let Err(error) = &self.aliasing {
+            panic!("{error}");
+        }
         self.update(world);
         // SAFETY: `&mut World` excludes every other borrow, and `Q` does not
         // alias itself (checked above).

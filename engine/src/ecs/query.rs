@@ -35,17 +35,21 @@ pub trait Query {
     #[doc(hidden)]
     /// Appends this query's component accesses.
     fn access(out: &mut Vec<Access>);
+    /// Where the query finds its columns in one archetype (column positions),
+    /// found once per archetype; prepared queries keep it between runs.
+    type State: Copy + Send + Sync + 'static;
     #[doc(hidden)]
-    /// Whether the archetype has every required component.
-    fn matches(archetype: &Archetype) -> bool;
+    /// The state for an archetype that has every required component, else `None`.
+    fn prepare(archetype: &Archetype) -> Option<Self::State>;
     #[doc(hidden)]
     /// Starts walking a matching archetype.
     ///
     /// # Safety
-    /// The archetype matches, and the caller holds the borrows listed by
-    /// [`Query::access`] (or `&mut World`) for `'q`, with no other fetch of
-    /// the same archetype alive that writes what this one touches.
-    unsafe fn fetch<'q>(archetype: &'q Archetype) -> Self::Fetch<'q>;
+    /// `state` is what [`Query::prepare`] returned for this archetype, and the
+    /// caller holds the borrows listed by [`Query::access`] (or `&mut World`)
+    /// for `'q`, with no other fetch of the same archetype alive that writes
+    /// what this one touches.
+    unsafe fn fetch<'q>(archetype: &'q Archetype, state: Self::State) -> Self::Fetch<'q>;
 }
 
 /// Walks the rows of one archetype for a query.
@@ -56,9 +60,10 @@ pub trait Fetch: Send + Sized {
     fn next_item(&mut self) -> Self::Item;
     /// Splits into rows `..mid` and `mid..` (for parallel batches).
     fn split_at(self, mid: usize) -> (Self, Self);
-    /// Folds the next `rows` rows (which the caller guarantees exist).
-    /// Single-column fetches override it with a plain slice walk, which the
-    /// compiler can vectorise.
+    /// Folds the remaining rows; `rows` is their number (the rows the fetch
+    /// was made or split for, minus those taken by [`Fetch::next_item`]).
+    /// Single-column fetches override it with a plain walk of their slice,
+    /// which the compiler can vectorise.
     #[inline]
     fn fold_rows<B>(mut self, rows: usize, init: B, mut g: impl FnMut(B, Self::Item) -> B) -> B {
         let mut acc = init;
@@ -70,7 +75,6 @@ pub trait Fetch: Send + Sized {
 }
 
 const ROW_COUNT: &str = "the query iterator never asks for more rows than the archetype has";
-const MATCHED: &str = "a matching archetype has a column for every required component";
 
 /// Fetch of `&T`.
 pub struct ReadFetch<'q, T>(&'q [T]);
@@ -89,7 +93,8 @@ impl<'q, T: Sync> Fetch for ReadFetch<'q, T> {
     }
     #[inline]
     fn fold_rows<B>(self, rows: usize, init: B, g: impl FnMut(B, &'q T) -> B) -> B {
-        self.0[..rows].iter().fold(init, g)
+        debug_assert_eq!(rows, self.0.len(), "{ROW_COUNT}");
+        self.0.iter().fold(init, g)
     }
 }
 
@@ -111,7 +116,8 @@ impl<'q, T: Send> Fetch for WriteFetch<'q, T> {
     }
     #[inline]
     fn fold_rows<B>(self, rows: usize, init: B, g: impl FnMut(B, &'q mut T) -> B) -> B {
-        self.0[..rows].iter_mut().fold(init, g)
+        debug_assert_eq!(rows, self.0.len(), "{ROW_COUNT}");
+        self.0.iter_mut().fold(init, g)
     }
 }
 
@@ -151,71 +157,78 @@ impl<F: Fetch> Fetch for Option<F> {
 impl<T: Component> Query for &T {
     type Item<'q> = &'q T;
     type Fetch<'q> = ReadFetch<'q, T>;
+    type State = usize;
     fn access(out: &mut Vec<Access>) {
         out.push(Access::of::<T>(false));
     }
-    fn matches(archetype: &Archetype) -> bool {
-        archetype.has(TypeId::of::<T>())
+    fn prepare(archetype: &Archetype) -> Option<usize> {
+        archetype.column_index(TypeId::of::<T>())
     }
-    unsafe fn fetch<'q>(archetype: &'q Archetype) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds a shared borrow of `T` for `'q`.
-        ReadFetch(unsafe { archetype.column_slice::<T>() }.expect(MATCHED))
+    unsafe fn fetch<'q>(archetype: &'q Archetype, column: usize) -> Self::Fetch<'q> {
+        // SAFETY: `column` is `T`'s position (from `prepare`, by the caller's
+        // contract), and the caller holds a shared borrow of `T` for `'q`.
+        ReadFetch(unsafe { archetype.column_slice_at::<T>(column) })
     }
 }
 
 impl<T: Component> Query for &mut T {
     type Item<'q> = &'q mut T;
     type Fetch<'q> = WriteFetch<'q, T>;
+    type State = usize;
     fn access(out: &mut Vec<Access>) {
         out.push(Access::of::<T>(true));
     }
-    fn matches(archetype: &Archetype) -> bool {
-        archetype.has(TypeId::of::<T>())
+    fn prepare(archetype: &Archetype) -> Option<usize> {
+        archetype.column_index(TypeId::of::<T>())
     }
-    unsafe fn fetch<'q>(archetype: &'q Archetype) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds the unique borrow of `T` for `'q`.
-        WriteFetch(unsafe { archetype.column_slice_mut::<T>() }.expect(MATCHED))
+    unsafe fn fetch<'q>(archetype: &'q Archetype, column: usize) -> Self::Fetch<'q> {
+        // SAFETY: `column` is `T`'s position (from `prepare`, by the caller's
+        // contract), and the caller holds the unique borrow of `T` for `'q`.
+        WriteFetch(unsafe { archetype.column_slice_mut_at::<T>(column) })
     }
 }
 
 impl<T: Component> Query for Option<&T> {
     type Item<'q> = Option<&'q T>;
     type Fetch<'q> = Option<ReadFetch<'q, T>>;
+    type State = Option<usize>;
     fn access(out: &mut Vec<Access>) {
         out.push(Access::of::<T>(false));
     }
-    fn matches(_: &Archetype) -> bool {
-        true
+    fn prepare(archetype: &Archetype) -> Option<Option<usize>> {
+        Some(archetype.column_index(TypeId::of::<T>()))
     }
-    unsafe fn fetch<'q>(archetype: &'q Archetype) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds a shared borrow of `T` for `'q`.
-        unsafe { archetype.column_slice::<T>() }.map(ReadFetch)
+    unsafe fn fetch<'q>(archetype: &'q Archetype, column: Option<usize>) -> Self::Fetch<'q> {
+        // SAFETY: as for `&T`.
+        column.map(|column| ReadFetch(unsafe { archetype.column_slice_at::<T>(column) }))
     }
 }
 
 impl<T: Component> Query for Option<&mut T> {
     type Item<'q> = Option<&'q mut T>;
     type Fetch<'q> = Option<WriteFetch<'q, T>>;
+    type State = Option<usize>;
     fn access(out: &mut Vec<Access>) {
         out.push(Access::of::<T>(true));
     }
-    fn matches(_: &Archetype) -> bool {
-        true
+    fn prepare(archetype: &Archetype) -> Option<Option<usize>> {
+        Some(archetype.column_index(TypeId::of::<T>()))
     }
-    unsafe fn fetch<'q>(archetype: &'q Archetype) -> Self::Fetch<'q> {
-        // SAFETY: the caller holds the unique borrow of `T` for `'q`.
-        unsafe { archetype.column_slice_mut::<T>() }.map(WriteFetch)
+    unsafe fn fetch<'q>(archetype: &'q Archetype, column: Option<usize>) -> Self::Fetch<'q> {
+        // SAFETY: as for `&mut T`.
+        column.map(|column| WriteFetch(unsafe { archetype.column_slice_mut_at::<T>(column) }))
     }
 }
 
 impl Query for Entity {
     type Item<'q> = Entity;
     type Fetch<'q> = EntityFetch<'q>;
+    type State = ();
     fn access(_: &mut Vec<Access>) {}
-    fn matches(_: &Archetype) -> bool {
-        true
+    fn prepare(_: &Archetype) -> Option<()> {
+        Some(())
     }
-    unsafe fn fetch<'q>(archetype: &'q Archetype) -> Self::Fetch<'q> {
+    unsafe fn fetch<'q>(archetype: &'q Archetype, (): ()) -> Self::Fetch<'q> {
         EntityFetch(ReadFetch(archetype.entities()))
     }
 }
@@ -225,15 +238,17 @@ macro_rules! impl_query_tuple {
         impl<$($name: Query),+> Query for ($($name,)+) {
             type Item<'q> = ($($name::Item<'q>,)+);
             type Fetch<'q> = ($($name::Fetch<'q>,)+);
+            type State = ($($name::State,)+);
             fn access(out: &mut Vec<Access>) {
                 $($name::access(out);)+
             }
-            fn matches(archetype: &Archetype) -> bool {
-                $($name::matches(archetype))&&+
+            fn prepare(archetype: &Archetype) -> Option<Self::State> {
+                Some(($($name::prepare(archetype)?,)+))
             }
-            unsafe fn fetch<'q>(archetype: &'q Archetype) -> Self::Fetch<'q> {
-                // SAFETY: forwarded: the caller's borrows cover every element.
-                unsafe { ($($name::fetch(archetype),)+) }
+            unsafe fn fetch<'q>(archetype: &'q Archetype, state: Self::State) -> Self::Fetch<'q> {
+                // SAFETY: forwarded: each element's state came from its own
+                // `prepare`, and the caller's borrows cover every element.
+                unsafe { ($($name::fetch(archetype, state.$field),)+) }
             }
         }
 
@@ -318,7 +333,14 @@ impl_filter_tuple!(A, B, C, D, E, F, G, H, I, J);
 impl_filter_tuple!(A, B, C, D, E, F, G, H, I, J, K);
 impl_filter_tuple!(A, B, C, D, E, F, G, H, I, J, K, L);
 
-/// Whether an archetype passes both the query's requirements and the filter.
-pub(crate) fn archetype_matches<Q: Query, F: QueryFilter>(archetype: &Archetype) -> bool {
-    Q::matches(archetype) && F::matches(archetype)
+/// The query's state for an archetype that passes both the query's
+/// requirements and the filter, else `None`.
+pub(crate) fn prepare_archetype<Q: Query, F: QueryFilter>(
+    archetype: &Archetype,
+) -> Option<Q::State> {
+    if F::matches(archetype) {
+        Q::prepare(archetype)
+    } else {
+        None
+    }
 }

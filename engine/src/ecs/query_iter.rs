@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use super::archetype::Archetype;
 use super::borrow::BorrowFlag;
-use super::query::{Fetch, Query, QueryFilter, archetype_matches};
+use super::query::{Fetch, Query, QueryFilter, prepare_archetype};
 
 /// Runtime borrows held by a live query, released on drop.
 pub(crate) struct BorrowGuard<'w> {
@@ -21,13 +21,24 @@ impl Drop for BorrowGuard<'_> {
     }
 }
 
-/// Which archetypes a query visits.
-#[derive(Clone)]
-pub(crate) enum ArchetypeCursor<'q> {
-    /// Every archetype in the range, checking each against the query.
+/// Which archetypes a query visits, with the query's state `S` for each.
+pub(crate) enum ArchetypeCursor<'q, S> {
+    /// Every archetype in the range, preparing each (and skipping those
+    /// that do not match).
     Scan(std::ops::Range<usize>),
-    /// A precomputed list of matching archetypes (from a prepared query).
-    Cached(std::slice::Iter<'q, u32>),
+    /// A precomputed list of matching archetypes and their states (from a
+    /// prepared query).
+    Cached(std::slice::Iter<'q, (u32, S)>),
+}
+
+// Manual impl: a derive would require `S: Clone`.
+impl<S> Clone for ArchetypeCursor<'_, S> {
+    fn clone(&self) -> Self {
+        match self {
+            ArchetypeCursor::Scan(range) => ArchetypeCursor::Scan(range.clone()),
+            ArchetypeCursor::Cached(list) => ArchetypeCursor::Cached(list.clone()),
+        }
+    }
 }
 
 /// A live query on a `&World`: holds the runtime borrows of the components it
@@ -35,7 +46,7 @@ pub(crate) enum ArchetypeCursor<'q> {
 /// [`QueryBorrow::par_for_each`].
 pub struct QueryBorrow<'w, Q: Query, F: QueryFilter = ()> {
     archetypes: &'w [Archetype],
-    cursor: ArchetypeCursor<'w>,
+    cursor: ArchetypeCursor<'w, Q::State>,
     _guard: BorrowGuard<'w>,
     _marker: PhantomData<fn() -> (Q, F)>,
 }
@@ -44,7 +55,7 @@ impl<'w, Q: Query, F: QueryFilter> QueryBorrow<'w, Q, F> {
     /// `guard` must hold every borrow listed by `Q::access`.
     pub(crate) fn new(
         archetypes: &'w [Archetype],
-        cursor: ArchetypeCursor<'w>,
+        cursor: ArchetypeCursor<'w, Q::State>,
         guard: BorrowGuard<'w>,
     ) -> Self {
         QueryBorrow {
@@ -82,7 +93,7 @@ impl<'a, 'w, Q: Query, F: QueryFilter> IntoIterator for &'a mut QueryBorrow<'w, 
 /// Iterator over a query's items: archetypes in creation order, rows in order.
 pub struct QueryIter<'q, Q: Query, F: QueryFilter = ()> {
     archetypes: &'q [Archetype],
-    cursor: ArchetypeCursor<'q>,
+    cursor: ArchetypeCursor<'q, Q::State>,
     current: Option<Q::Fetch<'q>>,
     remaining: usize,
     _filter: PhantomData<fn() -> F>,
@@ -92,7 +103,10 @@ impl<'q, Q: Query, F: QueryFilter> QueryIter<'q, Q, F> {
     /// # Safety
     /// The caller holds the borrows listed by `Q::access` (or `&mut World`)
     /// for `'q`, and no other live iterator or reference aliases what `Q` writes.
-    pub(crate) unsafe fn new(archetypes: &'q [Archetype], cursor: ArchetypeCursor<'q>) -> Self {
+    pub(crate) unsafe fn new(
+        archetypes: &'q [Archetype],
+        cursor: ArchetypeCursor<'q, Q::State>,
+    ) -> Self {
         QueryIter {
             archetypes,
             cursor,
@@ -102,23 +116,31 @@ impl<'q, Q: Query, F: QueryFilter> QueryIter<'q, Q, F> {
         }
     }
 
-    fn next_archetype(&mut self) -> Option<&'q Archetype> {
-        loop {
-            let (index, checked) = match &mut self.cursor {
-                ArchetypeCursor::Scan(range) => (range.next()?, false),
-                ArchetypeCursor::Cached(list) => (*list.next()? as usize, true),
-            };
-            let archetype = &self.archetypes[index];
-            if !archetype.is_empty() && (checked || archetype_matches::<Q, F>(archetype)) {
-                return Some(archetype);
-            }
-        }
+    /// A fetch over `archetype` (with the query's `state` for it) and its row count.
+    #[inline]
+    fn fetch(archetype: &'q Archetype, state: Q::State) -> (usize, Q::Fetch<'q>) {
+        // SAFETY: `state` was prepared for this archetype (by the cursor's
+        // scan, or by the prepared query for this world), and the borrows
+        // are held for `'q` by the contract of `QueryIter::new`.
+        (archetype.len(), unsafe { Q::fetch(archetype, state) })
     }
 
-    fn fetch(archetype: &'q Archetype) -> Q::Fetch<'q> {
-        // SAFETY: the archetype matches (checked by `next_archetype`), and the
-        // borrows are held for `'q` by the contract of `QueryIter::new`.
-        unsafe { Q::fetch(archetype) }
+    /// The next matching archetype: its row count and a fetch over it.
+    /// Empty archetypes are not skipped: they yield no rows.
+    #[inline]
+    fn next_archetype(&mut self) -> Option<(usize, Q::Fetch<'q>)> {
+        let archetypes = self.archetypes;
+        let (archetype, state) = match &mut self.cursor {
+            ArchetypeCursor::Scan(range) => range.find_map(|index| {
+                let archetype = &archetypes[index];
+                prepare_archetype::<Q, F>(archetype).map(|state| (archetype, state))
+            })?,
+            ArchetypeCursor::Cached(list) => {
+                let &(index, state) = list.next()?;
+                (&archetypes[index as usize], state)
+            }
+        };
+        Some(Self::fetch(archetype, state))
     }
 
     /// Calls `f` on every remaining item, in parallel batches of `batch_size` rows
@@ -140,8 +162,8 @@ impl<'q, Q: Query, F: QueryFilter> QueryIter<'q, Q, F> {
         if let Some(fetch) = self.current.take() {
             split(fetch, self.remaining);
         }
-        while let Some(archetype) = self.next_archetype() {
-            split(Self::fetch(archetype), archetype.len());
+        while let Some((rows, fetch)) = self.next_archetype() {
+            split(fetch, rows);
         }
         batches
             .into_par_iter()
@@ -159,9 +181,9 @@ impl<'q, Q: Query, F: QueryFilter> Iterator for QueryIter<'q, Q, F> {
                 self.remaining -= 1;
                 return self.current.as_mut().map(Fetch::next_item);
             }
-            let archetype = self.next_archetype()?;
-            self.current = Some(Self::fetch(archetype));
-            self.remaining = archetype.len();
+            let (rows, fetch) = self.next_archetype()?;
+            self.current = Some(fetch);
+            self.remaining = rows;
         }
     }
 
@@ -177,9 +199,23 @@ impl<'q, Q: Query, F: QueryFilter> Iterator for QueryIter<'q, Q, F> {
         if let Some(fetch) = self.current.take() {
             acc = fetch.fold_rows(self.remaining, acc, &mut g);
         }
-        while let Some(archetype) = self.next_archetype() {
-            acc = Self::fetch(archetype).fold_rows(archetype.len(), acc, &mut g);
+        let archetypes = self.archetypes;
+        let mut visit = |acc, archetype, state| {
+            let (rows, fetch) = Self::fetch(archetype, state);
+            fetch.fold_rows(rows, acc, &mut g)
+        };
+        // One loop per cursor kind, so the walk does not re-dispatch per archetype.
+        match self.cursor {
+            ArchetypeCursor::Cached(list) => list.fold(acc, |acc, &(index, state)| {
+                visit(acc, &archetypes[index as usize], state)
+            }),
+            ArchetypeCursor::Scan(range) => range.fold(acc, |acc, index| {
+                let archetype = &archetypes[index];
+                match prepare_archetype::<Q, F>(archetype) {
+                    Some(state) => visit(acc, archetype, state),
+                    None => acc,
+                }
+            }),
         }
-        acc
     }
 }
