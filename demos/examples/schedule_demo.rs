@@ -122,26 +122,11 @@ fn log_com_each_second(world: &mut World) {
 fn render_final_frame(world: &World) -> Result<RgbaImage, Box<dyn Error>> {
     let mut terrains = world.query::<&Heightfield>();
     let hf = terrains.iter().next().ok_or("the world has no terrain")?;
-    let palette: Vec<Vec3> = hf
-        .table()
-        .materials()
-        .iter()
-        .map(|m| demos::view::material_albedo(&m.name))
-        .collect();
-    let albedo: Vec<Vec3> = hf
-        .material_map()
-        .iter()
-        .map(|&id| palette[usize::from(id)])
-        .collect();
-    let disturbed: Vec<f32> = hf
-        .disturbed()
-        .iter()
-        .map(|&d| f32::from(d) / 255.0)
-        .collect();
+    let paint = demos::view::TerrainPaint::of(hf);
     let colors = SampleColors {
         nx: hf.grid().nx(),
-        albedo: &albedo,
-        disturbed: &disturbed,
+        albedo: &paint.albedo,
+        disturbed: &paint.disturbed,
     };
     let lighting = Lighting::default();
     let mut terrain = TerrainRenderer::new(hf.grid(), TerrainStyle::default())?;

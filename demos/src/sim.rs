@@ -325,7 +325,7 @@ pub fn run(
 }
 
 /// A copy of the terrain's heights.
-fn terrain_grid(world: &World) -> HeightGrid {
+pub fn terrain_grid(world: &World) -> HeightGrid {
     let mut terrains = world.query::<&Heightfield>();
     terrains
         .iter()

@@ -5,7 +5,6 @@ use engine::ecs::World;
 use engine::geom::HeightGrid;
 use engine::schedule::App;
 use softwalk_systems::sim::{TerrainDirty, TerrainVolume, WalkerMetrics};
-use softwalk_systems::terrain::Heightfield;
 
 use super::PaperError;
 use crate::scene::Scene;
@@ -59,7 +58,7 @@ pub fn trace(
     let (mut app, entities) = scene
         .build_sim()
         .map_err(|e| run_error(crate::sim::SimError::Setup(e)))?;
-    let initial = terrain_of(&app.world);
+    let initial = crate::sim::terrain_grid(&app.world);
     let start_volume = app.world.resource::<TerrainVolume>().0;
     app.world.resource_mut::<TerrainDirty>().take();
     let mut walkers = vec![Vec::with_capacity(steps); entities.len()];
@@ -77,7 +76,7 @@ pub fn trace(
         each_step(&mut app.world);
     }
     let end_volume = app.world.resource::<TerrainVolume>().0;
-    let last = terrain_of(&app.world);
+    let last = crate::sim::terrain_grid(&app.world);
     Ok(Trace {
         app,
         walkers,
@@ -89,12 +88,3 @@ pub fn trace(
     })
 }
 
-/// A copy of the terrain's heights.
-fn terrain_of(world: &World) -> HeightGrid {
-    let mut terrains = world.query::<&Heightfield>();
-    terrains
-        .iter()
-        .next()
-        .map(|t| t.grid().clone())
-        .expect("build_sim always adds a terrain")
-}

@@ -5,5 +5,5 @@ mod overlays;
 mod palette;
 mod scene_view;
 
-pub use palette::material_albedo;
+pub use palette::{TerrainPaint, material_albedo};
 pub use scene_view::{SceneView, ViewError};

@@ -1,6 +1,7 @@
 //! Display colours of the ground materials (linear RGB).
 
 use glam::Vec3;
+use softwalk_systems::terrain::Heightfield;
 
 /// Albedo of a material by name: the paper's four grounds have fixed colours;
 /// any other (user) material gets a stable colour derived from its name.
@@ -18,6 +19,42 @@ pub fn material_albedo(name: &str) -> Vec3 {
             Vec3::new(c(0), c(8), c(16))
         }
     }
+}
+
+/// Per-sample display colours of a terrain: the albedo of each sample's
+/// material, and how trodden each sample is (0..1, from the disturbed mask).
+/// Hand both to `engine::render::SampleColors`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TerrainPaint {
+    /// Albedo per sample, row-major.
+    pub albedo: Vec<Vec3>,
+    /// Disturbance per sample in 0..1, row-major.
+    pub disturbed: Vec<f32>,
+}
+
+impl TerrainPaint {
+    /// The colours of every sample of `hf`.
+    pub fn of(hf: &Heightfield) -> Self {
+        let palette: Vec<Vec3> = hf.table().materials().iter().map(|m| material_albedo(&m.name)).collect();
+        TerrainPaint {
+            albedo: hf.material_map().iter().map(|&id| palette[usize::from(id)]).collect(),
+            disturbed: hf.disturbed().iter().map(|&d| disturbance(d)).collect(),
+        }
+    }
+
+    /// Re-reads the disturbance of the samples in `rect` (after the ground changed there).
+    pub fn refresh(&mut self, hf: &Heightfield, rect: engine::geom::GridRect) {
+        let (nx, marks) = (hf.grid().nx(), hf.disturbed());
+        for (i, j) in rect.iter() {
+            let k = j * nx + i;
+            self.disturbed[k] = disturbance(marks[k]);
+        }
+    }
+}
+
+/// A trodden mark (0..255) as a darkening amount (0..1).
+fn disturbance(mark: u8) -> f32 {
+    f32::from(mark) / 255.0
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ use softwalk_systems::vegetation::GrassPatch;
 use thiserror::Error;
 
 use super::overlays::draw_overlays;
-use super::palette::material_albedo;
+use super::palette::TerrainPaint;
 use crate::scene::{CameraMode, Scene};
 
 /// Blue for a character with the balance controller, red without (the paper's Fig. 2).
@@ -47,8 +47,7 @@ pub struct SceneView {
     camera: Camera,
     follow: Option<(CameraFollow, Entity)>,
     terrain: TerrainRenderer,
-    albedo: Vec<Vec3>,
-    disturbed: Vec<f32>,
+    paint: TerrainPaint,
     nx: usize,
     figures: Vec<Figure>,
     blades: Vec<GrassBlade>,
@@ -70,22 +69,7 @@ impl SceneView {
         let mut terrains = world.query::<&Heightfield>();
         let hf = terrains.iter().next().ok_or(ViewError::NoTerrain)?;
         let grid = hf.grid();
-        let palette: Vec<Vec3> = hf
-            .table()
-            .materials()
-            .iter()
-            .map(|m| material_albedo(&m.name))
-            .collect();
-        let albedo: Vec<Vec3> = hf
-            .material_map()
-            .iter()
-            .map(|&id| palette[usize::from(id)])
-            .collect();
-        let disturbed: Vec<f32> = hf
-            .disturbed()
-            .iter()
-            .map(|&d| f32::from(d) / 255.0)
-            .collect();
+        let paint = TerrainPaint::of(hf);
         let lighting = Lighting::default();
         let mut terrain = TerrainRenderer::new(grid, TerrainStyle::default())?;
         let camera = Camera::perspective(
@@ -138,8 +122,8 @@ impl SceneView {
             .collect();
         let colors = SampleColors {
             nx: grid.nx(),
-            albedo: &albedo,
-            disturbed: &disturbed,
+            albedo: &paint.albedo,
+            disturbed: &paint.disturbed,
         };
         terrain.update(grid, &colors, &lighting)?;
         let mut view = SceneView {
@@ -147,8 +131,7 @@ impl SceneView {
             camera,
             follow,
             terrain,
-            albedo,
-            disturbed,
+            paint,
             nx: grid.nx(),
             figures,
             blades: Vec::new(),
@@ -220,16 +203,12 @@ impl SceneView {
         }
         let mut terrains = world.query::<&Heightfield>();
         let hf = terrains.iter().next().ok_or(ViewError::NoTerrain)?;
-        let marks = hf.disturbed();
-        for (i, j) in rect.iter() {
-            let k = j * self.nx + i;
-            self.disturbed[k] = f32::from(marks[k]) / 255.0;
-        }
+        self.paint.refresh(hf, rect);
         self.terrain.mark_dirty(rect);
         let colors = SampleColors {
             nx: self.nx,
-            albedo: &self.albedo,
-            disturbed: &self.disturbed,
+            albedo: &self.paint.albedo,
+            disturbed: &self.paint.disturbed,
         };
         self.terrain.update(hf.grid(), &colors, &self.lighting)?;
         Ok(())
