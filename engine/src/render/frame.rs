@@ -11,7 +11,7 @@ use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
 use super::error::RenderError;
 use super::grass::{GrassBlade, blade_batches};
 use super::mesh::MeshInstance;
-use super::raster::{Band, draw_triangle, to_u8};
+use super::raster::{Band, to_u8};
 use super::shading::Lighting;
 use super::terrain::TerrainRenderer;
 
@@ -51,7 +51,8 @@ impl Default for FrameScene<'_> {
 pub struct FrameStats {
     /// Screen batches (visible terrain patches, mesh parts, groups of blades).
     pub batches: usize,
-    /// Triangles set up after culling and clipping.
+    /// Triangles set up after culling and clipping: those covering at least one
+    /// pixel centre.
     pub triangles: usize,
 }
 
@@ -140,7 +141,7 @@ impl Renderer {
         let batches = self.project(scene, camera, vp);
         let stats = FrameStats {
             batches: batches.len(),
-            triangles: batches.iter().map(|b| b.tris.len()).sum(),
+            triangles: batches.iter().map(ScreenBatch::len).sum(),
         };
         let (w, h) = (self.width as usize, self.height as usize);
         let mut color = vec![0u8; w * h * 4];
@@ -162,16 +163,11 @@ impl Renderer {
                     color,
                     depth,
                     width: vp.width,
-                    height: vp.height,
                     y0,
                     y1,
                 };
                 for batch in &batches {
-                    for &t in batch.band_triangles(b as i32) {
-                        let (tri, area) = &batch.tris[t as usize];
-                        let v = tri.map(|k| &batch.verts[k as usize]);
-                        draw_triangle(&mut band, v, *area);
-                    }
+                    batch.draw_band(b as i32, &mut band);
                 }
             });
         let image = RgbaImage::from_raw(self.width, self.height, color)
