@@ -30,7 +30,22 @@ pub struct GrassBlade {
 /// Triangles of one blade's five vertices: two for the lower half, one for the tip.
 const BLADE_TRIANGLES: [[u32; 3]; 3] = [[0, 1, 3], [0, 3, 2], [2, 3, 4]];
 
-/// Projects blades into screen batches of [`BLADES_PER_BATCH`].
+/// Blade indices from the nearest root to the farthest (ties by index).
+///
+/// Drawing a dense meadow front to back makes most hidden pixels fail the depth
+/// test early instead of being shaded and then overwritten.
+fn front_to_back(blades: &[GrassBlade], eye: Vec3) -> Vec<u32> {
+    // Non-negative floats order like their bit patterns; the index breaks ties.
+    let mut keys: Vec<u64> = blades
+        .par_iter()
+        .enumerate()
+        .map(|(k, b)| (u64::from(b.root.distance_squared(eye).to_bits()) << 32) | k as u64)
+        .collect();
+    keys.par_sort_unstable();
+    keys.into_iter().map(|key| key as u32).collect()
+}
+
+/// Projects blades, nearest first, into screen batches of [`BLADES_PER_BATCH`].
 pub(crate) fn blade_batches(
     blades: &[GrassBlade],
     camera: &Camera,
@@ -38,12 +53,12 @@ pub(crate) fn blade_batches(
     vp: Viewport,
 ) -> Vec<ScreenBatch> {
     let view_proj = camera.view_proj();
-    blades
+    front_to_back(blades, camera.eye)
         .par_chunks(BLADES_PER_BATCH)
         .map(|chunk| {
             let mut verts = Vec::with_capacity(chunk.len() * 5);
             let mut tris = Vec::with_capacity(chunk.len() * 3);
-            for blade in chunk {
+            for blade in chunk.iter().map(|&k| &blades[k as usize]) {
                 let base = verts.len() as u32;
                 let axis = blade.tip - blade.root;
                 let side = axis
