@@ -257,35 +257,48 @@ impl Triangle {
                 }
             }
             Coverage::Edges(k) => {
-                let e = &edges[k as usize].0;
+                let [e0, e1, e2] = &edges[k as usize].0;
                 let y0 = span.y0.max(rows.start);
                 let y1 = span.y1.min(rows.end - 1);
+                if y0 > y1 {
+                    return;
+                }
+                let last = span.x1 - span.x0;
                 // Wide boxes (thin slanted triangles such as grass blades) get each
                 // row's covered run solved from the edge equations; narrow ones are
                 // just scanned.
-                let solve = span.x1 - span.x0 >= NARROW_MIN_WIDTH;
+                let solve = last >= NARROW_MIN_WIDTH;
+                let r = (y0 - span.y0) as i64;
+                let (mut w0, mut w1, mut w2) = (
+                    e0.start + r * e0.step_y,
+                    e1.start + r * e1.step_y,
+                    e2.start + r * e2.step_y,
+                );
                 for y in y0..=y1 {
-                    let r = (y - span.y0) as i64;
-                    let row = [0, 1, 2].map(|k| e[k].start + r * e[k].step_y);
-                    let (mut lo, mut hi) = (0, span.x1 - span.x0);
+                    let (mut lo, mut hi) = (0, last);
                     if solve {
-                        for (value, edge) in row.iter().zip(e) {
-                            (lo, hi) = edge.covered_run(*value, lo, hi);
-                        }
+                        (lo, hi) = e0.covered_run(w0, lo, hi);
+                        (lo, hi) = e1.covered_run(w1, lo, hi);
+                        (lo, hi) = e2.covered_run(w2, lo, hi);
                     }
+                    let skip = lo as i64;
+                    let (mut a0, mut a1, mut a2) = (
+                        w0 + skip * e0.step_x,
+                        w1 + skip * e1.step_x,
+                        w2 + skip * e2.step_x,
+                    );
                     let start = at(0, y - span.y0);
-                    let mut a = row.map(|v| v);
-                    for (k, edge) in e.iter().enumerate() {
-                        a[k] += lo as i64 * edge.step_x;
-                    }
                     for c in lo..=hi {
-                        if (a[0] | a[1] | a[2]) >= 0 {
+                        if (a0 | a1 | a2) >= 0 {
                             pixel(span.x0 + c, y, start + self.step_x * c as f32);
                         }
-                        for (value, edge) in a.iter_mut().zip(e) {
-                            *value += edge.step_x;
-                        }
+                        a0 += e0.step_x;
+                        a1 += e1.step_x;
+                        a2 += e2.step_x;
                     }
+                    w0 += e0.step_y;
+                    w1 += e1.step_y;
+                    w2 += e2.step_y;
                 }
             }
         }
