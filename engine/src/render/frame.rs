@@ -1,6 +1,6 @@
 //! A frame: everything drawn in one image, and the [`Renderer`] that draws it.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use glam::Vec3;
 use image::RgbaImage;
@@ -67,6 +67,9 @@ pub struct Renderer {
     width: u32,
     height: u32,
     pool: Option<Arc<rayon::ThreadPool>>,
+    /// The depth buffer kept between frames (saves allocating and faulting in
+    /// a fresh one per frame); a frame that finds it busy allocates its own.
+    depth: Arc<Mutex<Vec<f32>>>,
 }
 
 impl Renderer {
@@ -83,6 +86,7 @@ impl Renderer {
             width,
             height,
             pool: None,
+            depth: Arc::default(),
         })
     }
 
@@ -145,7 +149,11 @@ impl Renderer {
         };
         let (w, h) = (self.width as usize, self.height as usize);
         let mut color = vec![0u8; w * h * 4];
-        let mut depth = vec![0f32; w * h];
+        let mut cached = self.depth.try_lock().ok();
+        let mut own = Vec::new();
+        let depth = cached.as_deref_mut().unwrap_or(&mut own);
+        // Every band clears its own rows below, while they are in cache.
+        depth.resize(w * h, 0.0);
         let sky_rows = self.sky_rows(camera, &scene.lighting);
         let band_rows = BAND_ROWS as usize;
         color
@@ -155,6 +163,7 @@ impl Renderer {
             .for_each(|(b, (color, depth))| {
                 let y0 = b as i32 * BAND_ROWS;
                 let y1 = y0 + (depth.len() / w) as i32;
+                depth.fill(0.0);
                 for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
                     let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
                     row.chunks_exact_mut(4).for_each(|p| p.copy_from_slice(&px));

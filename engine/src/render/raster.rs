@@ -18,6 +18,9 @@ const HALF: i64 = ONE / 2;
 /// 64-bit mask (bit `8 * row + column`).
 const MASK_SIDE: i32 = 8;
 
+/// ... when their vertices also span less than this (fixed point) per axis.
+const MASK_EXTENT: i32 = 16 << SUBPIXEL_BITS;
+
 /// A vertex after projection: fixed-point pixel position (y down), `1/w`, colour / w.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct ScreenVertex {
@@ -201,7 +204,15 @@ impl Triangle {
             Edge::new(v[2], v[0], px, py),
             Edge::new(v[0], v[1], px, py),
         ];
-        let coverage = if span.x1 - span.x0 < MASK_SIDE && span.y1 - span.y0 < MASK_SIDE {
+        let extent = |f: fn(&ScreenVertex) -> i32| {
+            let (a, b, c) = (f(v[0]), f(v[1]), f(v[2]));
+            a.max(b).max(c) - a.min(b).min(c)
+        };
+        let small = span.x1 - span.x0 < MASK_SIDE
+            && span.y1 - span.y0 < MASK_SIDE
+            && extent(|v| v.x) < MASK_EXTENT
+            && extent(|v| v.y) < MASK_EXTENT;
+        let coverage = if small {
             let mask = coverage_mask(&e, span);
             if mask == 0 {
                 return None;
@@ -322,21 +333,25 @@ impl Triangle {
     }
 }
 
-/// The covered pixel centres of a box at most [`MASK_SIDE`] pixels per side.
+/// The covered pixel centres of a box at most [`MASK_SIDE`] pixels per side, for
+/// a triangle whose vertices span less than [`MASK_EXTENT`] per axis: its edge
+/// values over the box then fit `i32`, and each row is tested eight pixels at a
+/// time (a loop the compiler vectorizes).
 #[inline]
 fn coverage_mask(e: &[Edge; 3], span: PixelSpan) -> u64 {
+    const COLUMNS: [i32; MASK_SIDE as usize] = [0, 1, 2, 3, 4, 5, 6, 7];
+    let step = e.map(|e| e.step_x as i32);
+    let columns = (1u32 << (span.x1 - span.x0 + 1)) - 1;
+    let mut row = e.map(|e| e.start);
     let mut mask = 0u64;
-    let mut row = [e[0].start, e[1].start, e[2].start];
     for r in 0..=(span.y1 - span.y0) {
-        let mut a = row;
-        for c in 0..=(span.x1 - span.x0) {
-            if (a[0] | a[1] | a[2]) >= 0 {
-                mask |= 1 << (8 * r + c);
-            }
-            for (value, edge) in a.iter_mut().zip(e) {
-                *value += edge.step_x;
-            }
+        let start = row.map(|v| v as i32);
+        let mut bits = 0u32;
+        for (c, k) in COLUMNS.iter().enumerate() {
+            let v = (start[0] + k * step[0]) | (start[1] + k * step[1]) | (start[2] + k * step[2]);
+            bits |= u32::from(v >= 0) << c;
         }
+        mask |= u64::from(bits & columns) << (8 * r);
         for (value, edge) in row.iter_mut().zip(e) {
             *value += edge.step_y;
         }
