@@ -74,7 +74,11 @@ impl Viewport {
 impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
-        let mut batch = ScreenBatch::default();
+        let submitted = groups.iter().map(|g| g.triangles.len()).sum();
+        let mut batch = ScreenBatch {
+            tris: Vec::with_capacity(submitted),
+            ..ScreenBatch::default()
+        };
         let mut screen: Vec<ScreenVertex> = verts.iter().map(|v| vp.project(v)).collect();
         let codes: Vec<u8> = verts.iter().map(|v| outcode(v.pos)).collect();
         let mut polygon = Vec::with_capacity(9);
