@@ -1,11 +1,11 @@
 //! The geometry stage: clip-space vertices and triangles become a [`ScreenBatch`]
-//! of fixed-point vertices and set-up-ready triangles (culled, clipped, wound
-//! clockwise on screen), which the bands then rasterize.
+//! of set-up triangles (culled, clipped, wound clockwise on screen, covering at
+//! least one pixel centre), binned by bands, which the bands then fill.
 
 use glam::Vec4;
 
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
-use super::raster::{ONE, PixelSpan, ScreenVertex, signed_area};
+use super::raster::{Band, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area};
 
 /// Which triangles to drop by their facing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,15 +29,13 @@ pub(crate) struct TriangleGroup<'a> {
 /// result does not depend on the number of threads.
 pub(crate) const BAND_ROWS: i32 = 32;
 
-/// Screen-space triangles ready to rasterize, binned by the bands of rows they touch.
+/// Screen-space triangles ready to fill, binned by the bands of rows they touch.
 #[derive(Debug, Default)]
 pub(crate) struct ScreenBatch {
-    /// Projected vertices (clipped triangles append their own).
-    pub verts: Vec<ScreenVertex>,
-    /// Triangles, clockwise on screen, each with twice its fixed-point area.
-    pub tris: Vec<([u32; 3], i64)>,
-    /// Pixel rows (first, last) each triangle touches, until binned.
-    rows: Vec<(i32, i32)>,
+    /// Set-up triangles, in submission order.
+    tris: Vec<Triangle>,
+    /// Edge functions of the triangles too big for a coverage mask.
+    edges: Vec<Edges>,
     /// First band any triangle touches.
     first_band: i32,
     /// `bins[k]..bins[k + 1]` indexes `binned` for band `first_band + k`.
@@ -76,10 +74,12 @@ impl Viewport {
 impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
+        let submitted = groups.iter().map(|g| g.triangles.len()).sum();
         let mut batch = ScreenBatch {
-            verts: verts.iter().map(|v| vp.project(v)).collect(),
+            tris: Vec::with_capacity(submitted),
             ..ScreenBatch::default()
         };
+        let mut screen: Vec<ScreenVertex> = verts.iter().map(|v| vp.project(v)).collect();
         let codes: Vec<u8> = verts.iter().map(|v| outcode(v.pos)).collect();
         let mut polygon = Vec::with_capacity(9);
         for group in groups {
@@ -90,17 +90,18 @@ impl ScreenBatch {
                     continue;
                 }
                 if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.push(tri, group.cull, vp);
+                    batch.push(&screen, tri, group.cull, vp);
                     continue;
                 }
                 clip_triangle([verts[a], verts[b], verts[c]], &mut polygon);
                 if polygon.is_empty() {
                     continue;
                 }
-                let base = batch.verts.len() as u32;
-                batch.verts.extend(polygon.iter().map(|v| vp.project(v)));
+                // Clipped polygons append their vertices, dropped with the batch's.
+                let base = screen.len() as u32;
+                screen.extend(polygon.iter().map(|v| vp.project(v)));
                 for k in 1..polygon.len() as u32 - 1 {
-                    batch.push([base, base + k, base + k + 1], group.cull, vp);
+                    batch.push(&screen, [base, base + k, base + k + 1], group.cull, vp);
                 }
             }
         }
@@ -110,7 +111,7 @@ impl ScreenBatch {
 
     /// Sorts the triangles into per-band lists (counting sort, order kept).
     fn bin(&mut self) {
-        let rows = std::mem::take(&mut self.rows);
+        let rows: Vec<(i32, i32)> = self.tris.iter().map(Triangle::rows).collect();
         let Some(first) = rows.iter().map(|r| r.0).min() else {
             return;
         };
@@ -141,37 +142,46 @@ impl ScreenBatch {
         self.bins = counts;
     }
 
-    /// Indices (into `tris`) of the triangles touching band `band`, in order.
-    #[inline]
-    pub fn band_triangles(&self, band: i32) -> &[u32] {
-        let k = band - self.first_band;
-        if k < 0 || k as usize + 1 >= self.bins.len() {
-            return &[];
-        }
-        let k = k as usize;
-        &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize]
+    /// Number of set-up triangles.
+    pub fn len(&self) -> usize {
+        self.tris.len()
     }
 
-    /// Culls, orients and keeps one triangle if it covers a pixel centre.
+    /// Fills the band (band index `band`, of [`BAND_ROWS`] rows) with the
+    /// triangles touching it, in submission order.
     #[inline]
-    fn push(&mut self, tri: [u32; 3], cull: CullMode, vp: Viewport) {
-        let [a, b, c] = tri.map(|k| &self.verts[k as usize]);
+    pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
+        let k = band - self.first_band;
+        if k < 0 || k as usize + 1 >= self.bins.len() {
+            return;
+        }
+        let k = k as usize;
+        for &t in &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize] {
+            self.tris[t as usize].draw(&self.edges, target);
+        }
+    }
+
+    /// Culls, orients, sets up and keeps one triangle if it covers a pixel centre.
+    #[inline]
+    fn push(&mut self, screen: &[ScreenVertex], tri: [u32; 3], cull: CullMode, vp: Viewport) {
+        let [a, b, c] = tri.map(|k| &screen[k as usize]);
         let area = signed_area(a, b, c);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen.
-        let (tri, area) = if area < 0 {
-            ([tri[0], tri[2], tri[1]], -area)
+        let (v, area) = if area < 0 {
+            ([a, c, b], -area)
         } else if area > 0 && cull == CullMode::None {
-            (tri, area)
+            ([a, b, c], area)
         } else {
             return;
         };
-        let span = PixelSpan::of([a, b, c].map(|v| v as &ScreenVertex), vp.width, vp.height);
+        let span = PixelSpan::of(v, vp.width, vp.height);
         if span.is_empty() {
             return;
         }
-        self.rows.push((span.y0, span.y1));
-        self.tris.push((tri, area));
+        if let Some(t) = Triangle::setup(v, area, span, &mut self.edges) {
+            self.tris.push(t);
+        }
     }
 }
 

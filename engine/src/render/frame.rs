@@ -1,6 +1,6 @@
 //! A frame: everything drawn in one image, and the [`Renderer`] that draws it.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use glam::Vec3;
 use image::RgbaImage;
@@ -11,7 +11,7 @@ use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
 use super::error::RenderError;
 use super::grass::{GrassBlade, blade_batches};
 use super::mesh::MeshInstance;
-use super::raster::{Band, draw_triangle, to_u8};
+use super::raster::{Band, to_u8};
 use super::shading::Lighting;
 use super::terrain::TerrainRenderer;
 
@@ -51,7 +51,8 @@ impl Default for FrameScene<'_> {
 pub struct FrameStats {
     /// Screen batches (visible terrain patches, mesh parts, groups of blades).
     pub batches: usize,
-    /// Triangles set up after culling and clipping.
+    /// Triangles set up after culling and clipping: those covering at least one
+    /// pixel centre.
     pub triangles: usize,
 }
 
@@ -66,6 +67,9 @@ pub struct Renderer {
     width: u32,
     height: u32,
     pool: Option<Arc<rayon::ThreadPool>>,
+    /// The depth buffer kept between frames (saves allocating and faulting in
+    /// a fresh one per frame); a frame that finds it busy allocates its own.
+    depth: Arc<Mutex<Vec<f32>>>,
 }
 
 impl Renderer {
@@ -82,6 +86,7 @@ impl Renderer {
             width,
             height,
             pool: None,
+            depth: Arc::default(),
         })
     }
 
@@ -140,11 +145,15 @@ impl Renderer {
         let batches = self.project(scene, camera, vp);
         let stats = FrameStats {
             batches: batches.len(),
-            triangles: batches.iter().map(|b| b.tris.len()).sum(),
+            triangles: batches.iter().map(ScreenBatch::len).sum(),
         };
         let (w, h) = (self.width as usize, self.height as usize);
         let mut color = vec![0u8; w * h * 4];
-        let mut depth = vec![0f32; w * h];
+        let mut cached = self.depth.try_lock().ok();
+        let mut own = Vec::new();
+        let depth = cached.as_deref_mut().unwrap_or(&mut own);
+        // Every band clears its own rows below, while they are in cache.
+        depth.resize(w * h, 0.0);
         let sky_rows = self.sky_rows(camera, &scene.lighting);
         let band_rows = BAND_ROWS as usize;
         color
@@ -154,6 +163,7 @@ impl Renderer {
             .for_each(|(b, (color, depth))| {
                 let y0 = b as i32 * BAND_ROWS;
                 let y1 = y0 + (depth.len() / w) as i32;
+                depth.fill(0.0);
                 for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
                     let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
                     row.chunks_exact_mut(4).for_each(|p| p.copy_from_slice(&px));
@@ -162,16 +172,11 @@ impl Renderer {
                     color,
                     depth,
                     width: vp.width,
-                    height: vp.height,
                     y0,
                     y1,
                 };
                 for batch in &batches {
-                    for &t in batch.band_triangles(b as i32) {
-                        let (tri, area) = &batch.tris[t as usize];
-                        let v = tri.map(|k| &batch.verts[k as usize]);
-                        draw_triangle(&mut band, v, *area);
-                    }
+                    batch.draw_band(b as i32, &mut band);
                 }
             });
         let image = RgbaImage::from_raw(self.width, self.height, color)
