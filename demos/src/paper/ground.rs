@@ -24,6 +24,8 @@ const SETTLE_S: f32 = 1.0;
 /// Volumes are compared relative to a 1 m thick slab over the terrain, as the
 /// tests compare them relative to a 1 m thick patch.
 const SLAB_TOLERANCE: f64 = 1e-6;
+/// Half the window searched around a print for steep slopes, metres.
+const STANDING_REACH: f32 = 0.4;
 /// Distance from a footfall beyond which no cell may change, metres.
 const LOCALITY_RADIUS: f32 = 0.5;
 
@@ -69,15 +71,22 @@ impl MaterialWalk {
         )
     }
 
-    /// Steepest slope around the prints after settling, m/m.
+    /// Steepest slope around the prints after settling, m/m. Prints next to
+    /// where the feet still stand at the end are left out: a planted foot holds
+    /// its print's walls until it lifts (they settle on release).
     fn steepest(&self) -> f32 {
         let g = &self.trace.last;
+        let standing: Vec<Vec2> = self.trace.walkers[0]
+            .last()
+            .map(|m| m.character.feet.iter().map(|f| f.xz()).collect())
+            .unwrap_or_default();
         self.prints
             .iter()
+            .filter(|&&c| standing.iter().all(|f| f.distance(c) > 2.0 * STANDING_REACH))
             .map(|&c| {
                 steepest_slope(
                     g,
-                    g.rect_covering(c - Vec2::splat(0.4), c + Vec2::splat(0.4)),
+                    g.rect_covering(c - Vec2::splat(STANDING_REACH), c + Vec2::splat(STANDING_REACH)),
                 )
             })
             .fold(0.0, f32::max)
@@ -233,7 +242,7 @@ fn repose_claim(walks: &[MaterialWalk]) -> Claim {
             "Beyond the paper (Sumner 1999): material steeper than its angle of repose slides down."
                 .into(),
         method:
-            "The four flat material walks; steepest 8-neighbour slope within 0.4 m of each print."
+            "The four flat material walks; steepest 8-neighbour slope within 0.4 m of each print the feet have left (a planted foot holds its walls until it lifts)."
                 .into(),
         checks,
     }
