@@ -82,11 +82,18 @@ impl MaterialWalk {
             .unwrap_or_default();
         self.prints
             .iter()
-            .filter(|&&c| standing.iter().all(|f| f.distance(c) > 2.0 * STANDING_REACH))
+            .filter(|&&c| {
+                standing
+                    .iter()
+                    .all(|f| f.distance(c) > 2.0 * STANDING_REACH)
+            })
             .map(|&c| {
                 steepest_slope(
                     g,
-                    g.rect_covering(c - Vec2::splat(STANDING_REACH), c + Vec2::splat(STANDING_REACH)),
+                    g.rect_covering(
+                        c - Vec2::splat(STANDING_REACH),
+                        c + Vec2::splat(STANDING_REACH),
+                    ),
                 )
             })
             .fold(0.0, f32::max)

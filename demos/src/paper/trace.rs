@@ -87,4 +87,3 @@ pub fn trace(
         dt: scene.sim.dt,
     })
 }
-

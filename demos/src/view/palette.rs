@@ -35,9 +35,18 @@ pub struct TerrainPaint {
 impl TerrainPaint {
     /// The colours of every sample of `hf`.
     pub fn of(hf: &Heightfield) -> Self {
-        let palette: Vec<Vec3> = hf.table().materials().iter().map(|m| material_albedo(&m.name)).collect();
+        let palette: Vec<Vec3> = hf
+            .table()
+            .materials()
+            .iter()
+            .map(|m| material_albedo(&m.name))
+            .collect();
         TerrainPaint {
-            albedo: hf.material_map().iter().map(|&id| palette[usize::from(id)]).collect(),
+            albedo: hf
+                .material_map()
+                .iter()
+                .map(|&id| palette[usize::from(id)])
+                .collect(),
             disturbed: hf.disturbed().iter().map(|&d| disturbance(d)).collect(),
         }
     }
