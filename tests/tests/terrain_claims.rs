@@ -208,23 +208,6 @@ fn claim3_no_slope_in_the_dirty_window_exceeds_the_angle_of_repose() {
     }
 }
 
-/// Raised (rim) volume around a foothold downhill (z below its centre) and
-/// uphill, from the deviation to the untouched terrain, in m·m² units.
-fn rim_down_up(hf: &Heightfield, untouched: &engine::geom::HeightGrid, c: Vec2) -> (f32, f32) {
-    let g = hf.grid();
-    let rect = g.rect_covering(c - Vec2::new(0.3, 0.3), c + Vec2::new(0.3, 0.3));
-    let (mut down, mut up) = (0.0, 0.0);
-    for (i, j) in rect.iter() {
-        let d = (g.height(i, j) - untouched.height(i, j)).max(0.0);
-        if g.sample_position(i, j).z < c.y {
-            down += d;
-        } else {
-            up += d;
-        }
-    }
-    (down, up)
-}
-
 #[test]
 fn claim3_a_print_on_a_25_degree_sand_slope_slumps_downhill() {
     let spec = GridSpec {
@@ -246,7 +229,7 @@ fn claim3_a_print_on_a_25_degree_sand_slope_slumps_downhill() {
         let mut hf = Heightfield::from_grid(grid, table, sand).unwrap();
         let report = walk_along(&mut hf, &holds, Vec2::Y);
         let ratio = mean(holds.iter().map(|&c| {
-            let (down, up) = rim_down_up(&hf, &untouched, c);
+            let (down, up) = demos::paper::measure::rim_split(hf.grid(), &untouched, c, Vec2::Y);
             down / up.max(1e-9)
         }));
         let worst = steepest_slope(&hf, report.rect);

@@ -7,9 +7,7 @@ use glam::{Vec2, Vec3Swizzles};
 use softwalk_systems::character::CharacterDesc;
 use softwalk_systems::terrain::TerrainMaterial;
 
-use super::measure::{
-    changed_cells, lift_offs, print_depth, rim_low_high_x, sharpness, steepest_slope,
-};
+use super::measure::{changed_cells, lift_offs, print_depth, rim_split, sharpness, steepest_slope};
 use super::report::{Check, Claim};
 use super::stats::mean;
 use super::trace::{Trace, trace};
@@ -276,7 +274,7 @@ fn asymmetry_claim(options: &PaperOptions) -> Result<Claim, PaperError> {
         options.say(&format!("walking {}", scene.name));
         let t = trace(&scene, scene.steps() as usize, |_| {})?;
         let (down, up) = prints(&t, 0).iter().fold((0.0, 0.0), |(d, u), &c| {
-            let (down, up) = rim_low_high_x(&t.last, &t.initial, c);
+            let (down, up) = rim_split(&t.last, &t.initial, c, Vec2::X);
             (d + down, u + up)
         });
         ratios.push(down / f32::max(up, 1e-9));

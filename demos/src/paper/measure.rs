@@ -105,20 +105,21 @@ pub fn steepest_slope(grid: &HeightGrid, rect: GridRect) -> f32 {
     worst
 }
 
-/// Raised (rim) volume within 0.3 m of the print at `c` on its low-X side and
-/// on its high-X side, from the rise over the untouched terrain (m per cell).
-pub fn rim_low_high_x(after: &HeightGrid, untouched: &HeightGrid, c: Vec2) -> (f32, f32) {
+/// Raised (rim) volume within 0.3 m of the print at `c`, split into the side
+/// behind `c` along `axis` and the side ahead of it, from the rise over the
+/// untouched terrain (m per cell).
+pub fn rim_split(after: &HeightGrid, untouched: &HeightGrid, c: Vec2, axis: Vec2) -> (f32, f32) {
     let rect = after.rect_covering(c - Vec2::splat(0.3), c + Vec2::splat(0.3));
-    let (mut low, mut high) = (0.0, 0.0);
+    let (mut behind, mut ahead) = (0.0, 0.0);
     for (i, j) in rect.iter() {
         let d = (after.height(i, j) - untouched.height(i, j)).max(0.0);
-        if after.sample_position(i, j).x < c.x {
-            low += d;
+        if (after.sample_position(i, j).xz() - c).dot(axis) < 0.0 {
+            behind += d;
         } else {
-            high += d;
+            ahead += d;
         }
     }
-    (low, high)
+    (behind, ahead)
 }
 
 /// Cells whose height differs between `a` and `b` (same grid layout): how many,
