@@ -19,19 +19,7 @@ pub(crate) fn finite(field: &str, value: f32) -> Result<f32, SceneError> {
 /// A finite value in `[min, max]`.
 pub(crate) fn in_range(field: &str, value: f32, min: f32, max: f32) -> Result<f32, SceneError> {
     finite(field, value)?;
-    if value < min {
-        Err(SceneError::invalid(
-            field,
-            format!("{value} must be >= {min}"),
-        ))
-    } else if value > max {
-        Err(SceneError::invalid(
-            field,
-            format!("{value} exceeds the maximum {max}"),
-        ))
-    } else {
-        Ok(value)
-    }
+    bounded(field, value, min, max)
 }
 
 /// A finite value in `(0, max]`.
@@ -51,6 +39,16 @@ pub(crate) fn count_in_range(
     min: u32,
     max: u32,
 ) -> Result<u32, SceneError> {
+    bounded(field, value, min, max)
+}
+
+/// `value` within `[min, max]`, or an error naming `field` and the bound it crossed.
+fn bounded<T: PartialOrd + std::fmt::Display>(
+    field: &str,
+    value: T,
+    min: T,
+    max: T,
+) -> Result<T, SceneError> {
     if value < min {
         Err(SceneError::invalid(
             field,
