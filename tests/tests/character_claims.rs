@@ -2,6 +2,7 @@
 //! the slope with the controller, a higher COM tilts and oscillates more,
 //! stance feet neither slide nor float, and long walks stay bounded.
 
+use demos::paper::stats::{mean, peak_to_peak, std_dev};
 use engine::geom::HeightGrid;
 use glam::{Vec2, Vec3};
 use softwalk_systems::character::{
@@ -48,19 +49,6 @@ fn straight(length: f32) -> WalkPath {
     WalkPath::straight(Vec3::ZERO, Vec3::Z, length).unwrap()
 }
 
-fn mean(v: &[f32]) -> f32 {
-    v.iter().sum::<f32>() / v.len() as f32
-}
-
-fn std_dev(v: &[f32]) -> f32 {
-    let m = mean(v);
-    (v.iter().map(|x| (x - m) * (x - m)).sum::<f32>() / v.len() as f32).sqrt()
-}
-
-fn peak_to_peak(v: &[f32]) -> f32 {
-    v.iter().cloned().fold(f32::MIN, f32::max) - v.iter().cloned().fold(f32::MAX, f32::min)
-}
-
 /// Tilts after the first two seconds (the start transient), while walking.
 fn settled_tilts(metrics: &[CharacterMetrics]) -> Vec<f32> {
     metrics[120..].iter().map(|m| m.tilt).collect()
@@ -75,7 +63,7 @@ fn tilt_follows_the_slope_only_with_the_controller() {
             .iter()
             .map(|&deg| {
                 let m = walk(CharacterDesc::adult(), &path, &ramp(deg), 7.0, controller);
-                mean(&settled_tilts(&m))
+                mean(settled_tilts(&m))
             })
             .collect()
     };

@@ -2,7 +2,8 @@
 //! synthetic planted feet: footholds along a line, each planted 0.3 s at
 //! 60 Hz, running carve -> smooth -> settle every step.
 
-use engine::geom::GridRect;
+use demos::paper::measure::{rim_split, steepest_slope};
+use demos::paper::stats::mean;
 use glam::Vec2;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::*;
@@ -80,11 +81,6 @@ fn sharpness(hf: &Heightfield, c: Vec2) -> f32 {
         .map(|j| (g.height(i, j + 1) - g.height(i, j)).abs() / g.cell_size())
         .fold(0.0, f32::max);
     steepest / print_depth(hf, c)
-}
-
-fn mean(v: impl Iterator<Item = f32>) -> f32 {
-    let v: Vec<f32> = v.collect();
-    v.iter().sum::<f32>() / v.len() as f32
 }
 
 #[test]
@@ -170,30 +166,12 @@ fn claim2_volume_is_conserved_without_compression_and_loses_the_compacted_part()
     }
 }
 
-/// Steepest 8-neighbour slope (m/m) between two samples inside `rect`.
-fn steepest_slope(hf: &Heightfield, rect: GridRect) -> f32 {
-    let g = hf.grid();
-    let c = g.cell_size();
-    let mut worst = 0.0f32;
-    for (i, j) in rect.iter() {
-        for (di, dj) in [(1isize, 0isize), (0, 1), (1, 1), (-1, 1)] {
-            let (ib, jb) = (i as isize + di, j as isize + dj);
-            if ib < rect.i0 as isize || ib >= rect.i1 as isize || jb >= rect.j1 as isize {
-                continue;
-            }
-            let d = c * ((di * di + dj * dj) as f32).sqrt();
-            worst = worst.max((g.height(i, j) - g.height(ib as usize, jb as usize)).abs() / d);
-        }
-    }
-    worst
-}
-
 #[test]
 fn claim3_no_slope_in_the_dirty_window_exceeds_the_angle_of_repose() {
     for m in TerrainMaterial::presets() {
         let mut hf = flat_patch(m.clone());
         let report = walk(&mut hf, &footholds());
-        let worst = steepest_slope(&hf, report.rect);
+        let worst = steepest_slope(hf.grid(), report.rect);
         println!(
             "{}: steepest {:.1} deg, repose {} deg",
             m.name,
@@ -229,10 +207,10 @@ fn claim3_a_print_on_a_25_degree_sand_slope_slumps_downhill() {
         let mut hf = Heightfield::from_grid(grid, table, sand).unwrap();
         let report = walk_along(&mut hf, &holds, Vec2::Y);
         let ratio = mean(holds.iter().map(|&c| {
-            let (down, up) = demos::paper::measure::rim_split(hf.grid(), &untouched, c, Vec2::Y);
+            let (down, up) = rim_split(hf.grid(), &untouched, c, Vec2::Y);
             down / up.max(1e-9)
         }));
-        let worst = steepest_slope(&hf, report.rect);
+        let worst = steepest_slope(hf.grid(), report.rect);
         println!(
             "{angle} deg: downhill/uphill rim volume {ratio:.2}, steepest {:.1} deg",
             worst.atan().to_degrees()
