@@ -7,6 +7,7 @@ use std::path::Path;
 use image::RgbaImage;
 
 use super::OutputError;
+use super::frame_size::FrameSize;
 use super::temp_file::TempFile;
 
 /// Frame count announced in the header until the real count is known; the
@@ -35,7 +36,7 @@ pub struct ApngWriter {
     writer: Option<png::Writer<BufWriter<File>>>,
     temp: TempFile,
     delay_ms: u16,
-    size: Option<(u32, u32)>,
+    size: FrameSize,
     frames: u32,
 }
 
@@ -51,7 +52,7 @@ impl ApngWriter {
             writer: None,
             temp: TempFile::create(path)?,
             delay_ms,
-            size: None,
+            size: FrameSize::default(),
             frames: 0,
         })
     }
@@ -64,19 +65,8 @@ impl ApngWriter {
     /// Appends a frame; all frames must have the size of the first.
     pub fn push(&mut self, frame: &RgbaImage) -> Result<(), OutputError> {
         let (width, height) = (frame.width(), frame.height());
-        let path = self.temp.target().to_path_buf();
-        super::png::check_size(&path, width, height)?;
-        let (expected_width, expected_height) = *self.size.get_or_insert((width, height));
-        if (width, height) != (expected_width, expected_height) {
-            return Err(OutputError::FrameSize {
-                path,
-                index: self.frames as usize,
-                expected_width,
-                expected_height,
-                found_width: width,
-                found_height: height,
-            });
-        }
+        self.size
+            .check(self.temp.target(), self.frames as usize, width, height)?;
         if self.writer.is_none() {
             self.writer = Some(self.start(width, height)?);
         }

@@ -7,6 +7,7 @@ use std::path::Path;
 use image::RgbaImage;
 
 use super::OutputError;
+use super::frame_size::FrameSize;
 use super::temp_file::TempFile;
 
 /// How a GIF frame's colours are reduced to 256.
@@ -119,7 +120,7 @@ pub struct GifWriter {
     temp: TempFile,
     delay_cs: u16,
     quantizer: Quantizer,
-    size: Option<(u32, u32)>,
+    size: FrameSize,
     frames: usize,
 }
 
@@ -166,7 +167,7 @@ impl GifWriter {
             temp: TempFile::create(path)?,
             delay_cs: ((delay_ms + 5) / 10) as u16,
             quantizer,
-            size: None,
+            size: FrameSize::default(),
             frames: 0,
         })
     }
@@ -229,23 +230,12 @@ impl GifWriter {
 
     /// Checks a frame's size against the first frame and the format's limits.
     fn check_frame(&mut self, width: u32, height: u32) -> Result<(u16, u16), OutputError> {
-        let path = self.temp.target().to_path_buf();
-        super::png::check_size(&path, width, height)?;
-        let (expected_width, expected_height) = *self.size.get_or_insert((width, height));
-        if (width, height) != (expected_width, expected_height) {
-            return Err(OutputError::FrameSize {
-                path,
-                index: self.frames,
-                expected_width,
-                expected_height,
-                found_width: width,
-                found_height: height,
-            });
-        }
+        self.size
+            .check(self.temp.target(), self.frames, width, height)?;
         match (u16::try_from(width), u16::try_from(height)) {
             (Ok(w), Ok(h)) => Ok((w, h)),
             _ => Err(OutputError::InvalidParameter {
-                path,
+                path: self.temp.target().to_path_buf(),
                 parameter: "frame size",
                 reason: format!("{width}x{height} exceeds GIF's 65535 pixel limit"),
             }),

@@ -9,6 +9,7 @@
 mod apng;
 mod contact_sheet;
 mod error;
+mod frame_size;
 mod gif;
 mod png;
 mod temp_file;
