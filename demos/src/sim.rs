@@ -10,13 +10,14 @@
 
 use engine::ecs::World;
 use engine::geom::HeightGrid;
-use glam::{Vec2, Vec3, Vec3Swizzles};
+use glam::{Vec3, Vec3Swizzles};
 use image::RgbaImage;
 use serde::Serialize;
 use softwalk_systems::sim::{SystemTimings, TerrainVolume, WalkerMetrics, world_hash};
 use softwalk_systems::terrain::Heightfield;
 use thiserror::Error;
 
+use crate::paper::measure::{LiftOffs, print_depth};
 use crate::scene::{Scene, SceneError};
 use crate::view::{SceneView, ViewError};
 
@@ -365,50 +366,26 @@ impl StepRecord {
 }
 
 /// Where each character's feet lifted off (the prints they left), to measure print depths at the end.
-struct PrintTracker {
-    contact: Vec<[bool; 2]>,
-    prints: Vec<Vec<Vec3>>,
-}
-
-/// Radius around a print's centre searched for its floor, metres.
-const PRINT_RADIUS: f32 = 0.06;
+struct PrintTracker(Vec<LiftOffs>);
 
 impl PrintTracker {
     fn new(characters: usize) -> Self {
-        PrintTracker {
-            contact: vec![[false; 2]; characters],
-            prints: vec![Vec::new(); characters],
-        }
+        PrintTracker(vec![LiftOffs::default(); characters])
     }
 
     fn observe(&mut self, character: usize, m: &WalkerMetrics) {
-        for k in 0..2 {
-            let now = m.character.contact[k];
-            if self.contact[character][k] && !now {
-                self.prints[character].push(m.character.feet[k]);
-            }
-            self.contact[character][k] = now;
-        }
+        self.0[character].observe(&m.character);
     }
 
     /// Depth of each print: the height there before the run minus the lowest height near it after.
     fn depths(&self, before: &HeightGrid, after: &HeightGrid) -> Vec<DepthStats> {
-        self.prints
+        self.0
             .iter()
-            .map(|prints| {
-                let depths: Vec<f32> = prints
+            .map(|feet| {
+                let depths: Vec<f32> = feet
+                    .prints
                     .iter()
-                    .filter_map(|p| {
-                        let rect = after.rect_covering(
-                            p.xz() - Vec2::splat(PRINT_RADIUS),
-                            p.xz() + Vec2::splat(PRINT_RADIUS),
-                        );
-                        if rect.is_empty() {
-                            return None;
-                        }
-                        let (floor, _) = after.min_max_in(&rect);
-                        Some((before.height_at(p.x, p.z)? - floor).max(0.0))
-                    })
+                    .filter_map(|p| print_depth(before, after, p.xz()))
                     .collect();
                 DepthStats {
                     prints: depths.len() as u32,

@@ -45,17 +45,31 @@ pub fn stance_errors<'a>(
 
 /// Where the feet lifted off: the centres of the prints a walk left.
 pub fn lift_offs<'a>(metrics: impl IntoIterator<Item = &'a CharacterMetrics>) -> Vec<Vec3> {
-    let mut was = [false; 2];
-    let mut prints = Vec::new();
+    let mut detector = LiftOffs::default();
     for m in metrics {
-        for (k, was_down) in was.iter_mut().enumerate() {
+        detector.observe(m);
+    }
+    detector.prints
+}
+
+/// Streaming form of [`lift_offs`]: feed one step's metrics at a time.
+#[derive(Debug, Clone, Default)]
+pub struct LiftOffs {
+    was_down: [bool; 2],
+    /// The print centres found so far, in the order the feet lifted.
+    pub prints: Vec<Vec3>,
+}
+
+impl LiftOffs {
+    /// Records the prints of the feet that left the ground in this step.
+    pub fn observe(&mut self, m: &CharacterMetrics) {
+        for (k, was_down) in self.was_down.iter_mut().enumerate() {
             if *was_down && !m.contact[k] {
-                prints.push(m.feet[k]);
+                self.prints.push(m.feet[k]);
             }
             *was_down = m.contact[k];
         }
     }
-    prints
 }
 
 /// Half extents of the window searched for a print's floor (along X, along Z), metres.
