@@ -19,21 +19,29 @@ pub(crate) fn step_dt(world: &World) -> f32 {
     world.get_resource::<Time>().map_or(0.0, |t| t.dt)
 }
 
-/// Vegetation height at `(x, z)`: the tallest patch there, 0 outside every patch.
-pub(crate) fn sensed_vegetation(patches: &[&GrassPatch], x: f32, z: f32) -> f32 {
+/// The vegetation at `(x, z)`: the tallest patch there and its height, or
+/// `None` outside every patch.
+pub(crate) fn vegetation_at<'a>(
+    patches: &[&'a GrassPatch],
+    x: f32,
+    z: f32,
+) -> Option<(&'a GrassPatch, f32)> {
     patches
         .iter()
-        .map(|p| p.height_at(x, z))
-        .fold(0.0, f32::max)
+        .map(|&p| (p, p.height_at(x, z)))
+        .filter(|&(_, h)| h > 0.0)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
 }
 
-/// Platform settings of the tallest patch at `(x, z)`, or the defaults outside vegetation.
+/// Vegetation height at `(x, z)`, 0 outside every patch.
+pub(crate) fn sensed_vegetation(patches: &[&GrassPatch], x: f32, z: f32) -> f32 {
+    vegetation_at(patches, x, z).map_or(0.0, |(_, h)| h)
+}
+
+/// Platform settings of the vegetation at `(x, z)`, or the defaults outside vegetation.
 pub(crate) fn platform_settings_at(patches: &[&GrassPatch], x: f32, z: f32) -> PlatformSettings {
-    patches
-        .iter()
-        .filter(|p| p.height_at(x, z) > 0.0)
-        .max_by(|a, b| a.height_at(x, z).total_cmp(&b.height_at(x, z)))
-        .map_or_else(PlatformSettings::default, |p| p.settings().platform)
+    vegetation_at(patches, x, z)
+        .map_or_else(PlatformSettings::default, |(p, _)| p.settings().platform)
 }
 
 /// System `ground_response`: the material under the pelvis sets the gait

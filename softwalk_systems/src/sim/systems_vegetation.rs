@@ -3,10 +3,11 @@
 use engine::ecs::World;
 
 use super::components::{Feet, Platforms};
-use super::systems_character::{platform_settings_at, sensed_vegetation, step_dt};
+use super::systems_character::{step_dt, vegetation_at};
 use crate::character::FootRays;
 use crate::foot::FootState;
 use crate::vegetation::GrassPatch;
+use crate::vegetation::PlatformSettings;
 
 /// System `platform`: advances each foot's virtual platform (paper §3.2) from
 /// the foot's last state and the real ground key, then lets the foot ray see
@@ -21,15 +22,12 @@ pub fn platform_system(world: &mut World) {
         for (k, platform) in platforms.0.iter_mut().enumerate() {
             let foot = &feet.0[k];
             let at = foot.sole.center();
-            let settings = platform_settings_at(&patches, at.x, at.z);
+            let vegetation = vegetation_at(&patches, at.x, at.z);
+            let settings =
+                vegetation.map_or_else(PlatformSettings::default, |(p, _)| p.settings().platform);
+            let height = vegetation.map_or(0.0, |(_, h)| h);
             let key = &mut rays.feet[k];
-            platform.update(
-                foot,
-                key.point.y,
-                sensed_vegetation(&patches, at.x, at.z),
-                dt,
-                &settings,
-            );
+            platform.update(foot, key.point.y, height, dt, &settings);
             if let Some(top) = platform.top(&settings)
                 && top.covers(key.point.x, key.point.z)
                 && top.top_y > key.point.y
