@@ -28,7 +28,8 @@ pub struct StepChanges {
     pub compacted_volume: f64,
     /// Part of the carved volume pushed onto the rims: 1 - c_t of it.
     pub rim_volume: f64,
-    /// Samples a sole pressed on (held by the foot; settling leaves them alone).
+    /// Samples held by a foot: everything its current contact has pressed so far
+    /// (smoothing and settling leave them alone until the foot lifts).
     pub held: Vec<usize>,
     /// Pairwise transfers made by settling.
     pub settle_transfers: usize,
