@@ -25,6 +25,8 @@ pub struct FootPrint {
     window: GridRect,
     reference: Vec<f32>,
     touched: GridRect,
+    /// Grid indices of the samples with a reference height, in the order they were first pressed.
+    pressed: Vec<usize>,
     rim: Vec<(usize, f32)>,
 }
 
@@ -63,23 +65,24 @@ impl FootPrint {
         if self.active && self.window.intersect(&rect) == rect {
             return;
         }
-        let grown = if self.active {
-            self.window.union(&rect)
-        } else {
-            rect.expand(rect.width().max(rect.height()) / 2, nx, nz)
-        };
-        let mut reference = vec![f32::NAN; grown.area()];
-        if self.active {
-            for (i, j) in self.window.iter() {
-                let k = (j - grown.j0) * grown.width() + (i - grown.i0);
-                reference[k] = self.reference[self.local(i, j)];
-            }
-        } else {
+        if !self.active {
+            // A new contact: reuse the buffers of the last one.
+            self.window = rect.expand(rect.width().max(rect.height()) / 2, nx, nz);
+            self.reference.clear();
+            self.reference.resize(self.window.area(), f32::NAN);
+            self.pressed.clear();
             self.touched = GridRect::EMPTY;
+            self.active = true;
+            return;
+        }
+        let grown = self.window.union(&rect);
+        let mut reference = vec![f32::NAN; grown.area()];
+        for (i, j) in self.window.iter() {
+            let k = (j - grown.j0) * grown.width() + (i - grown.i0);
+            reference[k] = self.reference[self.local(i, j)];
         }
         self.window = grown;
         self.reference = reference;
-        self.active = true;
     }
 
     /// Ends the contact; returns what it touched (smooth and settle it once more).
@@ -88,7 +91,6 @@ impl FootPrint {
             return GridRect::EMPTY;
         }
         self.active = false;
-        self.reference.clear();
         std::mem::replace(&mut self.touched, GridRect::EMPTY)
     }
 }
@@ -163,12 +165,12 @@ pub fn carve(
             let local = print.local(i, j);
             if print.reference[local].is_nan() {
                 print.reference[local] = h;
+                print.pressed.push(k);
             }
             let material = parts.material(k);
             let step = material.sink_speed() * dt;
             let floor = (print.reference[local] - material.print_depth()).max(sole_y - step);
             let new_h = (h - step).max(floor);
-            parts.changes.held.push(k);
             parts.disturbed[k] = DISTURBED_PRESSED;
             if new_h < h {
                 parts.heights[k] = new_h;
@@ -181,11 +183,7 @@ pub fn carve(
     // Everything this contact has pressed stays held until the foot lifts, not
     // only what is under the sole now: a rolling foot lifts its heel
     // mid-stance, and smoothing must not pour the rim back under it every step.
-    for (i, j) in print.window.iter() {
-        if !print.reference[print.local(i, j)].is_nan() {
-            parts.changes.held.push(j * nx + i);
-        }
-    }
+    parts.changes.held.extend_from_slice(&print.pressed);
     if removed == 0.0 {
         return Ok(GridRect::EMPTY);
     }

@@ -7,6 +7,9 @@ use glam::Vec2;
 use super::error::TerrainError;
 use super::material::TerrainMaterial;
 use super::material_table::{MaterialId, MaterialTable};
+use super::patch::Patch;
+use super::settle::SettleBuffers;
+use super::smooth::SmoothBuffers;
 
 /// `disturbed` value of a sample pressed by a sole.
 pub const DISTURBED_PRESSED: u8 = 255;
@@ -50,6 +53,32 @@ pub struct Heightfield {
     disturbed: Vec<u8>,
     dirty: GridRect,
     changes: StepChanges,
+    buffers: StageBuffers,
+}
+
+/// Work buffers the stages reuse from step to step, so a step allocates
+/// nothing once they have grown to the largest window. Not part of the
+/// terrain's state: a clone starts with empty buffers.
+#[derive(Default)]
+pub(crate) struct StageBuffers {
+    /// The window smoothing or settling works on.
+    pub patch: Patch,
+    /// Smoothing's edge and height buffers.
+    pub smooth: SmoothBuffers,
+    /// Settling's work lists.
+    pub settle: SettleBuffers,
+}
+
+impl Clone for StageBuffers {
+    fn clone(&self) -> Self {
+        StageBuffers::default()
+    }
+}
+
+impl std::fmt::Debug for StageBuffers {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("StageBuffers")
+    }
 }
 
 impl Heightfield {
@@ -68,6 +97,7 @@ impl Heightfield {
             disturbed: vec![0; n],
             dirty: GridRect::EMPTY,
             changes: StepChanges::default(),
+            buffers: StageBuffers::default(),
         })
     }
 
@@ -202,6 +232,16 @@ impl Heightfield {
         std::mem::take(&mut self.changes)
     }
 
+    /// Lends the stages' work buffers (give them back with [`Heightfield::return_buffers`]).
+    pub(crate) fn take_buffers(&mut self) -> StageBuffers {
+        std::mem::take(&mut self.buffers)
+    }
+
+    /// Gives back the buffers lent by [`Heightfield::take_buffers`].
+    pub(crate) fn return_buffers(&mut self, buffers: StageBuffers) {
+        self.buffers = buffers;
+    }
+
     /// Mutable access for the stages: heights, materials, disturbed mask, step record.
     pub(crate) fn parts_mut(&mut self) -> TerrainParts<'_> {
         let nx = self.grid.nx();
@@ -231,38 +271,6 @@ impl<'a> TerrainParts<'a> {
     #[inline]
     pub fn material(&self, k: usize) -> &'a TerrainMaterial {
         &self.table.materials()[self.material[k] as usize]
-    }
-}
-
-/// The samples held by a sole this step, as a mask over a window, indexed by
-/// window-local index `(j - j0) * width + (i - i0)`.
-pub(crate) struct HeldMask {
-    mask: Vec<bool>,
-}
-
-/// Builds the mask of `held` sample indices (row-major in a grid `nx` wide) inside `window`.
-pub(crate) fn held_mask(held: &[usize], nx: usize, window: GridRect) -> HeldMask {
-    let mut mask = vec![false; window.area()];
-    for &k in held {
-        let (i, j) = (k % nx, k / nx);
-        if window.contains(i, j) {
-            mask[(j - window.j0) * window.width() + (i - window.i0)] = true;
-        }
-    }
-    HeldMask { mask }
-}
-
-impl HeldMask {
-    /// The flags, one per window sample.
-    pub fn into_vec(self) -> Vec<bool> {
-        self.mask
-    }
-}
-
-impl MaterialTable {
-    /// One value per material id, for fast per-sample lookups in the stages.
-    pub(crate) fn per_material(&self, f: impl Fn(&TerrainMaterial) -> f32) -> Vec<f32> {
-        self.materials().iter().map(f).collect()
     }
 }
 

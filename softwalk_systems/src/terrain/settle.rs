@@ -1,10 +1,13 @@
 //! Settling (beyond the paper): disturbed ground steeper than its angle of
 //! repose slides down, by pairwise mass-conserving transfers (Sumner 1999's erosion).
 
+use std::ops::Range;
+
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_SLUMPED, Heightfield};
-use super::patch::Patch;
+use super::heightfield::{DISTURBED_SLUMPED, Heightfield, StageBuffers};
+use super::material::TerrainMaterial;
+use super::patch::{DISTURBED, FIXED, Patch, edge_moves};
 use super::smooth::smoothing_radius;
 
 /// Settling stops when no slope exceeds the repose slope by more than this (m/m).
@@ -46,10 +49,11 @@ pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
 /// which puts the pair at or a little below the angle of repose. Sweeps run
 /// in row-major order (Gauss-Seidel: each transfer is seen by the next edge).
 /// After the first sweep only the samples owning an edge that touches a
-/// sample moved by the previous sweep are revisited (a work list, kept as a
-/// mask in row-major order). Sweeps stop when nothing moves (no slope above
-/// repose by more than [`SETTLE_TOLERANCE`]) or after [`SETTLE_MAX_SWEEPS`].
-/// Everything is in a fixed order, so the result is deterministic.
+/// sample moved by the previous sweep are revisited (a work list, sorted
+/// into row-major order each sweep). Sweeps stop when nothing moves (no
+/// slope above repose by more than [`SETTLE_TOLERANCE`]) or after
+/// [`SETTLE_MAX_SWEEPS`]. Everything is in a fixed order, so the result is
+/// deterministic.
 ///
 /// Guards against creeping over natural terrain:
 /// - only edges with a disturbed sample move (a natural slope steeper than
@@ -69,172 +73,204 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
 /// e.g. the rectangles carving and smoothing report. Everything else in the
 /// window is assumed stable; slumps still spread anywhere in `window`.
 pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
-    let w = window.intersect(&hf.grid().full_rect());
+    let full = hf.grid().full_rect();
+    let w = window.intersect(&full);
     let seeds = seeds.intersect(&w);
     if seeds.is_empty() {
         return GridRect::EMPTY;
     }
+    let first = seeds.expand(1, full.width(), full.height()).intersect(&w);
     let cell = hf.grid().cell_size();
-    let mut parts = hf.parts_mut();
-    let mut patch = Patch::load(&parts, w);
-    // Steepest stable height difference across a side, per sample (from its material).
-    let side = parts
-        .table
-        .per_material(|m| (m.repose_slope() + SETTLE_TOLERANCE) * cell);
-    let limit: Vec<f32> = patch.material.iter().map(|&m| side[m as usize]).collect();
-    let local_seeds = GridRect::new(
-        seeds.i0 - w.i0,
-        seeds.j0 - w.j0,
-        seeds.i1 - w.i0,
-        seeds.j1 - w.j0,
-    )
-    .expand(1, w.width(), w.height());
-    let mut relax = Relaxation::new(&mut patch, limit, SETTLE_TOLERANCE * cell);
-    relax.run(local_seeds);
-    let (changed, transfers, visits) = (relax.changed, relax.transfers, relax.visits);
+    let mut buffers = hf.take_buffers();
+    let changed = {
+        let mut parts = hf.parts_mut();
+        let StageBuffers { patch, settle, .. } = &mut buffers;
+        patch.load(&parts, w);
+        settle.limits(patch, parts.table.materials(), cell);
+        let SettleBuffers {
+            limit,
+            steep,
+            now,
+            next,
+            ..
+        } = settle;
+        let words = patch.flags.len().div_ceil(64);
+        for set in [&mut *now, &mut *next] {
+            set.clear();
+            set.resize(words, 0);
+        }
+        let first_start = patch.local(first.i0, first.j0);
+        let mut relax = Relaxation {
+            heights: &mut patch.heights,
+            flags: &mut patch.flags,
+            limit,
+            next,
+            next_words: 0..0,
+            stride: patch.stride,
+            settle_to: SETTLE_TOLERANCE * cell,
+            transfers: 0,
+            visits: 0,
+        };
+        relax.run(first_start, first.width(), first.height(), steep, now);
+        let (transfers, visits) = (relax.transfers, relax.visits);
+        let changed = if transfers > 0 {
+            mark_slumped(patch)
+        } else {
+            GridRect::EMPTY
+        };
+        parts.changes.settle_transfers += transfers;
+        parts.changes.settle_visits += visits;
+        if !changed.is_empty() {
+            patch.store(&mut parts, changed);
+        }
+        changed
+    };
+    hf.return_buffers(buffers);
     if !changed.is_empty() {
-        relax.mark_slumped();
+        hf.mark_dirty(changed);
     }
-    parts.changes.settle_transfers += transfers;
-    parts.changes.settle_visits += visits;
-    if changed.is_empty() {
-        return GridRect::EMPTY;
-    }
-    patch.store(&mut parts);
-    let changed = patch.to_grid(changed);
-    hf.mark_dirty(changed);
     changed
 }
 
-/// Flag of a sample that is disturbed (its edges may move).
-const DISTURBED: u8 = 1;
-/// Flag of a sample held by a sole (its edges never move).
-const HELD: u8 = 2;
 /// Flag of a sample moved by this call.
 const MOVED: u8 = 4;
 
-/// The relaxation sweeps of one [`settle_from`] call, on a [`Patch`]'s heights.
+/// Settling's buffers, reused from call to call.
+#[derive(Default)]
+pub(crate) struct SettleBuffers {
+    /// Steepest stable side difference per material id, metres.
+    side: Vec<f32>,
+    /// The same per local sample of the patch.
+    limit: Vec<f32>,
+    /// Per sample of a row of the first sweep: 1 when one of its edges is too steep.
+    steep: Vec<u8>,
+    /// Local samples to visit in the running sweep, and in the next one,
+    /// as bit sets (bit `l % 64` of word `l / 64`), so a sweep visits them in
+    /// row-major order without sorting.
+    now: Vec<u64>,
+    next: Vec<u64>,
+}
+
+impl SettleBuffers {
+    /// Fills the steepest stable side difference of every sample of `patch`
+    /// (grid spacing `cell`).
+    fn limits(&mut self, patch: &Patch, materials: &[TerrainMaterial], cell: f32) {
+        self.side.clear();
+        self.side.extend(
+            materials
+                .iter()
+                .map(|m| (m.repose_slope() + SETTLE_TOLERANCE) * cell),
+        );
+        let side = &self.side;
+        self.limit.clear();
+        self.limit
+            .extend(patch.material.iter().map(|&m| side[m as usize]));
+    }
+}
+
+/// The relaxation sweeps of one [`settle_from`] call, on the local buffers
+/// of a [`Patch`] (framed, so every neighbour of a window sample exists).
 struct Relaxation<'p> {
     heights: &'p mut [f32],
-    /// Trodden marks, written once at the end ([`Relaxation::mark_slumped`]).
-    disturbed: &'p mut [u8],
-    /// [`DISTURBED`], [`HELD`] and [`MOVED`] bits per sample.
-    flags: Vec<u8>,
+    /// [`DISTURBED`], [`FIXED`] and [`MOVED`] bits per sample.
+    flags: &'p mut [u8],
     /// Steepest stable side difference per sample, metres.
-    limit: Vec<f32>,
+    limit: &'p [f32],
+    /// Samples to visit in the next sweep (a bit set).
+    next: &'p mut [u64],
+    /// The words of `next` that may hold a set bit.
+    next_words: Range<usize>,
+    stride: usize,
     /// How far below the limit a transfer leaves a pair, per unit length, metres.
     settle_to: f32,
-    width: usize,
-    height: usize,
-    /// Samples to visit in the running sweep, and in the next one.
-    now: Vec<bool>,
-    next: Vec<bool>,
-    /// Bounds of the `next` marks (empty when none).
-    next_rect: GridRect,
-    /// Local rectangle of every sample moved so far.
-    changed: GridRect,
     transfers: usize,
     visits: usize,
 }
 
-impl<'p> Relaxation<'p> {
-    /// Relaxation of the heights of `patch` (their flags taken from it) with
-    /// the steepest stable side difference `limit` per sample.
-    fn new(patch: &'p mut Patch, limit: Vec<f32>, settle_to: f32) -> Self {
-        let (width, height) = (patch.width, patch.rect.height());
-        let flags = patch
-            .disturbed
-            .iter()
-            .zip(&patch.held)
-            .map(|(&d, &held)| {
-                if held {
-                    HELD
-                } else {
-                    u8::from(d != 0) * DISTURBED
-                }
-            })
-            .collect();
-        Relaxation {
-            heights: &mut patch.heights,
-            disturbed: &mut patch.disturbed,
-            flags,
-            limit,
-            settle_to,
-            width,
-            height,
-            now: vec![false; width * height],
-            next: vec![false; width * height],
-            next_rect: GridRect::EMPTY,
-            changed: GridRect::EMPTY,
-            transfers: 0,
-            visits: 0,
-        }
-    }
-
-    /// Sweeps until stable (or the sweep cap), the first sweep over every
-    /// sample of `seeds` (local, non-empty).
-    fn run(&mut self, seeds: GridRect) {
-        for (c, r) in seeds.iter() {
-            self.now[r * self.width + c] = true;
-        }
-        let mut rect = seeds;
-        for _ in 0..SETTLE_MAX_SWEEPS {
-            for r in rect.j0..rect.j1 {
-                for c in rect.i0..rect.i1 {
-                    let l = r * self.width + c;
-                    if self.now[l] {
-                        self.now[l] = false;
-                        self.visits += 1;
-                        self.relax_sample(c, r);
-                    }
+impl Relaxation<'_> {
+    /// Sweeps until stable (or the sweep cap). The first sweep goes over the
+    /// `rows` x `width` local samples from `start` in row-major order,
+    /// visiting the samples that own an edge steeper than repose when the
+    /// sweep reaches their row (found by a branch-free scan of the row into
+    /// `steep`); a sample made steep by a transfer is queued for the next
+    /// sweep. `now` is the bit set of the running sweep (all clear).
+    fn run(
+        &mut self,
+        start: usize,
+        width: usize,
+        rows: usize,
+        steep: &mut Vec<u8>,
+        now: &mut [u64],
+    ) {
+        for r in 0..rows {
+            let row = start + r * self.stride;
+            self.scan_row(row, width, steep);
+            for (k, &is_steep) in steep.iter().enumerate() {
+                if is_steep != 0 {
+                    self.visit(row + k);
                 }
             }
-            if self.next_rect.is_empty() {
+        }
+        for _ in 1..SETTLE_MAX_SWEEPS {
+            let words = std::mem::replace(&mut self.next_words, 0..0);
+            if words.is_empty() {
                 break;
             }
-            std::mem::swap(&mut self.now, &mut self.next);
-            rect = std::mem::replace(&mut self.next_rect, GridRect::EMPTY);
-        }
-    }
-
-    /// Marks every sample moved by the run as slumped.
-    fn mark_slumped(&mut self) {
-        for (d, &f) in self.disturbed.iter_mut().zip(&self.flags) {
-            if f & MOVED != 0 {
-                *d = (*d).max(DISTURBED_SLUMPED);
+            now[words.clone()].copy_from_slice(&self.next[words.clone()]);
+            self.next[words.clone()].fill(0);
+            for w in words {
+                let mut bits = std::mem::take(&mut now[w]);
+                while bits != 0 {
+                    self.visit(w * 64 + bits.trailing_zeros() as usize);
+                    bits &= bits - 1;
+                }
             }
         }
     }
 
-    /// Relaxes the four forward edges of sample `(c, r)`.
+    /// Sets `steep[k]` for the `width` samples from local `start` that own a
+    /// moving edge steeper than repose (the test of [`Relaxation::relax_edge`]).
+    fn scan_row(&self, start: usize, width: usize, steep: &mut Vec<u8>) {
+        let s = self.stride;
+        steep.clear();
+        steep.resize(width, 0);
+        let diagonal = std::f32::consts::SQRT_2;
+        for (d, length) in [(1, 1.0), (s, 1.0), (s + 1, diagonal), (s - 1, diagonal)] {
+            let a = start..start + width;
+            let b = start + d..start + d + width;
+            let (ha, hb) = (&self.heights[a.clone()], &self.heights[b.clone()]);
+            let (la, lb) = (&self.limit[a.clone()], &self.limit[b.clone()]);
+            let (fa, fb) = (&self.flags[a], &self.flags[b]);
+            for k in 0..width {
+                let drop = ha[k] - hb[k];
+                let limit = if drop >= 0.0 { la[k] } else { lb[k] };
+                let too_steep = drop.abs() - limit * length > 0.0;
+                steep[k] |= u8::from(too_steep & edge_moves(fa[k], fb[k]));
+            }
+        }
+    }
+
+    /// Relaxes the four forward edges of local sample `l` (the frame
+    /// guarantees every neighbour exists).
     #[inline]
-    fn relax_sample(&mut self, c: usize, r: usize) {
-        let (w, l) = (self.width, r * self.width + c);
-        if self.flags[l] & HELD != 0 {
+    fn visit(&mut self, l: usize) {
+        self.visits += 1;
+        if self.flags[l] & FIXED != 0 {
             return;
         }
+        let s = self.stride;
         let diagonal = std::f32::consts::SQRT_2;
-        let right = c + 1 < w;
-        if right {
-            self.relax_edge(l, l + 1, 1.0);
-        }
-        if r + 1 < self.height {
-            self.relax_edge(l, l + w, 1.0);
-            if right {
-                self.relax_edge(l, l + w + 1, diagonal);
-            }
-            if c > 0 {
-                self.relax_edge(l, l + w - 1, diagonal);
-            }
-        }
+        self.relax_edge(l, l + 1, 1.0);
+        self.relax_edge(l, l + s, 1.0);
+        self.relax_edge(l, l + s + 1, diagonal);
+        self.relax_edge(l, l + s - 1, diagonal);
     }
 
     /// Moves part of the excess across the edge between local samples `a`
     /// and `b` (`length` in cells) if it is steeper than repose.
     #[inline(always)]
     fn relax_edge(&mut self, a: usize, b: usize, length: f32) {
-        // Moves only if one end is disturbed and neither is held.
-        if (self.flags[a] | self.flags[b]) & (DISTURBED | HELD) != DISTURBED {
+        if !edge_moves(self.flags[a], self.flags[b]) {
             return;
         }
         let (ha, hb) = (self.heights[a], self.heights[b]);
@@ -259,43 +295,45 @@ impl<'p> Relaxation<'p> {
         self.transfers += 1;
         for l in [hi, lo] {
             self.flags[l] |= DISTURBED | MOVED;
-            let (c, r) = (l % self.width, l / self.width);
-            self.changed = grow(self.changed, c, r, c + 1, r + 1);
-            self.mark_owners(c, r);
+            self.queue_owners(l);
         }
     }
 
-    /// Marks for the next sweep every sample owning a forward edge that
-    /// touches `(c, r)`: itself, its left neighbour and the three samples
-    /// of the row above.
+    /// Queues for the next sweep every sample owning a forward edge that
+    /// touches `l`: itself, its left neighbour and the three samples of the
+    /// row above (frame and held samples own no moving edge and are skipped).
     #[inline]
-    fn mark_owners(&mut self, c: usize, r: usize) {
-        let w = self.width;
-        let (c0, c1) = (c.saturating_sub(1), (c + 1).min(w - 1));
-        self.next[r * w + c0] = true;
-        self.next[r * w + c] = true;
-        let r0 = r.saturating_sub(1);
-        if r > 0 {
-            self.next[r0 * w + c0] = true;
-            self.next[r0 * w + c] = true;
-            self.next[r0 * w + c1] = true;
+    fn queue_owners(&mut self, l: usize) {
+        let s = self.stride;
+        for owner in [l - s - 1, l - s, l - s + 1, l - 1, l] {
+            if self.flags[owner] & FIXED == 0 {
+                self.next[owner / 64] |= 1 << (owner % 64);
+            }
         }
-        self.next_rect = grow(self.next_rect, c0, r0, c1 + 1, r + 1);
+        let (first, last) = ((l - s - 1) / 64, l / 64 + 1);
+        let words = &mut self.next_words;
+        *words = if words.start >= words.end {
+            first..last
+        } else {
+            words.start.min(first)..words.end.max(last)
+        };
     }
 }
 
-/// `rect` grown to hold the non-empty rectangle `i0..i1` x `j0..j1`.
-#[inline]
-fn grow(rect: GridRect, i0: usize, j0: usize, i1: usize, j1: usize) -> GridRect {
-    if rect.is_empty() {
-        return GridRect { i0, j0, i1, j1 };
+/// Marks every sample of `patch` moved by a relaxation as slumped; returns
+/// their bounding rectangle (grid samples).
+fn mark_slumped(patch: &mut Patch) -> GridRect {
+    let flags = &patch.flags;
+    let rect = patch.bounds_of(|l| flags[l] & MOVED != 0);
+    for j in rect.j0..rect.j1 {
+        let start = patch.local(rect.i0, j);
+        for l in start..start + rect.width() {
+            if patch.flags[l] & MOVED != 0 {
+                patch.disturbed[l] = patch.disturbed[l].max(DISTURBED_SLUMPED);
+            }
+        }
     }
-    GridRect {
-        i0: rect.i0.min(i0),
-        j0: rect.j0.min(j0),
-        i1: rect.i1.max(i1),
-        j1: rect.j1.max(j1),
-    }
+    rect
 }
 
 #[cfg(test)]

@@ -3,8 +3,8 @@
 
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_SLUMPED, Heightfield};
-use super::patch::Patch;
+use super::heightfield::{DISTURBED_SLUMPED, Heightfield, StageBuffers};
+use super::patch::{Patch, edge_moves};
 
 /// Diffusion rate per pass (stable below 0.25; each pass adds a Gaussian
 /// variance of `2 * DIFFUSION_RATE` = 0.4 cell² per axis).
@@ -21,14 +21,16 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
 ///
 /// Each pass moves height across every 4-neighbour edge inside that rectangle
 /// in flux form: `flux = DIFFUSION_RATE * (h_b - h_a)`, added to one sample and
-/// taken from the other, so the volume is conserved (to float rounding); no
-/// flux crosses the rectangle's border. An edge carries flux only if one of
-/// its samples is disturbed (pressed or rim), so natural terrain is never
-/// flattened (samples that change become slightly disturbed, so settling
-/// can relax them), and not if one of its samples is held by a sole this step
-/// (the foot occupies the print; its walls are smoothed once it lifts).
-/// The edge between materials of smoothness s_a and s_b runs
-/// `(s_a + s_b) / 2` passes (the last one fractional).
+/// taken from the other (the same float on both sides), so the volume is
+/// conserved (to float rounding); no flux crosses the rectangle's border. An
+/// edge carries flux only if one of its samples is disturbed (pressed or rim),
+/// so natural terrain is never flattened (samples that change become slightly
+/// disturbed, so settling can relax them), and not if one of its samples is
+/// held by a sole this step (the foot occupies the print; its walls are
+/// smoothed once it lifts). The edge between materials of smoothness s_a and
+/// s_b runs `(s_a + s_b) / 2` passes (the last one fractional).
+///
+/// Only the rectangle of samples that actually changed is marked dirty.
 pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
     let full = hf.grid().full_rect();
     let passes = smoothing_radius(hf);
@@ -38,83 +40,122 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
     if w.is_empty() || passes == 0 {
         return w;
     }
-    let mut parts = hf.parts_mut();
-    let mut patch = Patch::load(&parts, w);
-    let smoothness = parts.table.per_material(|m| m.smoothness);
-    let (ww, wh) = (w.width(), w.height());
-    // Smoothness of each edge that may carry flux (0 for none), fixed for the call:
-    // x edges join l and l + 1, z edges join l and l + ww.
-    let edge = |la: usize, lb: usize| {
-        let p = &patch;
-        if (p.disturbed[la] == 0 && p.disturbed[lb] == 0) || p.held[la] || p.held[lb] {
-            0.0
-        } else {
-            0.5 * (smoothness[p.material[la] as usize] + smoothness[p.material[lb] as usize])
+    let mut buffers = hf.take_buffers();
+    let changed = {
+        let mut parts = hf.parts_mut();
+        let StageBuffers { patch, smooth, .. } = &mut buffers;
+        patch.load(&parts, w);
+        smooth.smoothness.clear();
+        smooth
+            .smoothness
+            .extend(parts.table.materials().iter().map(|m| m.smoothness));
+        let changed = smooth.run(patch, passes);
+        if !changed.is_empty() {
+            patch.store(&mut parts, changed);
         }
+        changed
     };
-    let mut edge_x = vec![0.0f32; ww * wh];
-    let mut edge_z = vec![0.0f32; ww * wh];
-    for r in 0..wh {
-        for c in 0..ww {
-            let l = r * ww + c;
-            if c + 1 < ww {
-                edge_x[l] = edge(l, l + 1);
-            }
-            if r + 1 < wh {
-                edge_z[l] = edge(l, l + ww);
-            }
-        }
+    hf.return_buffers(buffers);
+    if !changed.is_empty() {
+        hf.mark_dirty(changed);
     }
-    let mut flux_x = vec![0.0f32; ww * wh];
-    let mut flux_z = vec![0.0f32; ww * wh];
-    let mut touched = vec![false; ww * wh];
-    let mut moved = false;
-    for pass in 0..passes {
-        let pass = pass as f32;
-        let h = &patch.heights;
-        for l in 0..ww * wh {
-            let cx = DIFFUSION_RATE * (edge_x[l] - pass).clamp(0.0, 1.0);
-            flux_x[l] = if cx > 0.0 {
-                cx * (h[l + 1] - h[l])
-            } else {
-                0.0
-            };
-            let cz = DIFFUSION_RATE * (edge_z[l] - pass).clamp(0.0, 1.0);
-            flux_z[l] = if cz > 0.0 {
-                cz * (h[l + ww] - h[l])
-            } else {
-                0.0
-            };
+    w
+}
+
+/// Smoothing's buffers, reused from call to call.
+#[derive(Default)]
+pub(crate) struct SmoothBuffers {
+    /// Smoothness per material id.
+    smoothness: Vec<f32>,
+    /// Smoothness per local sample.
+    sample: Vec<f32>,
+    /// Passes of the edge between local samples `l` and `l + 1` (0: none).
+    edge_x: Vec<f32>,
+    /// Passes of the edge between local samples `l` and `l + stride`.
+    edge_z: Vec<f32>,
+    /// Heights after the running pass.
+    next: Vec<f32>,
+    /// Per sample of the inner rows: 1 once a pass changed it.
+    changed: Vec<u8>,
+}
+
+impl SmoothBuffers {
+    /// Runs `passes` diffusion passes on `patch`; marks the samples they
+    /// changed as slumped and returns their bounding rectangle (grid samples).
+    fn run(&mut self, patch: &mut Patch, passes: usize) -> GridRect {
+        if !self.conducting_edges(patch) {
+            return GridRect::EMPTY;
         }
-        let h = &mut patch.heights;
-        for l in 0..ww * wh {
-            let (fx, fz) = (flux_x[l], flux_z[l]);
-            if fx != 0.0 {
-                h[l] += fx;
-                h[l + 1] -= fx;
-                touched[l] = true;
-                touched[l + 1] = true;
-                moved = true;
+        let (s, len) = (patch.stride, patch.heights.len());
+        // The inner rows (window rows with their frame columns): `s..len - s`.
+        let n = len - 2 * s;
+        self.next.clear();
+        self.next.extend_from_slice(&patch.heights);
+        self.changed.clear();
+        self.changed.resize(n, 0);
+        for pass in 0..passes {
+            let pass = pass as f32;
+            let rate = |edge: f32| DIFFUSION_RATE * (edge - pass).max(0.0).min(1.0);
+            let h = &patch.heights;
+            let (up, down) = (&h[..n], &h[2 * s..2 * s + n]);
+            let (left, centre, right) = (&h[s - 1..s - 1 + n], &h[s..s + n], &h[s + 1..s + 1 + n]);
+            let (ex_left, ex) = (&self.edge_x[s - 1..s - 1 + n], &self.edge_x[s..s + n]);
+            let (ez_up, ez) = (&self.edge_z[..n], &self.edge_z[s..s + n]);
+            let out = &mut self.next[s..s + n];
+            let changed = &mut self.changed[..n];
+            for k in 0..n {
+                let hc = centre[k];
+                // Each edge's flux is the same float for both of its samples.
+                let flux_right = rate(ex[k]) * (right[k] - hc);
+                let flux_left = rate(ex_left[k]) * (hc - left[k]);
+                let flux_down = rate(ez[k]) * (down[k] - hc);
+                let flux_up = rate(ez_up[k]) * (hc - up[k]);
+                let v = hc + flux_right - flux_left + flux_down - flux_up;
+                out[k] = v;
+                changed[k] |= u8::from(v != hc);
             }
-            if fz != 0.0 {
-                h[l] += fz;
-                h[l + ww] -= fz;
-                touched[l] = true;
-                touched[l + ww] = true;
-                moved = true;
-            }
+            std::mem::swap(&mut patch.heights, &mut self.next);
         }
-    }
-    if moved {
-        for (d, &t) in patch.disturbed.iter_mut().zip(&touched) {
-            if t {
+        let changed = &self.changed;
+        let rect = patch.bounds_of(|l| changed[l - s] != 0);
+        for (d, &c) in patch.disturbed[s..len - s].iter_mut().zip(changed) {
+            if c != 0 {
                 *d = (*d).max(DISTURBED_SLUMPED);
             }
         }
-        patch.store(&mut parts);
-        hf.mark_dirty(w);
+        rect
     }
-    w
+
+    /// Fills the per-edge pass counts of `patch`; false when no edge conducts.
+    fn conducting_edges(&mut self, patch: &Patch) -> bool {
+        let (s, len) = (patch.stride, patch.heights.len());
+        let f = &patch.flags;
+        let table = &self.smoothness;
+        self.sample.clear();
+        self.sample
+            .extend(patch.material.iter().map(|&m| table[m as usize]));
+        let sm = &self.sample;
+        let edges = |out: &mut Vec<f32>, d: usize| {
+            out.clear();
+            out.extend(
+                f[..len - d]
+                    .iter()
+                    .zip(&f[d..])
+                    .zip(sm[..len - d].iter().zip(&sm[d..]))
+                    .map(|((&fa, &fb), (&sa, &sb))| {
+                        if edge_moves(fa, fb) {
+                            0.5 * (sa + sb)
+                        } else {
+                            0.0
+                        }
+                    }),
+            );
+            out.resize(len, 0.0);
+        };
+        edges(&mut self.edge_x, 1);
+        edges(&mut self.edge_z, s);
+        self.edge_x.iter().chain(&self.edge_z).any(|&e| e > 0.0)
+    }
 }
 
 #[cfg(test)]
