@@ -38,8 +38,9 @@ fn terrain(n: usize) -> Heightfield {
 }
 
 /// A foot walking rows across the first 10 x 10 m (the same path on every
-/// terrain size) on its own terrain and ground BVH: 18 stance steps and one
-/// release step per foothold. After each foothold the heights under it are
+/// terrain size) on its own terrain and ground BVH: 18 stance steps, one
+/// release step and the lifted steps until the print has settled (settling
+/// is spread over steps) per foothold. After each foothold the heights under it are
 /// restored (untimed, BVH refit included), so the long runs of the benchmark
 /// keep measuring fresh prints instead of digging the same holes deeper and deeper.
 struct Walker {
@@ -68,10 +69,10 @@ impl Walker {
     }
 
     /// Before a foothold's first step, saves the heights around it; after its
-    /// release step, puts them back and moves on to the next foothold.
+    /// release step and settling, puts them back and moves on to the next foothold.
     fn save_or_restore(&mut self) {
         let nx = self.hf.grid().nx();
-        if self.step > STANCE_STEPS {
+        if self.step > STANCE_STEPS && !self.hf.settling_pending() {
             let rect = self.saved_rect;
             let heights = self.hf.grid_mut().heights_mut();
             for (r, j) in (rect.j0..rect.j1).enumerate() {
@@ -105,8 +106,8 @@ impl Walker {
     }
 
     /// One fixed step of the terrain stages for this foot (the part to time),
-    /// the BVH refit included when `refit`; true for a release step.
-    fn step(&mut self, refit: bool) -> bool {
+    /// the BVH refit included when `refit`; returns which kind of step it was.
+    fn step(&mut self, refit: bool) -> StepKind {
         let center = self.center();
         let hf = &mut self.hf;
         hf.begin_step();
@@ -120,30 +121,50 @@ impl Walker {
             black_box(dirty);
         }
         self.step += 1;
-        !contact
+        match self.step - 1 {
+            k if k < STANCE_STEPS => StepKind::Stance,
+            STANCE_STEPS => StepKind::Release,
+            _ => StepKind::Settling,
+        }
     }
 
     /// Times one whole foothold step by step (full step with refit), in
-    /// nanoseconds: stance steps go to `stance`, the release step to `release`.
-    fn foothold(&mut self, stance: &mut Vec<f64>, release: &mut Vec<f64>) {
-        for _ in 0..=STANCE_STEPS {
+    /// nanoseconds, into `t` by kind of step.
+    fn foothold(&mut self, t: &mut Timings) {
+        loop {
             self.save_or_restore();
             let start = Instant::now();
-            let released = self.step(true);
+            let kind = self.step(true);
             let ns = start.elapsed().as_nanos() as f64;
-            if released {
-                release.push(ns);
-            } else {
-                stance.push(ns);
+            match kind {
+                StepKind::Stance => t.stance.push(ns),
+                StepKind::Release => t.release.push(ns),
+                StepKind::Settling => t.settling.push(ns),
+            }
+            if self.step > STANCE_STEPS && !self.hf.settling_pending() {
+                return;
             }
         }
     }
 }
 
+/// The three kinds of step of a foothold.
+enum StepKind {
+    /// The foot presses in.
+    Stance,
+    /// The foot lifts: the whole print is smoothed and starts to slump.
+    Release,
+    /// The foot is lifted and the print still slumps (settling left pending).
+    Settling,
+}
+
 fn bench_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("terrain_step");
     for n in SIZES {
-        for (name, refit) in [("carve_smooth_settle", false), ("full_step_with_refit", true)] {
+        for (name, refit) in [
+            ("carve_smooth_settle", false),
+            ("full_step_with_refit", true),
+        ] {
             let mut walker = Walker::new(n);
             group.bench_function(format!("{name}_{n}"), |b| {
                 b.iter_custom(|iters| {
@@ -163,29 +184,37 @@ fn bench_step(c: &mut Criterion) {
     direct_timing(400);
 }
 
-/// Per-step timings of one terrain size.
+/// Per-step timings of one terrain size, ns.
 #[derive(Default)]
 struct Timings {
     stance: Vec<f64>,
     release: Vec<f64>,
+    settling: Vec<f64>,
 }
 
 impl Timings {
     fn all(&self) -> Vec<f64> {
-        self.stance.iter().chain(&self.release).copied().collect()
+        let kinds = [&self.stance, &self.release, &self.settling];
+        kinds.into_iter().flatten().copied().collect()
     }
 }
 
-/// Mean of `v` without its slowest 2 % (preemptions on a shared machine), ns.
+/// Mean of `v` without its slowest 2 % (preemptions on a shared machine), ns (0 if empty).
 fn trimmed_mean(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
     let mut s = v.to_vec();
     s.sort_by(f64::total_cmp);
     let keep = &s[..(s.len() * 49).div_ceil(50)];
     keep.iter().sum::<f64>() / keep.len() as f64
 }
 
-/// The `q` quantile of `v`, ns.
+/// The `q` quantile of `v`, ns (0 if empty).
 fn quantile(v: &[f64], q: f64) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
     let mut s = v.to_vec();
     s.sort_by(f64::total_cmp);
     s[((s.len() - 1) as f64 * q).round() as usize]
@@ -196,28 +225,32 @@ fn quantile(v: &[f64], q: f64) -> f64 {
 fn direct_timing(footholds: usize) {
     let mut walkers = SIZES.map(Walker::new);
     let mut timings = [Timings::default(), Timings::default()];
-    let mut scratch = Timings::default();
+    let mut warm_up = Timings::default();
     for round in 0..40 + footholds {
         for k in [round % 2, 1 - round % 2] {
             let t = if round < 40 {
-                &mut scratch
+                &mut warm_up
             } else {
                 &mut timings[k]
             };
-            walkers[k].foothold(&mut t.stance, &mut t.release);
+            walkers[k].foothold(t);
         }
     }
     let us = |ns: f64| ns / 1e3;
     for (n, t) in SIZES.iter().zip(&timings) {
         println!(
-            "direct {n}^2 (full step with refit): mean step {:.2} us (median {:.2}), stance {:.2} us, \
-             release mean {:.2} us (median {:.2}, p90 {:.2})",
+            "direct {n}^2 (full step with refit): mean step {:.2} us (median {:.2}); \
+             stance {:.2} us; release {:.2} us (median {:.2}, p90 {:.2}); \
+             settling after release {:.2} us (p90 {:.2}, {:.2} steps per foothold)",
             us(trimmed_mean(&t.all())),
             us(quantile(&t.all(), 0.5)),
             us(trimmed_mean(&t.stance)),
             us(trimmed_mean(&t.release)),
             us(quantile(&t.release, 0.5)),
             us(quantile(&t.release, 0.9)),
+            us(trimmed_mean(&t.settling)),
+            us(quantile(&t.settling, 0.9)),
+            t.settling.len() as f64 / t.release.len() as f64,
         );
     }
     let [small, large] = &timings;

@@ -7,7 +7,7 @@ use engine::geom::{GridRect, RayScene};
 use super::components::{Feet, FootPrints, SystemFault, TerrainDirty, TerrainVolume};
 use super::labels;
 use super::systems_character::step_dt;
-use crate::terrain::{Heightfield, carve, settle_from, smooth, stage_window};
+use crate::terrain::{Heightfield, carve, settle_pending, settle_step, smooth, stage_window};
 
 /// Resource: the rectangles carving and smoothing changed this step, passed
 /// from `carve` to `smooth` to `settle`.
@@ -62,17 +62,20 @@ pub fn smooth_system(world: &mut World) {
 }
 
 /// System `settle`: slopes steeper than the angle of repose slump, mass-conserving,
-/// inside each carved window grown by the settling margin.
+/// inside each carved window grown by the settling margin. The work is spread
+/// over steps ([`settle_step`]): what earlier steps left pending (a released
+/// print still slumping) continues first.
 pub fn settle_system(world: &mut World) {
     let windows = world.resource::<TerrainWindows>();
     let mut terrains = world.query::<&mut Heightfield>();
     let Some(hf) = terrains.iter().next() else {
         return;
     };
+    settle_pending(hf);
     for (k, &carved) in windows.carved.iter().enumerate() {
         // Without a smooth system (removed or replaced), settling starts from the carved window.
         let seeds = windows.smoothed.get(k).copied().unwrap_or(carved);
-        settle_from(hf, stage_window(hf, carved), seeds);
+        settle_step(hf, stage_window(hf, carved), seeds);
     }
 }
 

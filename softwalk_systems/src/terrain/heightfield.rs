@@ -8,7 +8,7 @@ use super::error::TerrainError;
 use super::material::TerrainMaterial;
 use super::material_table::{MaterialId, MaterialTable};
 use super::patch::Patch;
-use super::settle::SettleBuffers;
+use super::settle::{PendingSettle, SettleBuffers};
 use super::smooth::SmoothBuffers;
 
 /// `disturbed` value of a sample pressed by a sole.
@@ -54,6 +54,7 @@ pub struct Heightfield {
     dirty: GridRect,
     changes: StepChanges,
     buffers: StageBuffers,
+    pending_settle: Vec<PendingSettle>,
 }
 
 /// Work buffers the stages reuse from step to step, so a step allocates
@@ -98,6 +99,7 @@ impl Heightfield {
             dirty: GridRect::EMPTY,
             changes: StepChanges::default(),
             buffers: StageBuffers::default(),
+            pending_settle: Vec::new(),
         })
     }
 
@@ -230,6 +232,17 @@ impl Heightfield {
     /// step are released).
     pub fn begin_step(&mut self) -> StepChanges {
         std::mem::take(&mut self.changes)
+    }
+
+    /// True while settling work left by [`super::settle_step`] waits for
+    /// [`super::settle_pending`] (a released print still slumping).
+    pub fn settling_pending(&self) -> bool {
+        !self.pending_settle.is_empty()
+    }
+
+    /// The settling work left for later steps.
+    pub(crate) fn pending_settle_mut(&mut self) -> &mut Vec<PendingSettle> {
+        &mut self.pending_settle
     }
 
     /// Lends the stages' work buffers (give them back with [`Heightfield::return_buffers`]).

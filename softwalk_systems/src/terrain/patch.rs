@@ -82,6 +82,13 @@ impl Patch {
         (j + 1 - self.rect.j0) * self.stride + (i + 1 - self.rect.i0)
     }
 
+    /// Grid index (row-major in a grid `nx` wide) of local sample `l` of the window.
+    #[inline]
+    pub fn grid_index(&self, l: usize, nx: usize) -> usize {
+        let (r, c) = (l / self.stride, l % self.stride);
+        (self.rect.j0 + r - 1) * nx + self.rect.i0 + c - 1
+    }
+
     /// Local index of the first window sample of window row `r` (0-based).
     #[inline]
     pub fn row_start(&self, r: usize) -> usize {

@@ -73,16 +73,118 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
 /// e.g. the rectangles carving and smoothing report. Everything else in the
 /// window is assumed stable; slumps still spread anywhere in `window`.
 pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
+    match first_sweep(hf, window, seeds) {
+        Some((w, first)) => relax_window(hf, w, Start::Scan(first), usize::MAX, 0).changed,
+        None => GridRect::EMPTY,
+    }
+}
+
+/// [`settle_from`] for one fixed step: stops once the step's sample visits
+/// reach [`SETTLE_STEP_VISITS`] (or at the end of the row of the first sweep
+/// that reaches it) and leaves the rest of the work pending in the terrain, for
+/// [`settle_pending`] to continue in the next steps. Returns the rectangle
+/// of samples that changed.
+///
+/// A released print slumps over a few steps instead of in one (a real sand
+/// wall takes a moment to run down too), so no single step pays for a whole
+/// print. The end state meets the same stopping rule as [`settle_from`]
+/// (no moving slope above repose by more than [`SETTLE_TOLERANCE`]); the
+/// order of the transfers differs slightly when a sweep is cut.
+pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
+    let Some((w, first)) = first_sweep(hf, window, seeds) else {
+        return GridRect::EMPTY;
+    };
+    let outcome = relax_window(hf, w, Start::Scan(first), SETTLE_STEP_VISITS, 0);
+    hf.pending_settle_mut().extend(outcome.left);
+    outcome.changed
+}
+
+/// Continues the settling work that earlier [`settle_step`] calls left
+/// pending, each window for up to [`SETTLE_STEP_VISITS`] sample visits;
+/// returns the rectangle of samples that changed. Call it once per step
+/// (the terrain systems and [`super::step_foot`] do).
+pub fn settle_pending(hf: &mut Heightfield) -> GridRect {
+    let pending = std::mem::take(hf.pending_settle_mut());
+    let mut changed = GridRect::EMPTY;
+    for work in pending {
+        let outcome = relax_window(
+            hf,
+            work.window,
+            Start::Queued(&work.queued),
+            SETTLE_STEP_VISITS,
+            work.sweeps,
+        );
+        changed = changed.union(&outcome.changed);
+        hf.pending_settle_mut().extend(outcome.left);
+    }
+    changed
+}
+
+/// Sample visits after which a [`settle_step`] or [`settle_pending`] call
+/// stops (a row of the first sweep is finished first) and leaves the rest for
+/// the next step. A released dry-sand print at the paper's spacing (the
+/// heaviest case: the whole print's walls slump at once) needs about 500
+/// visits, so it slumps over about six steps (0.1 s at 60 Hz).
+pub const SETTLE_STEP_VISITS: usize = 96;
+
+/// Settling work left for later steps: a window (grid samples) and the
+/// samples its next sweep visits (grid indices, row-major).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct PendingSettle {
+    window: GridRect,
+    queued: Vec<usize>,
+    /// Sweeps made so far (the run stops at [`SETTLE_MAX_SWEEPS`]).
+    sweeps: usize,
+}
+
+/// The window clipped to the grid and the first sweep's rectangle (the
+/// seeds grown by one sample, inside the window); `None` when there are no seeds.
+fn first_sweep(
+    hf: &Heightfield,
+    window: GridRect,
+    seeds: GridRect,
+) -> Option<(GridRect, GridRect)> {
     let full = hf.grid().full_rect();
     let w = window.intersect(&full);
     let seeds = seeds.intersect(&w);
     if seeds.is_empty() {
-        return GridRect::EMPTY;
+        return None;
     }
-    let first = seeds.expand(1, full.width(), full.height()).intersect(&w);
+    Some((
+        w,
+        seeds.expand(1, full.width(), full.height()).intersect(&w),
+    ))
+}
+
+/// Where a relaxation starts.
+enum Start<'a> {
+    /// A first sweep over the steep samples of this rectangle (grid samples).
+    Scan(GridRect),
+    /// A sweep over the samples an interrupted run had queued (grid indices).
+    Queued(&'a [usize]),
+}
+
+/// What one [`relax_window`] call did.
+struct Outcome {
+    /// The rectangle of samples that changed.
+    changed: GridRect,
+    /// The work left when the visit budget ran out.
+    left: Option<PendingSettle>,
+}
+
+/// Relaxes `w` (inside the grid) from `start` until stable, the sweep cap
+/// (counting `sweeps_done` earlier sweeps) or the sweep that reaches
+/// `budget` visits.
+fn relax_window(
+    hf: &mut Heightfield,
+    w: GridRect,
+    start: Start<'_>,
+    budget: usize,
+    sweeps_done: usize,
+) -> Outcome {
     let cell = hf.grid().cell_size();
     let mut buffers = hf.take_buffers();
-    let changed = {
+    let outcome = {
         let mut parts = hf.parts_mut();
         let StageBuffers { patch, settle, .. } = &mut buffers;
         patch.load(&parts, w);
@@ -99,19 +201,35 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
             set.clear();
             set.resize(words, 0);
         }
-        let first_start = patch.local(first.i0, first.j0);
+        let (first, queued) = match start {
+            Start::Scan(r) => (
+                Some((patch.local(r.i0, r.j0), r.width(), r.height())),
+                &[][..],
+            ),
+            Start::Queued(q) => (None, q),
+        };
+        let nx = parts.nx;
+        let queued_local: Vec<usize> = queued
+            .iter()
+            .map(|&k| patch.local(k % nx, k / nx))
+            .collect();
+        let stride = patch.stride;
         let mut relax = Relaxation {
             heights: &mut patch.heights,
             flags: &mut patch.flags,
             limit,
             next,
             next_words: 0..0,
-            stride: patch.stride,
+            stride,
             settle_to: SETTLE_TOLERANCE * cell,
             transfers: 0,
             visits: 0,
         };
-        relax.run(first_start, first.width(), first.height(), steep, now);
+        for l in queued_local {
+            relax.queue(l);
+        }
+        let sweeps = relax.run(first, steep, now, SETTLE_MAX_SWEEPS - sweeps_done, budget);
+        let left = relax.queued();
         let (transfers, visits) = (relax.transfers, relax.visits);
         let changed = if transfers > 0 {
             mark_slumped(patch)
@@ -123,13 +241,19 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
         if !changed.is_empty() {
             patch.store(&mut parts, changed);
         }
-        changed
+        let sweeps = sweeps_done + sweeps;
+        let left = (!left.is_empty() && sweeps < SETTLE_MAX_SWEEPS).then(|| PendingSettle {
+            window: w,
+            queued: left.into_iter().map(|l| patch.grid_index(l, nx)).collect(),
+            sweeps,
+        });
+        Outcome { changed, left }
     };
     hf.return_buffers(buffers);
-    if !changed.is_empty() {
-        hf.mark_dirty(changed);
+    if !outcome.changed.is_empty() {
+        hf.mark_dirty(outcome.changed);
     }
-    changed
+    outcome
 }
 
 /// Flag of a sample moved by this call.
@@ -188,30 +312,44 @@ struct Relaxation<'p> {
 }
 
 impl Relaxation<'_> {
-    /// Sweeps until stable (or the sweep cap). The first sweep goes over the
-    /// `rows` x `width` local samples from `start` in row-major order,
-    /// visiting the samples that own an edge steeper than repose when the
-    /// sweep reaches their row (found by a branch-free scan of the row into
-    /// `steep`); a sample made steep by a transfer is queued for the next
-    /// sweep. `now` is the bit set of the running sweep (all clear).
+    /// Sweeps until stable, for at most `max_sweeps` sweeps, or until the
+    /// visits reach `budget` (checked before each visit, and between the rows
+    /// of the first sweep); the samples a cut sweep did not visit are queued
+    /// for the next sweep. Returns the sweeps made.
+    /// With `first` = `(start, width, rows)`, the first sweep goes over those
+    /// local samples in row-major order, visiting the samples that own an
+    /// edge steeper than repose when the sweep reaches their row (found by a
+    /// branch-free scan of the row into `steep`); a sample made steep by a
+    /// transfer is queued for the next sweep. Without, the first sweep visits
+    /// the queued samples. `now` is the bit set of the running sweep (all clear).
     fn run(
         &mut self,
-        start: usize,
-        width: usize,
-        rows: usize,
+        first: Option<(usize, usize, usize)>,
         steep: &mut Vec<u8>,
         now: &mut [u64],
-    ) {
-        for r in 0..rows {
-            let row = start + r * self.stride;
-            self.scan_row(row, width, steep);
-            for (k, &is_steep) in steep.iter().enumerate() {
-                if is_steep != 0 {
-                    self.visit(row + k);
+        max_sweeps: usize,
+        budget: usize,
+    ) -> usize {
+        let mut sweeps = 0;
+        if let Some((start, width, rows)) = first {
+            for r in 0..rows {
+                let row = start + r * self.stride;
+                self.scan_row(row, width, steep);
+                // Out of budget: the rest of the sweep is queued for the next
+                // one (only the samples steep now: an edge that is not gets
+                // steep only when a transfer touches it, which queues its owner).
+                let in_budget = self.visits < budget;
+                for (k, &is_steep) in steep.iter().enumerate() {
+                    match (is_steep != 0, in_budget) {
+                        (true, true) => self.visit(row + k),
+                        (true, false) => self.queue(row + k),
+                        _ => {}
+                    }
                 }
             }
+            sweeps = 1;
         }
-        for _ in 1..SETTLE_MAX_SWEEPS {
+        while sweeps < max_sweeps && self.visits < budget {
             let words = std::mem::replace(&mut self.next_words, 0..0);
             if words.is_empty() {
                 break;
@@ -221,11 +359,32 @@ impl Relaxation<'_> {
             for w in words {
                 let mut bits = std::mem::take(&mut now[w]);
                 while bits != 0 {
+                    if self.visits >= budget {
+                        // Out of budget: the rest of the sweep joins the next one.
+                        self.next[w] |= bits;
+                        self.cover_words(w, w + 1);
+                        break;
+                    }
                     self.visit(w * 64 + bits.trailing_zeros() as usize);
                     bits &= bits - 1;
                 }
             }
+            sweeps += 1;
         }
+        sweeps
+    }
+
+    /// The samples queued for the next sweep (local indices, ascending).
+    fn queued(&self) -> Vec<usize> {
+        let mut out = Vec::new();
+        for w in self.next_words.clone() {
+            let mut bits = self.next[w];
+            while bits != 0 {
+                out.push(w * 64 + bits.trailing_zeros() as usize);
+                bits &= bits - 1;
+            }
+        }
+        out
     }
 
     /// Sets `steep[k]` for the `width` samples from local `start` that own a
@@ -238,14 +397,16 @@ impl Relaxation<'_> {
         for (d, length) in [(1, 1.0), (s, 1.0), (s + 1, diagonal), (s - 1, diagonal)] {
             let a = start..start + width;
             let b = start + d..start + d + width;
-            let (ha, hb) = (&self.heights[a.clone()], &self.heights[b.clone()]);
-            let (la, lb) = (&self.limit[a.clone()], &self.limit[b.clone()]);
-            let (fa, fb) = (&self.flags[a], &self.flags[b]);
-            for k in 0..width {
-                let drop = ha[k] - hb[k];
-                let limit = if drop >= 0.0 { la[k] } else { lb[k] };
+            let heights = self.heights[a.clone()].iter().zip(&self.heights[b.clone()]);
+            let limits = self.limit[a.clone()].iter().zip(&self.limit[b.clone()]);
+            let flags = self.flags[a].iter().zip(&self.flags[b]);
+            for (((out, (&ha, &hb)), (&la, &lb)), (&fa, &fb)) in
+                steep.iter_mut().zip(heights).zip(limits).zip(flags)
+            {
+                let drop = ha - hb;
+                let limit = if drop >= 0.0 { la } else { lb };
                 let too_steep = drop.abs() - limit * length > 0.0;
-                steep[k] |= u8::from(too_steep & edge_moves(fa[k], fb[k]));
+                *out |= u8::from(too_steep & edge_moves(fa, fb));
             }
         }
     }
@@ -301,21 +462,38 @@ impl Relaxation<'_> {
 
     /// Queues for the next sweep every sample owning a forward edge that
     /// touches `l`: itself, its left neighbour and the three samples of the
-    /// row above (frame and held samples own no moving edge and are skipped).
+    /// row above.
     #[inline]
     fn queue_owners(&mut self, l: usize) {
         let s = self.stride;
         for owner in [l - s - 1, l - s, l - s + 1, l - 1, l] {
-            if self.flags[owner] & FIXED == 0 {
-                self.next[owner / 64] |= 1 << (owner % 64);
-            }
+            self.set_queued(owner);
         }
-        let (first, last) = ((l - s - 1) / 64, l / 64 + 1);
+        self.cover_words((l - s - 1) / 64, l / 64 + 1);
+    }
+
+    /// Queues local sample `l` for the next sweep.
+    fn queue(&mut self, l: usize) {
+        self.set_queued(l);
+        self.cover_words(l / 64, l / 64 + 1);
+    }
+
+    /// Sets the bit of local sample `l` in the next sweep's set (frame and
+    /// held samples own no moving edge and are skipped).
+    #[inline(always)]
+    fn set_queued(&mut self, l: usize) {
+        let not_fixed = u64::from(self.flags[l] & FIXED == 0);
+        self.next[l / 64] |= not_fixed << (l % 64);
+    }
+
+    /// Grows the range of words of the next sweep's set to hold `first..end`.
+    #[inline(always)]
+    fn cover_words(&mut self, first: usize, end: usize) {
         let words = &mut self.next_words;
         *words = if words.start >= words.end {
-            first..last
+            first..end
         } else {
-            words.start.min(first)..words.end.max(last)
+            words.start.min(first)..words.end.max(end)
         };
     }
 }
@@ -403,6 +581,57 @@ mod tests {
         assert!(settle(&mut first, window).is_empty());
         assert_eq!(first.changes().settle_transfers, transfers);
         assert_eq!(first.grid(), second.grid());
+    }
+
+    /// A disturbed 5 x 5 block of sand standing 0.3 m above flat ground.
+    fn block() -> Heightfield {
+        let mut hf = pillar(0);
+        for (i, j) in GridRect::new(18, 18, 23, 23).iter() {
+            hf.grid_mut().set_height(i, j, 1.3);
+            let k = hf.grid().index(i, j);
+            hf.parts_mut().disturbed[k] = 255;
+        }
+        hf
+    }
+
+    /// Runs [`settle_step`] then [`settle_pending`] step by step until
+    /// nothing is pending; returns the number of steps.
+    fn settle_in_steps(hf: &mut Heightfield, window: GridRect) -> usize {
+        hf.begin_step();
+        settle_step(hf, window, GridRect::new(18, 18, 23, 23));
+        let mut steps = 1;
+        while hf.settling_pending() {
+            // Each step stays within the budget (plus the rest of the row of
+            // the first sweep that reaches it).
+            assert!(hf.changes().settle_visits <= SETTLE_STEP_VISITS + window.width());
+            hf.begin_step();
+            settle_pending(hf);
+            steps += 1;
+        }
+        steps
+    }
+
+    #[test]
+    fn budgeted_settling_spreads_over_steps_and_ends_stable() {
+        let window = GridRect::new(5, 5, 36, 36);
+        let mut budgeted = block();
+        let before = budgeted.grid().volume();
+        let steps = settle_in_steps(&mut budgeted, window);
+        assert!(steps > 3, "{steps} steps");
+        assert!(((budgeted.grid().volume() - before) / before).abs() < 1e-7);
+        // Stable by the same rule as the unbudgeted run: nothing more moves.
+        assert!(settle(&mut budgeted, window).is_empty());
+        // The same slump as in one go, to within a centimetre (of a 30 cm block).
+        let mut whole = block();
+        settle(&mut whole, window);
+        for (i, j) in window.iter() {
+            let d = budgeted.grid().height(i, j) - whole.grid().height(i, j);
+            assert!(d.abs() < 1e-2, "({i}, {j}): {d}");
+        }
+        // Deterministic.
+        let mut again = block();
+        settle_in_steps(&mut again, window);
+        assert_eq!(again.grid(), budgeted.grid());
     }
 
     #[test]

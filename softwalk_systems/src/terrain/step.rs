@@ -7,15 +7,20 @@ use glam::{Vec2, Vec3};
 use super::carve::{FootPrint, carve};
 use super::error::TerrainError;
 use super::heightfield::{Heightfield, StepChanges};
-use super::settle::{settle_from, stage_window};
+use super::settle::{settle_pending, settle_step, stage_window};
 use super::smooth::smooth;
 use crate::foot::FootSole;
 
-/// Carve, smooth and settle for one foot; returns the rectangle that may have
-/// changed ([`stage_window`] of the carve rectangle, or empty).
+/// Carve, smooth and settle for one foot, as the terrain systems do in one
+/// fixed step; returns the rectangle that may have changed ([`stage_window`]
+/// of the carve rectangle, joined with what the settling left pending by
+/// earlier steps changed; empty when nothing).
 ///
 /// The usual chain of the carve, smooth and settle systems, for one foot:
-/// `let r = carve(..)?; let s = smooth(hf, r); settle_from(hf, stage_window(hf, r), s)`.
+/// `let r = carve(..)?; let s = smooth(hf, r); settle_pending(hf);
+/// settle_step(hf, stage_window(hf, r), s)`. Settling is spread over steps
+/// ([`settle_step`]): after a release, keep stepping (the foot lifted) until
+/// [`Heightfield::settling_pending`] is false for the print's final shape.
 pub fn step_foot(
     hf: &mut Heightfield,
     print: &mut FootPrint,
@@ -24,13 +29,18 @@ pub fn step_foot(
     dt: f32,
 ) -> Result<GridRect, TerrainError> {
     let carved = carve(hf, print, sole, contact, dt)?;
+    let smoothed = if carved.is_empty() {
+        GridRect::EMPTY
+    } else {
+        smooth(hf, carved)
+    };
+    let earlier = settle_pending(hf);
     if carved.is_empty() {
-        return Ok(GridRect::EMPTY);
+        return Ok(earlier);
     }
-    let smoothed = smooth(hf, carved);
     let window = stage_window(hf, carved);
-    settle_from(hf, window, smoothed);
-    Ok(window)
+    settle_step(hf, window, smoothed);
+    Ok(window.union(&earlier))
 }
 
 /// Size of a synthetic foot.
@@ -124,7 +134,8 @@ impl FootholdReport {
 
 /// Plants a synthetic foot at `center` for `steps` steps of `dt`, re-laying
 /// the sole on the ground each step (the ray -> carve -> lower foot feedback),
-/// then lifts it (one release step). Each step starts with
+/// then lifts it (one release step) and keeps it lifted until the print has
+/// settled ([`Heightfield::settling_pending`] is false). Each step starts with
 /// [`Heightfield::begin_step`].
 pub fn plant_foothold(
     hf: &mut Heightfield,
@@ -136,11 +147,13 @@ pub fn plant_foothold(
     dt: f32,
 ) -> Result<FootholdReport, TerrainError> {
     let mut report = FootholdReport::default();
-    for k in 0..=steps {
+    let mut k = 0;
+    while k <= steps || hf.settling_pending() {
         hf.begin_step();
         let sole = sole_on_ground(hf, center, heading, size)?;
         let rect = step_foot(hf, print, &sole, k < steps, dt)?;
         report.add(rect, hf.changes());
+        k += 1;
     }
     Ok(report)
 }
