@@ -57,8 +57,8 @@ pub struct Heightfield {
     pending_settle: Vec<PendingSettle>,
 }
 
-/// Work buffers the stages reuse from step to step, so a step allocates
-/// nothing once they have grown to the largest window. Not part of the
+/// Work buffers the stages reuse from step to step, so they are not
+/// reallocated once they have grown to the largest window. Not part of the
 /// terrain's state: a clone starts with empty buffers.
 #[derive(Default)]
 pub(crate) struct StageBuffers {

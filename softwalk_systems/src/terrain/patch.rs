@@ -1,7 +1,7 @@
 //! A window of the terrain copied into contiguous local buffers with a
 //! one-sample frame, so the smoothing and settling loops run on small dense
 //! arrays without bounds tests and write back once. The buffers live in the
-//! [`super::Heightfield`] and are reused from step to step (no allocation
+//! [`super::Heightfield`] and are reused from step to step (not reallocated
 //! once they have grown to the largest window).
 
 use engine::geom::GridRect;
