@@ -18,9 +18,6 @@ const HALF: i64 = ONE / 2;
 /// 64-bit mask (bit `8 * row + column`).
 const MASK_SIDE: i32 = 8;
 
-/// ... when their vertices also span less than this (fixed point) per axis.
-const MASK_EXTENT: i32 = 16 << SUBPIXEL_BITS;
-
 /// A vertex after projection: fixed-point pixel position (y down), `1/w`, colour / w.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct ScreenVertex {
@@ -52,17 +49,18 @@ pub(crate) struct PixelSpan {
     pub y1: i32,
 }
 
-/// First pixel index whose centre is at or after fixed coordinate `v`.
+/// First pixel index whose centre is at or after fixed coordinate `v` (vertices
+/// inside the guard band keep these sums far from `i32` overflow).
 #[inline]
-fn first_centre(v: i64) -> i64 {
+fn first_centre(v: i32) -> i32 {
     // Arithmetic shifts floor, also for negative values.
-    (v - HALF + ONE - 1) >> SUBPIXEL_BITS
+    (v - HALF as i32 + ONE as i32 - 1) >> SUBPIXEL_BITS
 }
 
 /// Last pixel index whose centre is at or before fixed coordinate `v`.
 #[inline]
-fn last_centre(v: i64) -> i64 {
-    (v - HALF) >> SUBPIXEL_BITS
+fn last_centre(v: i32) -> i32 {
+    (v - HALF as i32) >> SUBPIXEL_BITS
 }
 
 impl PixelSpan {
@@ -70,15 +68,15 @@ impl PixelSpan {
     /// `width` x `height` screen.
     #[inline]
     pub fn of(v: [&ScreenVertex; 3], width: i32, height: i32) -> PixelSpan {
-        let min_x = v[0].x.min(v[1].x).min(v[2].x) as i64;
-        let max_x = v[0].x.max(v[1].x).max(v[2].x) as i64;
-        let min_y = v[0].y.min(v[1].y).min(v[2].y) as i64;
-        let max_y = v[0].y.max(v[1].y).max(v[2].y) as i64;
+        let min_x = v[0].x.min(v[1].x).min(v[2].x);
+        let max_x = v[0].x.max(v[1].x).max(v[2].x);
+        let min_y = v[0].y.min(v[1].y).min(v[2].y);
+        let max_y = v[0].y.max(v[1].y).max(v[2].y);
         PixelSpan {
-            x0: first_centre(min_x).max(0) as i32,
-            x1: last_centre(max_x).min(width as i64 - 1) as i32,
-            y0: first_centre(min_y).max(0) as i32,
-            y1: last_centre(max_y).min(height as i64 - 1) as i32,
+            x0: first_centre(min_x).max(0),
+            x1: last_centre(max_x).min(width - 1),
+            y0: first_centre(min_y).max(0),
+            y1: last_centre(max_y).min(height - 1),
         }
     }
 
@@ -204,14 +202,7 @@ impl Triangle {
             Edge::new(v[2], v[0], px, py),
             Edge::new(v[0], v[1], px, py),
         ];
-        let extent = |f: fn(&ScreenVertex) -> i32| {
-            let (a, b, c) = (f(v[0]), f(v[1]), f(v[2]));
-            a.max(b).max(c) - a.min(b).min(c)
-        };
-        let small = span.x1 - span.x0 < MASK_SIDE
-            && span.y1 - span.y0 < MASK_SIDE
-            && extent(|v| v.x) < MASK_EXTENT
-            && extent(|v| v.y) < MASK_EXTENT;
+        let small = span.x1 - span.x0 < MASK_SIDE && span.y1 - span.y0 < MASK_SIDE;
         let coverage = if small {
             let mask = coverage_mask(&e, span);
             if mask == 0 {
@@ -326,32 +317,29 @@ impl Triangle {
             let k = (y - y0) as usize * width + x as usize;
             if a.x > depth[k] {
                 depth[k] = a.x;
-                let c = Vec3::new(a.y, a.z, a.w) / a.x;
-                color[4 * k..4 * k + 4].copy_from_slice(&[to_u8(c.x), to_u8(c.y), to_u8(c.z), 255]);
+                color[4 * k..4 * k + 4].copy_from_slice(&display_rgba(a));
             }
         });
     }
 }
 
-/// The covered pixel centres of a box at most [`MASK_SIDE`] pixels per side, for
-/// a triangle whose vertices span less than [`MASK_EXTENT`] per axis: its edge
-/// values over the box then fit `i32`, and each row is tested eight pixels at a
-/// time (a loop the compiler vectorizes).
+/// The covered pixel centres of a box at most [`MASK_SIDE`] pixels per side:
+/// bit `8 * row + column` per centre where all three edge values are `>= 0`.
+/// Only the box's own columns and rows are visited (most boxes of small
+/// triangles hold one to four centres), without branches on coverage.
 #[inline]
 fn coverage_mask(e: &[Edge; 3], span: PixelSpan) -> u64 {
-    const COLUMNS: [i32; MASK_SIDE as usize] = [0, 1, 2, 3, 4, 5, 6, 7];
-    let step = e.map(|e| e.step_x as i32);
-    let columns = (1u32 << (span.x1 - span.x0 + 1)) - 1;
+    let (columns, rows) = ((span.x1 - span.x0) as u32, (span.y1 - span.y0) as u32);
     let mut row = e.map(|e| e.start);
     let mut mask = 0u64;
-    for r in 0..=(span.y1 - span.y0) {
-        let start = row.map(|v| v as i32);
-        let mut bits = 0u32;
-        for (c, k) in COLUMNS.iter().enumerate() {
-            let v = (start[0] + k * step[0]) | (start[1] + k * step[1]) | (start[2] + k * step[2]);
-            bits |= u32::from(v >= 0) << c;
+    for r in 0..=rows {
+        let mut v = row;
+        for c in 0..=columns {
+            mask |= u64::from((v[0] | v[1] | v[2]) >= 0) << (8 * r + c);
+            for (value, edge) in v.iter_mut().zip(e) {
+                *value += edge.step_x;
+            }
         }
-        mask |= u64::from(bits & columns) << (8 * r);
         for (value, edge) in row.iter_mut().zip(e) {
             *value += edge.step_y;
         }
@@ -366,6 +354,15 @@ const NARROW_MIN_WIDTH: i32 = 6;
 #[inline]
 pub(crate) fn to_u8(v: f32) -> u8 {
     (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+}
+
+/// The opaque RGBA8 pixel of interpolated attributes (`1/w`, colour / w), with
+/// `1/w > 0`: the same rounding as [`to_u8`] per channel, in one vector.
+#[inline]
+fn display_rgba(a: Vec4) -> [u8; 4] {
+    let c =
+        (Vec4::new(a.y, a.z, a.w, a.x) / a.x * 255.0 + 0.5).clamp(Vec4::ZERO, Vec4::splat(255.0));
+    [c.x as u8, c.y as u8, c.z as u8, 255]
 }
 
 #[cfg(test)]
