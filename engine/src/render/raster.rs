@@ -218,7 +218,12 @@ impl Triangle {
             && extent(|v| v.x) < MASK_EXTENT
             && extent(|v| v.y) < MASK_EXTENT;
         let coverage = if small {
-            let mask = coverage_mask(&e, span);
+            let mask = if span.x0 == span.x1 && span.y0 == span.y1 {
+                // One centre (most sub-pixel triangles): test it directly.
+                u64::from((e[0].start | e[1].start | e[2].start) >= 0)
+            } else {
+                coverage_mask(&e, span)
+            };
             if mask == 0 {
                 return None;
             }
