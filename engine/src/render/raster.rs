@@ -408,12 +408,20 @@ pub(crate) fn to_u8(v: f32) -> u8 {
 }
 
 /// The opaque RGBA8 pixel of interpolated attributes (`1/w`, colour / w), with
-/// `1/w > 0`: the same rounding as [`to_u8`] per channel, in one vector.
+/// `1/w > 0`: per channel exactly [`to_u8`] of colour / w, in one vector.
+///
+/// The truncation to an integer avoids float-to-int casts: adding `2^23` to a
+/// value in `[0, 255]` leaves its nearest integer in the low mantissa bits,
+/// and one compare turns that rounding into the floor.
 #[inline]
 fn display_rgba(a: Vec4) -> [u8; 4] {
-    let c =
+    const MANTISSA_ONE: f32 = (1u32 << (f32::MANTISSA_DIGITS - 1)) as f32;
+    let v =
         (Vec4::new(a.y, a.z, a.w, a.x) / a.x * 255.0 + 0.5).clamp(Vec4::ZERO, Vec4::splat(255.0));
-    [c.x as u8, c.y as u8, c.z as u8, 255]
+    let rounded = v + MANTISSA_ONE;
+    let floor = Vec4::select((rounded - MANTISSA_ONE).cmpgt(v), rounded - 1.0, rounded);
+    let [r, g, b, _] = floor.to_array().map(|c| c.to_bits() as u8);
+    [r, g, b, 255]
 }
 
 #[cfg(test)]
@@ -557,6 +565,27 @@ mod tests {
                 height: h,
             },
         )
+    }
+
+    #[test]
+    fn display_rgba_rounds_like_to_u8() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let edges = [0.0, 0.5 / 255.0, 1.0, 1.0 + 1e-3, -1e-3, 127.5 / 255.0];
+        for k in 0..20_000 {
+            let c = if k < edges.len() * 3 {
+                Vec3::new(edges[k % 6], edges[k / 3 % 6], edges[k / 6 % 6])
+            } else {
+                Vec3::new(rng.next(), rng.next(), rng.next()) * 1.2 - 0.1
+            };
+            let inv_w = 0.05 + rng.next() * 4.0;
+            let a = Vec4::new(inv_w, c.x * inv_w, c.y * inv_w, c.z * inv_w);
+            let d = Vec3::new(a.y, a.z, a.w) / a.x;
+            assert_eq!(
+                display_rgba(a),
+                [to_u8(d.x), to_u8(d.y), to_u8(d.z), 255],
+                "{c}"
+            );
+        }
     }
 
     #[test]
