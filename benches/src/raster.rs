@@ -7,6 +7,10 @@
 //!   [`MeshInstance`], lit per vertex each frame; `euc` with precomputed colours).
 //! - `terrain_patches_lod`: ours draws the same grid through [`TerrainRenderer`]
 //!   (patch culling and level of detail); `euc` still draws the full mesh.
+//!
+//! `euc` (without its `par` feature) draws on one thread, so `ours_ns` is ours on
+//! a one-thread pool: the like-for-like figure. `ours_2_threads_ns` is ours on
+//! two threads, for reference.
 
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};
@@ -87,7 +91,11 @@ pub fn run() -> Vec<Row> {
     let mesh = grid_mesh(&grid);
     let cam = camera();
     let lighting = Lighting::default();
-    let renderer = Renderer::new(WIDTH, HEIGHT).expect("size");
+    let threads = [1, 2].map(|n| {
+        Renderer::new(WIDTH, HEIGHT)
+            .and_then(|r| r.with_threads(n))
+            .expect("renderer")
+    });
 
     // euc: the same mesh, colours lit once with the same sun.
     let colors: Vec<[f32; 3]> = mesh
@@ -126,8 +134,10 @@ pub fn run() -> Vec<Row> {
         lighting,
         ..FrameScene::new()
     };
-    let ours_mesh_ns = time_ns(3000, || {
-        std::hint::black_box(renderer.render(&mesh_scene, &cam));
+    let ours_mesh_ns = threads.each_ref().map(|renderer| {
+        time_ns(3000, || {
+            std::hint::black_box(renderer.render(&mesh_scene, &cam));
+        })
     });
 
     // Ours, the terrain renderer on the same grid.
@@ -140,23 +150,29 @@ pub fn run() -> Vec<Row> {
         lighting,
         ..FrameScene::new()
     };
-    let ours_terrain_ns = time_ns(3000, || {
-        std::hint::black_box(renderer.render(&terrain_scene, &cam));
+    let ours_terrain_ns = threads.each_ref().map(|renderer| {
+        time_ns(3000, || {
+            std::hint::black_box(renderer.render(&terrain_scene, &cam));
+        })
     });
-    let (_, stats) = renderer.render_with_stats(&terrain_scene, &cam);
+    let (_, stats) = threads[0].render_with_stats(&terrain_scene, &cam);
     eprintln!(
         "raster: euc covered {euc_covered} px; terrain patches set up {} triangles",
         stats.triangles
     );
 
+    let row = |name: &str, [one, two]: [f64; 2]| {
+        Row::new(
+            name,
+            vec![
+                ("ours_ns", Some(one)),
+                ("ours_2_threads_ns", Some(two)),
+                ("euc_ns", Some(euc_ns)),
+            ],
+        )
+    };
     vec![
-        Row::new(
-            "terrain_mesh_522k_tris",
-            vec![("ours_ns", Some(ours_mesh_ns)), ("euc_ns", Some(euc_ns))],
-        ),
-        Row::new(
-            "terrain_patches_lod",
-            vec![("ours_ns", Some(ours_terrain_ns)), ("euc_ns", Some(euc_ns))],
-        ),
+        row("terrain_mesh_522k_tris", ours_mesh_ns),
+        row("terrain_patches_lod", ours_terrain_ns),
     ]
 }

@@ -165,6 +165,12 @@ impl ScreenBatch {
     #[inline]
     fn push(&mut self, screen: &[ScreenVertex], tri: [u32; 3], cull: CullMode, vp: Viewport) {
         let [a, b, c] = tri.map(|k| &screen[k as usize]);
+        // Most sub-pixel triangles have no pixel centre in their box: drop them
+        // first (the box does not depend on the winding).
+        let span = PixelSpan::of([a, b, c], vp.width, vp.height);
+        if span.is_empty() {
+            return;
+        }
         let area = signed_area(a, b, c);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen.
@@ -175,10 +181,6 @@ impl ScreenBatch {
         } else {
             return;
         };
-        let span = PixelSpan::of(v, vp.width, vp.height);
-        if span.is_empty() {
-            return;
-        }
         if let Some(t) = Triangle::setup(v, area, span, &mut self.edges) {
             self.tris.push(t);
         }

@@ -18,8 +18,12 @@ const HALF: i64 = ONE / 2;
 /// 64-bit mask (bit `8 * row + column`).
 const MASK_SIDE: i32 = 8;
 
-/// ... when their vertices also span less than this (fixed point) per axis.
-const MASK_EXTENT: i32 = 16 << SUBPIXEL_BITS;
+/// ... when their vertices also span less than this (fixed point) per axis:
+/// then an edge value at any pixel centre inside their bounding box, at most
+/// `2 * MASK_EXTENT^2 + 1` in magnitude, is exact in `f32`.
+const MASK_EXTENT: i32 = 11 << SUBPIXEL_BITS;
+const _: () =
+    assert!(2 * (MASK_EXTENT as i64) * (MASK_EXTENT as i64) + 1 < 1 << f32::MANTISSA_DIGITS);
 
 /// A vertex after projection: fixed-point pixel position (y down), `1/w`, colour / w.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,17 +56,18 @@ pub(crate) struct PixelSpan {
     pub y1: i32,
 }
 
-/// First pixel index whose centre is at or after fixed coordinate `v`.
+/// First pixel index whose centre is at or after fixed coordinate `v` (vertices
+/// inside the guard band keep these sums far from `i32` overflow).
 #[inline]
-fn first_centre(v: i64) -> i64 {
+fn first_centre(v: i32) -> i32 {
     // Arithmetic shifts floor, also for negative values.
-    (v - HALF + ONE - 1) >> SUBPIXEL_BITS
+    (v - HALF as i32 + ONE as i32 - 1) >> SUBPIXEL_BITS
 }
 
 /// Last pixel index whose centre is at or before fixed coordinate `v`.
 #[inline]
-fn last_centre(v: i64) -> i64 {
-    (v - HALF) >> SUBPIXEL_BITS
+fn last_centre(v: i32) -> i32 {
+    (v - HALF as i32) >> SUBPIXEL_BITS
 }
 
 impl PixelSpan {
@@ -70,15 +75,15 @@ impl PixelSpan {
     /// `width` x `height` screen.
     #[inline]
     pub fn of(v: [&ScreenVertex; 3], width: i32, height: i32) -> PixelSpan {
-        let min_x = v[0].x.min(v[1].x).min(v[2].x) as i64;
-        let max_x = v[0].x.max(v[1].x).max(v[2].x) as i64;
-        let min_y = v[0].y.min(v[1].y).min(v[2].y) as i64;
-        let max_y = v[0].y.max(v[1].y).max(v[2].y) as i64;
+        let min_x = v[0].x.min(v[1].x).min(v[2].x);
+        let max_x = v[0].x.max(v[1].x).max(v[2].x);
+        let min_y = v[0].y.min(v[1].y).min(v[2].y);
+        let max_y = v[0].y.max(v[1].y).max(v[2].y);
         PixelSpan {
-            x0: first_centre(min_x).max(0) as i32,
-            x1: last_centre(max_x).min(width as i64 - 1) as i32,
-            y0: first_centre(min_y).max(0) as i32,
-            y1: last_centre(max_y).min(height as i64 - 1) as i32,
+            x0: first_centre(min_x).max(0),
+            x1: last_centre(max_x).min(width - 1),
+            y0: first_centre(min_y).max(0),
+            y1: last_centre(max_y).min(height - 1),
         }
     }
 
@@ -213,7 +218,12 @@ impl Triangle {
             && extent(|v| v.x) < MASK_EXTENT
             && extent(|v| v.y) < MASK_EXTENT;
         let coverage = if small {
-            let mask = coverage_mask(&e, span);
+            let mask = if span.x0 == span.x1 && span.y0 == span.y1 {
+                // One centre (most sub-pixel triangles): test it directly.
+                u64::from((e[0].start | e[1].start | e[2].start) >= 0)
+            } else {
+                coverage_mask(&e, span)
+            };
             if mask == 0 {
                 return None;
             }
@@ -242,74 +252,67 @@ impl Triangle {
         (self.span.y0, self.span.y1)
     }
 
-    /// Calls `pixel(x, y, attributes)` for every covered pixel centre in rows
-    /// `rows`, where the attributes are `1/w` then colour / w.
+    /// Calls `run` for every row in `rows` where the triangle covers pixel
+    /// centres, with the covered columns (contiguous: the triangle is convex).
     #[inline]
-    pub fn for_each_pixel(
+    pub fn for_each_run(
         &self,
         edges: &[Edges],
         rows: std::ops::Range<i32>,
-        mut pixel: impl FnMut(i32, i32, Vec4),
+        mut run: impl FnMut(Run),
     ) {
         let span = self.span;
-        let at = |c: i32, r: i32| self.base + self.step_x * c as f32 + self.step_y * r as f32;
+        let y0 = span.y0.max(rows.start);
+        let y1 = span.y1.min(rows.end - 1);
+        let row = |y: i32, lo: i32, hi: i32| Run {
+            y,
+            x0: span.x0 + lo,
+            x1: span.x0 + hi,
+            start: self.base + self.step_y * (y - span.y0) as f32 + self.step_x * lo as f32,
+            step: self.step_x,
+        };
         match self.coverage {
-            Coverage::Mask(mut mask) => {
-                // Keep the rows inside `rows`.
-                let skip = (rows.start - span.y0).clamp(0, MASK_SIDE) as u32;
-                let keep = (rows.end - span.y0).clamp(0, MASK_SIDE) as u32;
-                mask &= (!0u64).checked_shl(8 * skip).unwrap_or(0);
-                mask &= (!0u64).checked_shr(64 - 8 * keep).unwrap_or(0);
-                while mask != 0 {
-                    let bit = mask.trailing_zeros() as i32;
-                    mask &= mask - 1;
-                    let (r, c) = (bit >> 3, bit & 7);
-                    pixel(span.x0 + c, span.y0 + r, at(c, r));
+            Coverage::Mask(mask) => {
+                for y in y0..=y1 {
+                    let bits = (mask >> (8 * (y - span.y0))) as u8;
+                    if bits != 0 {
+                        let lo = bits.trailing_zeros() as i32;
+                        let hi = 7 - bits.leading_zeros() as i32;
+                        run(row(y, lo, hi));
+                    }
                 }
             }
             Coverage::Edges(k) => {
-                let [e0, e1, e2] = &edges[k as usize].0;
-                let y0 = span.y0.max(rows.start);
-                let y1 = span.y1.min(rows.end - 1);
-                if y0 > y1 {
-                    return;
-                }
+                let e = &edges[k as usize].0;
                 let last = span.x1 - span.x0;
                 // Wide boxes (thin slanted triangles such as grass blades) get each
                 // row's covered run solved from the edge equations; narrow ones are
-                // just scanned.
+                // scanned for their first and last covered centre.
                 let solve = last >= NARROW_MIN_WIDTH;
-                let r = (y0 - span.y0) as i64;
-                let (mut w0, mut w1, mut w2) = (
-                    e0.start + r * e0.step_y,
-                    e1.start + r * e1.step_y,
-                    e2.start + r * e2.step_y,
-                );
                 for y in y0..=y1 {
+                    let r = (y - span.y0) as i64;
+                    let w = e.map(|e| e.start + r * e.step_y);
                     let (mut lo, mut hi) = (0, last);
                     if solve {
-                        (lo, hi) = e0.covered_run(w0, lo, hi);
-                        (lo, hi) = e1.covered_run(w1, lo, hi);
-                        (lo, hi) = e2.covered_run(w2, lo, hi);
-                    }
-                    let skip = lo as i64;
-                    let (mut a0, mut a1, mut a2) = (
-                        w0 + skip * e0.step_x,
-                        w1 + skip * e1.step_x,
-                        w2 + skip * e2.step_x,
-                    );
-                    let start = at(0, y - span.y0);
-                    for c in lo..=hi {
-                        if (a0 | a1 | a2) >= 0 {
-                            pixel(span.x0 + c, y, start + self.step_x * c as f32);
+                        for (edge, &value) in e.iter().zip(&w) {
+                            (lo, hi) = edge.covered_run(value, lo, hi);
                         }
-                        a0 += e0.step_x;
-                        a1 += e1.step_x;
-                        a2 += e2.step_x;
+                    } else {
+                        let covered = |c: i32| {
+                            e.iter()
+                                .zip(&w)
+                                .all(|(edge, &v)| v + c as i64 * edge.step_x >= 0)
+                        };
+                        while lo <= hi && !covered(lo) {
+                            lo += 1;
+                        }
+                        while hi >= lo && !covered(hi) {
+                            hi -= 1;
+                        }
                     }
-                    w0 += e0.step_y;
-                    w1 += e1.step_y;
-                    w2 += e2.step_y;
+                    if lo <= hi {
+                        run(row(y, lo, hi));
+                    }
                 }
             }
         }
@@ -322,38 +325,74 @@ impl Triangle {
         let width = band.width as usize;
         let y0 = band.y0;
         let (depth, color) = (&mut *band.depth, &mut *band.color);
-        self.for_each_pixel(edges, band.y0..band.y1, |x, y, a| {
-            let k = (y - y0) as usize * width + x as usize;
-            if a.x > depth[k] {
-                depth[k] = a.x;
-                let c = Vec3::new(a.y, a.z, a.w) / a.x;
-                color[4 * k..4 * k + 4].copy_from_slice(&[to_u8(c.x), to_u8(c.y), to_u8(c.z), 255]);
+        self.for_each_run(edges, band.y0..band.y1, |run| {
+            let first = (run.y - y0) as usize * width + run.x0 as usize;
+            let end = first + (run.x1 - run.x0) as usize + 1;
+            let pixels = depth[first..end]
+                .iter_mut()
+                .zip(color[4 * first..4 * end].chunks_exact_mut(4));
+            for (c, (depth, color)) in pixels.enumerate() {
+                let a = run.attributes(c);
+                if a.x > *depth {
+                    *depth = a.x;
+                    color.copy_from_slice(&display_rgba(a));
+                }
             }
         });
     }
 }
 
+/// The covered pixel centres of one row of a triangle, `x0..=x1` on row `y`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Run {
+    /// The row.
+    pub y: i32,
+    /// First covered column.
+    pub x0: i32,
+    /// Last covered column.
+    pub x1: i32,
+    /// Attributes (`1/w`, colour / w) at the centre of pixel `(x0, y)`.
+    start: Vec4,
+    /// Attribute change per pixel to the right.
+    step: Vec4,
+}
+
+impl Run {
+    /// The attributes `c` pixels right of `x0`.
+    #[inline]
+    pub fn attributes(&self, c: usize) -> Vec4 {
+        self.start + self.step * c as f32
+    }
+}
+
 /// The covered pixel centres of a box at most [`MASK_SIDE`] pixels per side, for
-/// a triangle whose vertices span less than [`MASK_EXTENT`] per axis: its edge
-/// values over the box then fit `i32`, and each row is tested eight pixels at a
-/// time (a loop the compiler vectorizes).
+/// a triangle whose vertices span less than [`MASK_EXTENT`] per axis: bit
+/// `8 * row + column` per centre where all three edge values are `>= 0`.
+///
+/// Edge values are integers; inside the vertices' bounding box they stay below
+/// `2^24` in magnitude (see [`MASK_EXTENT`]), so `f32` holds them exactly and
+/// each row tests its eight centres with a few 4-wide vector operations (lanes
+/// past the box may be inexact; they are masked off).
 #[inline]
 fn coverage_mask(e: &[Edge; 3], span: PixelSpan) -> u64 {
-    const COLUMNS: [i32; MASK_SIDE as usize] = [0, 1, 2, 3, 4, 5, 6, 7];
-    let step = e.map(|e| e.step_x as i32);
+    const LEFT: Vec4 = Vec4::new(0.0, 1.0, 2.0, 3.0);
+    const RIGHT: Vec4 = Vec4::new(4.0, 5.0, 6.0, 7.0);
+    let ramps = e.map(|e| (LEFT * e.step_x as f32, RIGHT * e.step_x as f32));
+    let step_y = e.map(|e| e.step_y as f32);
+    let mut row = e.map(|e| e.start as f32);
     let columns = (1u32 << (span.x1 - span.x0 + 1)) - 1;
-    let mut row = e.map(|e| e.start);
     let mut mask = 0u64;
-    for r in 0..=(span.y1 - span.y0) {
-        let start = row.map(|v| v as i32);
-        let mut bits = 0u32;
-        for (c, k) in COLUMNS.iter().enumerate() {
-            let v = (start[0] + k * step[0]) | (start[1] + k * step[1]) | (start[2] + k * step[2]);
-            bits |= u32::from(v >= 0) << c;
-        }
-        mask |= u64::from(bits & columns) << (8 * r);
-        for (value, edge) in row.iter_mut().zip(e) {
-            *value += edge.step_y;
+    for r in 0..=(span.y1 - span.y0) as u32 {
+        let values = |half: fn(&(Vec4, Vec4)) -> Vec4| {
+            (half(&ramps[0]) + row[0])
+                .min(half(&ramps[1]) + row[1])
+                .min(half(&ramps[2]) + row[2])
+        };
+        let left = values(|r| r.0).cmpge(Vec4::ZERO).bitmask();
+        let right = values(|r| r.1).cmpge(Vec4::ZERO).bitmask();
+        mask |= u64::from((left | right << 4) & columns) << (8 * r);
+        for (value, step) in row.iter_mut().zip(step_y) {
+            *value += step;
         }
     }
     mask
@@ -366,6 +405,23 @@ const NARROW_MIN_WIDTH: i32 = 6;
 #[inline]
 pub(crate) fn to_u8(v: f32) -> u8 {
     (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+}
+
+/// The opaque RGBA8 pixel of interpolated attributes (`1/w`, colour / w), with
+/// `1/w > 0`: per channel exactly [`to_u8`] of colour / w, in one vector.
+///
+/// The truncation to an integer avoids float-to-int casts: adding `2^23` to a
+/// value in `[0, 255]` leaves its nearest integer in the low mantissa bits,
+/// and one compare turns that rounding into the floor.
+#[inline]
+fn display_rgba(a: Vec4) -> [u8; 4] {
+    const MANTISSA_ONE: f32 = (1u32 << (f32::MANTISSA_DIGITS - 1)) as f32;
+    let v =
+        (Vec4::new(a.y, a.z, a.w, a.x) / a.x * 255.0 + 0.5).clamp(Vec4::ZERO, Vec4::splat(255.0));
+    let rounded = v + MANTISSA_ONE;
+    let floor = Vec4::select((rounded - MANTISSA_ONE).cmpgt(v), rounded - 1.0, rounded);
+    let [r, g, b, _] = floor.to_array().map(|c| c.to_bits() as u8);
+    [r, g, b, 255]
 }
 
 #[cfg(test)]
@@ -421,8 +477,10 @@ mod tests {
                     else {
                         continue;
                     };
-                    tri.for_each_pixel(&edges, 0..64, |x, y, _| {
-                        count[(y * 64 + x) as usize] += 1;
+                    tri.for_each_run(&edges, 0..64, |run| {
+                        for x in run.x0..=run.x1 {
+                            count[(run.y * 64 + x) as usize] += 1;
+                        }
                     });
                 }
             }
@@ -507,6 +565,27 @@ mod tests {
                 height: h,
             },
         )
+    }
+
+    #[test]
+    fn display_rgba_rounds_like_to_u8() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let edges = [0.0, 0.5 / 255.0, 1.0, 1.0 + 1e-3, -1e-3, 127.5 / 255.0];
+        for k in 0..20_000 {
+            let c = if k < edges.len() * 3 {
+                Vec3::new(edges[k % 6], edges[k / 3 % 6], edges[k / 6 % 6])
+            } else {
+                Vec3::new(rng.next(), rng.next(), rng.next()) * 1.2 - 0.1
+            };
+            let inv_w = 0.05 + rng.next() * 4.0;
+            let a = Vec4::new(inv_w, c.x * inv_w, c.y * inv_w, c.z * inv_w);
+            let d = Vec3::new(a.y, a.z, a.w) / a.x;
+            assert_eq!(
+                display_rgba(a),
+                [to_u8(d.x), to_u8(d.y), to_u8(d.z), 255],
+                "{c}"
+            );
+        }
     }
 
     #[test]
