@@ -13,7 +13,8 @@ pub(crate) struct FieldMemo {
 }
 
 impl FieldMemo {
-    /// A freshly computed field.
+    /// A freshly computed field (the scalar reference of the batched field).
+    #[cfg(test)]
     pub(crate) fn new(bend: Bend) -> Self {
         Self {
             bend,
