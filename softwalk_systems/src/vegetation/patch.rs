@@ -11,7 +11,7 @@ use super::blade::{Bend, Blade, BladeState};
 use super::columns::{BladeColumns, Marker};
 use super::error::VegetationError;
 use super::field_batch::FieldBatch;
-use super::field_memo::FieldMemo;
+use super::field_memo::{BendSizes, FieldMemo};
 use super::foot_motion::FootMotion;
 use super::grid::BladeGrid;
 use super::recovery::time_to_settle;
@@ -64,6 +64,8 @@ pub struct GrassPatch {
     /// Per blade, the field of the last step that reached it (valid for the
     /// blades the previous step reached).
     fields: Vec<FieldMemo>,
+    /// Per blade, the sizes of its held and resting bends.
+    sizes: Vec<BendSizes>,
     grid: BladeGrid,
     /// Lowest root and highest tip, to skip feet far above or below.
     y_range: (f32, f32),
@@ -170,6 +172,7 @@ impl GrassPatch {
             settings,
             states: vec![BladeState::default(); blades.len()],
             fields: vec![FieldMemo::default(); blades.len()],
+            sizes: vec![BendSizes::default(); blades.len()],
             columns: BladeColumns::new(&blades),
             blades,
             grid,
@@ -399,9 +402,13 @@ impl GrassPatch {
         // The field that already holds the blade keeps holding it; otherwise
         // the larger of the field and the recovering bend wins.
         let mut bend_changed = false;
-        if field.takes_over(state, now, omega) {
+        let sizes = &mut self.sizes[i];
+        if field.takes_over(state, sizes, now, omega) {
             bend_changed = state.held != field.bend;
             state.held = field.bend;
+            if bend_changed {
+                *sizes = BendSizes::with_sizes(&state.held, field.size, &state.rest, sizes.rest);
+            }
             state.anchor_time = now;
         }
         // Damage depends on the held bend and the treads only.
@@ -431,8 +438,10 @@ impl GrassPatch {
         }
         if state.broken {
             let residual = state.held.scaled(s.broken_residual);
-            if residual.size() > state.rest.size() {
+            let sizes = &mut self.sizes[i];
+            if residual.size() > sizes.rest {
                 state.rest = residual;
+                *sizes = BendSizes::new(&state.held, &state.rest);
             }
         }
     }
@@ -453,6 +462,7 @@ impl GrassPatch {
             } else {
                 state.active = false;
                 state.held = state.rest;
+                self.sizes[i as usize] = BendSizes::new(&state.held, &state.rest);
                 self.active_count -= 1;
                 retired += 1;
             }
