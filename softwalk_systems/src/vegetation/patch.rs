@@ -86,6 +86,10 @@ struct StepScratch {
     sole_centres: Vec<Vec3>,
     /// The feet and previous foot positions the candidate test measures against.
     markers: Vec<Marker>,
+    /// Grid ranges near each marker, with the marker's index.
+    marker_ranges: Vec<(usize, Range<usize>)>,
+    /// The markers that can reach the blades of one range.
+    relevant: Vec<Marker>,
     /// Merged grid ranges near the feet.
     ranges: Vec<Range<usize>>,
     /// Blades some foot reaches, in storage order.
@@ -341,6 +345,8 @@ impl GrassPatch {
         let radius = self.settings.field.radius();
         let StepScratch {
             markers,
+            marker_ranges,
+            relevant,
             ranges,
             reached,
             fresh,
@@ -363,16 +369,33 @@ impl GrassPatch {
             disturbs: true,
         });
         markers.extend(departed);
-        ranges.clear();
-        for foot in &motion.feet {
-            ranges.extend(self.grid.ranges_near(foot.xz(), radius));
+        // Each marker's own grid ranges: the blades it can reach at all.
+        marker_ranges.clear();
+        for (k, m) in markers.iter().enumerate() {
+            let near = self.grid.ranges_near(m.at.xz(), radius);
+            marker_ranges.extend(near.filter(|r| !r.is_empty()).map(|r| (k, r)));
         }
+        // The blades to visit: those of the feet (a departed foot only
+        // matters for blades a foot reaches now).
+        ranges.clear();
+        let of_feet = marker_ranges.iter().filter(|(k, _)| markers[*k].reaches);
+        ranges.extend(of_feet.map(|(_, r)| r.clone()));
         merge_ranges(ranges);
         reached.clear();
         fresh.clear();
         for range in ranges.iter() {
+            // Only the markers whose own ranges meet this one can reach its blades.
+            relevant.clear();
+            for (k, m) in markers.iter().enumerate() {
+                let meets = |(j, r): &(usize, Range<usize>)| {
+                    *j == k && r.start < range.end && range.start < r.end
+                };
+                if marker_ranges.iter().any(meets) {
+                    relevant.push(*m);
+                }
+            }
             self.columns
-                .collect_reached(range.clone(), markers, radius, reached, fresh);
+                .collect_reached(range.clone(), relevant, radius, reached, fresh);
         }
         ranges.iter().map(|r| r.len()).sum()
     }
