@@ -140,6 +140,10 @@ fn evaluate_chunk(field: &DeformationField, feet: &[Vec3], b: &Upright) -> (Poin
         let dx = x - F8::splat(foot.x);
         let dz = z - F8::splat(foot.z);
         let reach = (dx * dx + dz * dz).lt(radius_sq);
+        if reach.bitmask() == 0 {
+            // Out of every lane's reach: it would add only zeros.
+            continue;
+        }
         let foot_y = F8::splat(foot.y);
         mid = mid.add(for_offset(field, dx, mid_y - foot_y, dz).or_zero(reach));
         tip = tip.add(for_offset(field, dx, tip_y - foot_y, dz).or_zero(reach));
