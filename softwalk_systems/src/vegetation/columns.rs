@@ -72,6 +72,10 @@ impl BladeColumns {
         let r2 = F8::splat(radius * radius);
         let chunks = blades.len().div_ceil(LANES);
         let end = blades.start + chunks * LANES;
+        // Room for every blade of the range plus a whole chunk: each chunk
+        // writes all its lanes and keeps those that matched (no branches).
+        let mut reached_list = ChunkList::open(reached, blades.len());
+        let mut fresh_list = ChunkList::open(fresh, blades.len());
         let columns = self.x[blades.start..end]
             .chunks_exact(LANES)
             .zip(self.z[blades.start..end].chunks_exact(LANES))
@@ -95,20 +99,66 @@ impl BladeColumns {
             // Lanes past the range's end belong to other blades.
             let valid = (1u32 << (blades.end - base).min(LANES)) - 1;
             let reaching = reaching & valid;
-            push_lanes(reached, base, reaching);
-            push_lanes(fresh, base, reaching & disturbing);
+            reached_list.push(base, reaching);
+            fresh_list.push(base, reaching & disturbing);
         }
+        reached_list.close();
+        fresh_list.close();
     }
 }
 
-/// Appends `base + l` for every bit `l` set in `lanes`, in increasing order.
-#[inline(always)]
-fn push_lanes(out: &mut Vec<u32>, base: usize, mut lanes: u32) {
-    while lanes != 0 {
-        out.push((base + lanes.trailing_zeros() as usize) as u32);
-        lanes &= lanes - 1;
+/// A list of blade indices being appended to chunk by chunk.
+struct ChunkList<'a> {
+    out: &'a mut Vec<u32>,
+    len: usize,
+}
+
+impl<'a> ChunkList<'a> {
+    /// Starts appending to `out` at most `blades` indices.
+    #[inline(always)]
+    fn open(out: &'a mut Vec<u32>, blades: usize) -> Self {
+        let len = out.len();
+        out.resize(len + blades + LANES, 0);
+        Self { out, len }
+    }
+
+    /// Appends `base + l` for every bit `l` set in `lanes`, in increasing order.
+    #[inline(always)]
+    fn push(&mut self, base: usize, lanes: u32) {
+        let lanes = lanes as usize & 0xFF;
+        let offsets = &COMPRESSED_LANES[lanes];
+        let slots = &mut self.out[self.len..self.len + LANES];
+        for (slot, &offset) in slots.iter_mut().zip(offsets) {
+            *slot = (base + offset as usize) as u32;
+        }
+        self.len += lanes.count_ones() as usize;
+    }
+
+    /// Drops the unused room.
+    #[inline(always)]
+    fn close(self) {
+        self.out.truncate(self.len);
     }
 }
+
+/// For each 8-bit lane mask, the indices of its set bits in increasing order
+/// (the rest of the entry is padding).
+const COMPRESSED_LANES: [[u8; LANES]; 256] = {
+    let mut table = [[0u8; LANES]; 256];
+    let mut mask = 0;
+    while mask < 256 {
+        let (mut bit, mut n) = (0, 0);
+        while bit < LANES {
+            if mask & (1 << bit) != 0 {
+                table[mask][n] = bit as u8;
+                n += 1;
+            }
+            bit += 1;
+        }
+        mask += 1;
+    }
+    table
+};
 
 #[cfg(test)]
 mod tests {
@@ -170,6 +220,18 @@ mod tests {
             (vec![], vec![]),
             "range end respected"
         );
+    }
+
+    #[test]
+    fn compressed_lanes_list_the_set_bits() {
+        for mask in 0..256usize {
+            let bits: Vec<u8> = (0..8).filter(|&b| mask & (1 << b) != 0).collect();
+            assert_eq!(
+                COMPRESSED_LANES[mask][..bits.len()],
+                bits[..],
+                "mask {mask:#b}"
+            );
+        }
     }
 
     #[test]
