@@ -148,9 +148,9 @@ fn evaluate_chunk(field: &DeformationField, feet: &[Vec3], b: &Upright) -> (Poin
         mid = mid.add(for_offset(field, dx, mid_y - foot_y, dz).or_zero(reach));
         tip = tip.add(for_offset(field, dx, tip_y - foot_y, dz).or_zero(reach));
     }
-    let (mid, tip) = (capped(field.t_max, mid), capped(field.t_max, tip));
-    let size = mid.length_squared().sqrt() + tip.length_squared().sqrt();
-    (mid, tip, size)
+    let (mid, mid_len) = capped(field.t_max, mid);
+    let (tip, tip_len) = capped(field.t_max, tip);
+    (mid, tip, mid_len + tip_len)
 }
 
 /// `DeformationField::for_offset` on lanes, with selects for its branches.
@@ -180,17 +180,30 @@ fn for_offset(field: &DeformationField, dx: F8, dy: F8, dz: F8) -> Points {
     t.or_zero(inside)
 }
 
-/// `v` with its length capped at `t_max` (as `DeformationField::capped`).
+/// `v` with its length capped at `t_max` (as `DeformationField::capped`),
+/// and the length of the result (as `Vec3::length`).
 #[inline(always)]
-fn capped(t_max: f32, v: Points) -> Points {
+fn capped(t_max: f32, v: Points) -> (Points, F8) {
     let len_sq = v.length_squared();
-    let scale = F8::splat(t_max) / len_sq.sqrt();
+    let len = len_sq.sqrt();
     let cap = len_sq.gt(F8::splat(t_max * t_max));
-    Points {
-        x: cap.select(v.x * scale, v.x),
-        y: cap.select(v.y * scale, v.y),
-        z: cap.select(v.z * scale, v.z),
+    if cap.bitmask() == 0 {
+        // Nothing to cap (the usual case: one foot alone never exceeds
+        // `t_max`): the length is the one just taken.
+        return (v, len);
     }
+    let scale = F8::splat(t_max) / len;
+    let scaled = Points {
+        x: v.x * scale,
+        y: v.y * scale,
+        z: v.z * scale,
+    };
+    let out = Points {
+        x: cap.select(scaled.x, v.x),
+        y: cap.select(scaled.y, v.y),
+        z: cap.select(scaled.z, v.z),
+    };
+    (out, cap.select(scaled.length_squared().sqrt(), len))
 }
 
 #[cfg(test)]
