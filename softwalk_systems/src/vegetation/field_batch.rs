@@ -166,6 +166,14 @@ fn for_offset(field: &DeformationField, dx: F8, dy: F8, dz: F8) -> Points {
     };
     let dist_sq = d.length_squared();
     let inside = dist_sq.lt(F8::splat(radius * radius));
+    if inside.bitmask() == 0 {
+        // No lane within reach: the field is zero in all of them.
+        return Points {
+            x: zero,
+            y: zero,
+            z: zero,
+        };
+    }
     let dist = dist_sq.sqrt();
     let raw = t_max - F8::splat(field.gamma) * dist;
     let floored = raw.lt(zero).select(zero, raw);
