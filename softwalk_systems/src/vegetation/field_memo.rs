@@ -26,7 +26,7 @@ impl FieldMemo {
 
     /// True if this field takes the blade over at `now` (re-anchors it): it is
     /// the field already holding the blade, or at least as large (by size) as
-    /// the blade's recovering bend. `sizes` bound the recovering bend's size
+    /// the blade's recovering bend, which recovers with `omega()` (rad/s). `sizes` bound the recovering bend's size
     /// from above and below at all times: a field outside the bounds is
     /// decided without evaluating the recovery (with the same answer).
     #[inline]
@@ -35,12 +35,12 @@ impl FieldMemo {
         state: &BladeState,
         sizes: &BendSizes,
         now: f64,
-        omega: f32,
+        omega: impl FnOnce() -> f32,
     ) -> bool {
         if state.active && self.bend == state.held || self.size >= sizes.ceiling() {
             return true;
         }
-        self.size >= sizes.floor && self.size >= state.bend_size_at(now, omega)
+        self.size >= sizes.floor && self.size >= state.bend_size_at(now, omega())
     }
 }
 
@@ -126,7 +126,7 @@ mod tests {
         let sizes = BendSizes::new(&held, &Bend::ZERO);
         assert_eq!(sizes.floor, 0.0, "a healthy blade recovers to upright");
         let takes_over =
-            |m: FieldMemo, s: &BladeState, now: f64| m.takes_over(s, &sizes, now, omega);
+            |m: FieldMemo, s: &BladeState, now: f64| m.takes_over(s, &sizes, now, || omega);
         assert!(takes_over(FieldMemo::new(held), &state, 1.5), "held on");
         let weak = FieldMemo::new(held.scaled(0.5));
         assert!(

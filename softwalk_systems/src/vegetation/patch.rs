@@ -419,7 +419,8 @@ impl GrassPatch {
         }
         let s = &self.settings;
         let now = self.clock;
-        let omega = s.recovery_omega * self.blades[i].stiffness;
+        // Read only when needed: most pushes do not look at the recovery.
+        let omega = || s.recovery_omega * self.blades[i].stiffness;
         let state = &mut self.states[i];
         let new_tread = state.count_tread(now, s.tread_gap);
         // The field that already holds the blade keeps holding it; otherwise
@@ -442,6 +443,7 @@ impl GrassPatch {
         if !state.active {
             state.active = true;
             self.active_count += 1;
+            let omega = self.settings.recovery_omega * self.blades[i].stiffness;
             let deadline = state.anchor_time + time_to_settle(omega) as f64;
             self.retire_queue.push_back((i as u32, deadline));
         }
