@@ -8,9 +8,10 @@ use glam::{Vec2, Vec3, Vec3Swizzles};
 
 use super::area::XzRect;
 use super::blade::{Bend, Blade, BladeState};
-use super::columns::BladeColumns;
+use super::columns::{BladeColumns, Marker};
 use super::error::VegetationError;
-use super::field_memo::FieldMemo;
+use super::field_batch::FieldBatch;
+use super::field_memo::{BendSizes, FieldMemo};
 use super::foot_motion::FootMotion;
 use super::grid::BladeGrid;
 use super::recovery::time_to_settle;
@@ -24,13 +25,6 @@ pub const MAX_BLADES: usize = 1 << 26;
 
 /// Colour a broken blade fades towards (dry straw, linear RGB).
 const STRAW: [f32; 3] = [0.55, 0.48, 0.25];
-
-/// Candidate flag: some foot of this step reaches the blade.
-const REACHED: u8 = 1;
-/// Candidate flag: a foot that moved, or the previous position of one, reaches
-/// the blade: its field must be computed anew (otherwise the blade is reached
-/// by exactly the feet of the previous step, at the same places).
-const DISTURBED: u8 = 2;
 
 /// A blade ready to draw: a thin strip tapering from `width` at the root to a
 /// point at the tip, through the three points.
@@ -70,6 +64,8 @@ pub struct GrassPatch {
     /// Per blade, the field of the last step that reached it (valid for the
     /// blades the previous step reached).
     fields: Vec<FieldMemo>,
+    /// Per blade, the sizes of its held and resting bends.
+    sizes: Vec<BendSizes>,
     grid: BladeGrid,
     /// Lowest root and highest tip, to skip feet far above or below.
     y_range: (f32, f32),
@@ -78,11 +74,30 @@ pub struct GrassPatch {
     /// Recovering blades with the time they may settle (lazy: re-queued when pushed again).
     retire_queue: VecDeque<(u32, f64)>,
     motion: FootMotion,
-    /// Scratch buffers kept to avoid allocating each step: sole centres,
-    /// grid ranges, candidate flags.
+    /// Scratch buffers kept to avoid allocating each step.
+    scratch: StepScratch,
+}
+
+/// Buffers one deformation step fills, kept between steps so a step does not
+/// allocate.
+#[derive(Debug, Clone, Default)]
+struct StepScratch {
+    /// Sole centres of the feet given to [`GrassPatch::deform`].
     sole_centres: Vec<Vec3>,
+    /// The feet and previous foot positions the candidate test measures against.
+    markers: Vec<Marker>,
+    /// Grid ranges near each marker, with the marker's index.
+    marker_ranges: Vec<(usize, Range<usize>)>,
+    /// The markers that can reach the blades of one range.
+    relevant: Vec<Marker>,
+    /// Merged grid ranges near the feet.
     ranges: Vec<Range<usize>>,
-    flags: Vec<u8>,
+    /// Blades some foot reaches, in storage order.
+    reached: Vec<u32>,
+    /// Of them, the blades whose field must be computed anew, in storage order.
+    fresh: Vec<u32>,
+    /// The fresh blades' upright geometry for the batched field.
+    batch: FieldBatch,
 }
 
 impl GrassPatch {
@@ -161,6 +176,7 @@ impl GrassPatch {
             settings,
             states: vec![BladeState::default(); blades.len()],
             fields: vec![FieldMemo::default(); blades.len()],
+            sizes: vec![BendSizes::default(); blades.len()],
             columns: BladeColumns::new(&blades),
             blades,
             grid,
@@ -169,9 +185,7 @@ impl GrassPatch {
             active_count: 0,
             retire_queue: VecDeque::new(),
             motion: FootMotion::default(),
-            sole_centres: Vec::new(),
-            ranges: Vec::new(),
-            flags: Vec::new(),
+            scratch: StepScratch::default(),
         })
     }
 
@@ -266,11 +280,11 @@ impl GrassPatch {
     /// One `grass_deform` step: advances the clock by `dt` and pushes blades
     /// with every foot. The foot position `p_f` is the sole centre.
     pub fn deform(&mut self, feet: &[FootState], dt: f32) -> DeformStats {
-        let mut centres = std::mem::take(&mut self.sole_centres);
+        let mut centres = std::mem::take(&mut self.scratch.sole_centres);
         centres.clear();
         centres.extend(feet.iter().map(|f| f.sole.center()));
         let stats = self.deform_points(&centres, dt);
-        self.sole_centres = centres;
+        self.scratch.sole_centres = centres;
         stats
     }
 
@@ -293,50 +307,97 @@ impl GrassPatch {
             retired: self.retire_settled(),
             ..DeformStats::default()
         };
-        let radius = self.settings.field.radius();
+        let mut scratch = std::mem::take(&mut self.scratch);
         let mut motion = std::mem::take(&mut self.motion);
+        let radius = self.settings.field.radius();
         motion.update(feet, |p| self.within_reach(p, radius));
-        let mut ranges = std::mem::take(&mut self.ranges);
-        ranges.clear();
-        for foot in &motion.feet {
-            ranges.extend(self.grid.ranges_near(foot.xz(), radius));
+        stats.visited = self.find_reached(&motion, &mut scratch);
+        stats.reused = scratch.reached.len() - scratch.fresh.len();
+        // Fields first (they depend on the upright blades and the feet only),
+        // then the pushes in storage order.
+        scratch.batch.clear();
+        for &i in &scratch.fresh {
+            scratch.batch.push(self.columns.upright(i as usize));
         }
-        merge_ranges(&mut ranges);
-        let mut flags = std::mem::take(&mut self.flags);
-        for range in &ranges {
-            flags.clear();
-            flags.resize(range.len(), 0);
-            for (&foot, &moved) in motion.feet.iter().zip(&motion.moved) {
-                let bits = if moved { REACHED | DISTURBED } else { REACHED };
-                self.columns
-                    .mark_near(range.clone(), foot, radius, bits, &mut flags);
-            }
-            for &foot in &motion.departed {
-                self.columns
-                    .mark_near(range.clone(), foot, radius, DISTURBED, &mut flags);
-            }
-            stats.visited += range.len();
-            for (i, &flag) in range.clone().zip(&flags) {
-                if flag & REACHED == 0 {
-                    continue;
-                }
-                let field = if flag & DISTURBED == 0 {
-                    stats.reused += 1;
-                    self.fields[i]
-                } else {
-                    let field = self.field_at(i, &motion.feet);
-                    self.fields[i] = field;
-                    field
-                };
-                if self.push(i, field) {
-                    stats.pushed += 1;
-                }
+        let mut fresh = scratch.fresh.iter();
+        scratch
+            .batch
+            .evaluate(&self.settings.field, &motion.feet, |memo| {
+                let i = *fresh.next().expect("one result per fresh blade");
+                self.fields[i as usize] = memo;
+            });
+        for &i in &scratch.reached {
+            let i = i as usize;
+            if self.push(i, self.fields[i]) {
+                stats.pushed += 1;
             }
         }
         self.motion = motion;
-        self.ranges = ranges;
-        self.flags = flags;
+        self.scratch = scratch;
         stats
+    }
+
+    /// Fills `scratch.reached` with the blades some foot of `motion` reaches
+    /// and `scratch.fresh` with those of them a moved foot, or the previous
+    /// position of one, reaches (the others get the field of the previous
+    /// step again). Returns how many blades the grid query returned.
+    fn find_reached(&self, motion: &FootMotion, scratch: &mut StepScratch) -> usize {
+        let radius = self.settings.field.radius();
+        let StepScratch {
+            markers,
+            marker_ranges,
+            relevant,
+            ranges,
+            reached,
+            fresh,
+            ..
+        } = scratch;
+        // A blade a moved foot, or the previous position of one, reaches must
+        // have its field computed anew; otherwise it is reached by exactly the
+        // feet of the previous step, at the same places.
+        markers.clear();
+        for (&at, &moved) in motion.feet.iter().zip(&motion.moved) {
+            markers.push(Marker {
+                at,
+                reaches: true,
+                disturbs: moved,
+            });
+        }
+        let departed = motion.departed.iter().map(|&at| Marker {
+            at,
+            reaches: false,
+            disturbs: true,
+        });
+        markers.extend(departed);
+        // Each marker's own grid ranges: the blades it can reach at all.
+        marker_ranges.clear();
+        for (k, m) in markers.iter().enumerate() {
+            let near = self.grid.ranges_near(m.at.xz(), radius);
+            marker_ranges.extend(near.filter(|r| !r.is_empty()).map(|r| (k, r)));
+        }
+        // The blades to visit: those of the feet (a departed foot only
+        // matters for blades a foot reaches now).
+        ranges.clear();
+        let of_feet = marker_ranges.iter().filter(|(k, _)| markers[*k].reaches);
+        ranges.extend(of_feet.map(|(_, r)| r.clone()));
+        merge_ranges(ranges);
+        reached.clear();
+        fresh.clear();
+        for range in ranges.iter() {
+            // Only the markers whose own ranges meet this one can reach its blades.
+            relevant.clear();
+            for (k, m) in markers.iter().enumerate() {
+                let meets = |(j, r): &(usize, Range<usize>)| {
+                    *j == k && r.start < range.end && range.start < r.end
+                };
+                if marker_ranges.iter().any(meets) {
+                    relevant.push(*m);
+                }
+            }
+            self.columns
+                .collect_reached(range.clone(), relevant, radius, reached, fresh);
+        }
+        ranges.iter().map(|r| r.len()).sum()
     }
 
     /// True when a foot at `p` can reach some blade of the patch.
@@ -351,16 +412,6 @@ impl GrassPatch {
             && p.z - radius < self.area.max.y
     }
 
-    /// The combined field of `feet` at blade `i`'s upright middle and tip.
-    fn field_at(&self, i: usize, feet: &[Vec3]) -> FieldMemo {
-        let blade = &self.blades[i];
-        let [mid, tip] = self
-            .settings
-            .field
-            .on_upright_blade(blade.root, blade.height, feet);
-        FieldMemo::new(Bend { mid, tip })
-    }
-
     /// Pushes blade `i` with `field`; true if it was pushed (non-zero field).
     fn push(&mut self, i: usize, field: FieldMemo) -> bool {
         if field.size <= 0.0 {
@@ -368,15 +419,20 @@ impl GrassPatch {
         }
         let s = &self.settings;
         let now = self.clock;
-        let omega = s.recovery_omega * self.blades[i].stiffness;
+        // Read only when needed: most pushes do not look at the recovery.
+        let omega = || s.recovery_omega * self.blades[i].stiffness;
         let state = &mut self.states[i];
         let new_tread = state.count_tread(now, s.tread_gap);
         // The field that already holds the blade keeps holding it; otherwise
         // the larger of the field and the recovering bend wins.
         let mut bend_changed = false;
-        if field.takes_over(state, now, omega) {
+        let sizes = &mut self.sizes[i];
+        if field.takes_over(state, sizes, now, omega) {
             bend_changed = state.held != field.bend;
             state.held = field.bend;
+            if bend_changed {
+                *sizes = BendSizes::with_sizes(&state.held, field.size, &state.rest, sizes.rest);
+            }
             state.anchor_time = now;
         }
         // Damage depends on the held bend and the treads only.
@@ -387,6 +443,7 @@ impl GrassPatch {
         if !state.active {
             state.active = true;
             self.active_count += 1;
+            let omega = self.settings.recovery_omega * self.blades[i].stiffness;
             let deadline = state.anchor_time + time_to_settle(omega) as f64;
             self.retire_queue.push_back((i as u32, deadline));
         }
@@ -406,8 +463,10 @@ impl GrassPatch {
         }
         if state.broken {
             let residual = state.held.scaled(s.broken_residual);
-            if residual.size() > state.rest.size() {
+            let sizes = &mut self.sizes[i];
+            if residual.size() > sizes.rest {
                 state.rest = residual;
+                *sizes = BendSizes::new(&state.held, &state.rest);
             }
         }
     }
@@ -428,6 +487,7 @@ impl GrassPatch {
             } else {
                 state.active = false;
                 state.held = state.rest;
+                self.sizes[i as usize] = BendSizes::new(&state.held, &state.rest);
                 self.active_count -= 1;
                 retired += 1;
             }
