@@ -76,10 +76,12 @@ impl EdgeLine {
     }
 }
 
-/// Rows up to `end` (exclusive) bounded by edges `left` and `right` of the piece.
+/// Rows up to `end` (exclusive) bounded by edges `left` and `right` of the
+/// piece (`i16`: screens have at most 16384 rows; keeps a piece under 128
+/// bytes, which the compiler copies inline).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 struct RowRun {
-    end: i32,
+    end: i16,
     left: u8,
     right: u8,
 }
@@ -233,7 +235,7 @@ impl BladePiece {
                 piece.edges[k] = EdgeLine::new(&v[k], &v[(k + 1) % v.len()]);
             }
             piece.runs[piece.run_count as usize] = RowRun {
-                end,
+                end: end as i16,
                 left: left as u8,
                 right: right as u8,
             };
@@ -248,7 +250,7 @@ impl BladePiece {
     pub fn rows(&self) -> (i32, i32) {
         (
             self.first_row,
-            self.runs[self.run_count as usize - 1].end - 1,
+            i32::from(self.runs[self.run_count as usize - 1].end) - 1,
         )
     }
 
@@ -260,8 +262,9 @@ impl BladePiece {
         let [d0, d_dx, d_dy] = self.depth;
         let mut start = self.first_row;
         for run in &self.runs[..self.run_count as usize] {
-            let (y0, y1) = (start.max(band.y0), run.end.min(band.y1));
-            start = run.end;
+            let end = i32::from(run.end);
+            let (y0, y1) = (start.max(band.y0), end.min(band.y1));
+            start = end;
             if y0 >= y1 {
                 continue;
             }
@@ -333,6 +336,11 @@ fn color_ramp(plane: [Vec3; 3], ends: [(i32, f32); 2]) -> ([i32; 3], [i32; 3]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_piece_fits_in_128_bytes() {
+        assert!(std::mem::size_of::<BladePiece>() <= 128);
+    }
 
     fn vertex(x: f32, y: f32, inv_w: f32) -> SpanVertex {
         SpanVertex {

@@ -49,10 +49,11 @@ impl Default for FrameScene<'_> {
 /// What one frame sent to the rasterizer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FrameStats {
-    /// Screen batches (visible terrain patches, mesh parts, groups of blades).
+    /// Screen batches (visible terrain patches, mesh parts; grass is one layer
+    /// beside them).
     pub batches: usize,
     /// Triangles set up after culling and clipping: those covering at least one
-    /// pixel centre.
+    /// pixel centre (grass: blade pieces, a quad or a tip each).
     pub triangles: usize,
 }
 
