@@ -122,11 +122,9 @@ fn first_centre(v: f32) -> i32 {
     t + i32::from((t as f32) < u)
 }
 
-/// The first pixel column whose centre is at or after fixed-point `x`.
-#[inline]
-fn first_column(x: i64) -> i64 {
-    (x - ONE / 2 + ONE - 1) >> FRAC_BITS
-}
+/// Added to a fixed-point edge position so that shifting out the fraction
+/// gives the first pixel column whose centre is at or after it.
+const COLUMN_BIAS: i64 = ONE / 2 - 1;
 
 /// Twice the signed area of triangle `a b c` (positive: clockwise on a y-down screen).
 #[inline]
@@ -254,11 +252,25 @@ impl BladePiece {
         )
     }
 
+    /// Writes pixel `k` (of the band's colour buffer, in pixels) of row `y`
+    /// in the piece's colour. Out of line: in a dense meadow drawn front to
+    /// back few depth tests pass, and the row loop keeps its registers.
+    #[cold]
+    #[inline(never)]
+    fn write_color(&self, color: &mut [u8], k: usize, y: i32) {
+        let dy = y - self.first_row;
+        let channel = |c: usize| ((self.color[c] + dy * self.color_step[c]) >> COLOR_BITS) as u8;
+        color[4 * k..4 * k + 4].copy_from_slice(&[channel(0), channel(1), channel(2), 255]);
+    }
+
     /// Draws the piece's rows inside the band: depth test `1/w` greater than
     /// stored, one colour per row.
+    ///
+    /// The band's rows are clipped once per run; a row then costs two edge
+    /// steps, two shifts and clamps, one depth start and a compare per pixel.
     #[inline]
     pub fn draw(&self, band: &mut Band<'_>) {
-        let width = i64::from(band.width);
+        let width = band.width as usize;
         let [d0, d_dx, d_dy] = self.depth;
         let mut start = self.first_row;
         for run in &self.runs[..self.run_count as usize] {
@@ -269,43 +281,34 @@ impl BladePiece {
                 continue;
             }
             let (left, right) = (
-                self.edges[run.left as usize],
-                self.edges[run.right as usize],
+                &self.edges[run.left as usize],
+                &self.edges[run.right as usize],
             );
-            let (mut lx, mut rx) = (left.at(y0), right.at(y0));
-            let rgb_step = self.color_step;
-            let mut rgb = [0, 1, 2].map(|k| self.color[k] + (y0 - self.first_row) * rgb_step[k]);
+            // Biased so that a shift gives the first column at or after the edge.
+            let (mut lx, mut rx) = (left.at(y0) + COLUMN_BIAS, right.at(y0) + COLUMN_BIAS);
             // `1/w` at the row's left screen edge, stepped down the rows.
             let mut row_depth = d0 + d_dy * (y0 as f32 + 0.5) + d_dx * 0.5;
-            let mut row_start = (y0 - band.y0) as usize * width as usize;
-            for _ in y0..y1 {
-                let x0 = first_column(lx).max(0);
-                let x1 = first_column(rx).min(width);
+            let mut row_start = (y0 - band.y0) as usize * width;
+            for y in y0..y1 {
+                let x0 = (lx >> FRAC_BITS).max(0);
+                let x1 = (rx >> FRAC_BITS).min(width as i64);
                 if x0 < x1 {
-                    let rgba = [
-                        (rgb[0] >> COLOR_BITS) as u8,
-                        (rgb[1] >> COLOR_BITS) as u8,
-                        (rgb[2] >> COLOR_BITS) as u8,
-                        255,
-                    ];
+                    // From `i64`: a single conversion instruction, unlike `usize`.
                     let mut depth = row_depth + d_dx * x0 as f32;
                     let first = row_start + x0 as usize;
                     let stored = &mut band.depth[first..row_start + x1 as usize];
                     for (k, stored) in (first..).zip(stored) {
                         if depth > *stored {
                             *stored = depth;
-                            band.color[4 * k..4 * k + 4].copy_from_slice(&rgba);
+                            self.write_color(band.color, k, y);
                         }
                         depth += d_dx;
                     }
                 }
                 lx += left.step;
                 rx += right.step;
-                for (c, s) in rgb.iter_mut().zip(rgb_step) {
-                    *c += s;
-                }
                 row_depth += d_dy;
-                row_start += width as usize;
+                row_start += width;
             }
         }
     }
