@@ -13,6 +13,9 @@ use super::shading::{Lighting, encode_display};
 
 /// Blades per group (the unit of parallel set-up work).
 const BLADES_PER_BATCH: usize = 1024;
+/// Bits of a binned piece index that number the piece within its group (at
+/// most two pieces per blade).
+const GROUP_BITS: u32 = (2 * BLADES_PER_BATCH).next_power_of_two().trailing_zeros();
 
 /// One grass blade: a curve through three points, tapering from `width` at the
 /// root to a point at the tip.
@@ -83,13 +86,16 @@ fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<(u32, f32)> {
 pub(crate) struct GrassLayer {
     /// Clipped blades, through the triangle pipeline.
     clipped: ScreenBatch,
-    /// Each blade's lower quad then its tip, nearest blade first.
-    pieces: Vec<BladePiece>,
+    /// Each blade's lower quad then its tip, nearest blade first, as set up
+    /// by each group of blades (kept apart: concatenating them would copy
+    /// megabytes per frame).
+    pieces: Vec<Vec<BladePiece>>,
     /// First band any piece touches.
     first_band: i32,
     /// `bins[k]..bins[k + 1]` indexes `binned` for band `first_band + k`.
     bins: Vec<u32>,
-    /// Piece indices of each band, in drawing order.
+    /// Piece indices of each band, in drawing order: group index above
+    /// [`GROUP_BITS`] bits, index within the group below.
     binned: Vec<u32>,
 }
 
@@ -130,7 +136,7 @@ impl GrassLayer {
         let mut clipped_verts = Vec::new();
         let mut clipped_tris = Vec::new();
         for group in groups {
-            layer.pieces.extend(group.pieces);
+            layer.pieces.push(group.pieces);
             let base = clipped_verts.len() as u32;
             clipped_verts.extend(group.clipped_verts);
             clipped_tris.extend(group.clipped_tris.iter().map(|t| t.map(|v| v + base)));
@@ -149,11 +155,16 @@ impl GrassLayer {
 
     /// Sorts the pieces into per-band lists (counting sort, order kept).
     fn bin(&mut self) {
-        let rows: Vec<(i32, i32)> = self.pieces.iter().map(BladePiece::rows).collect();
-        let Some(first) = rows.iter().map(|r| r.0).min() else {
+        let rows: Vec<(u32, (i32, i32))> = (self.pieces.iter().enumerate())
+            .flat_map(|(g, group)| {
+                (group.iter().enumerate())
+                    .map(move |(k, p)| (((g as u32) << GROUP_BITS) | k as u32, p.rows()))
+            })
+            .collect();
+        let Some(first) = rows.iter().map(|r| r.1.0).min() else {
             return;
         };
-        let last = rows.iter().map(|r| r.1).max().unwrap_or(first);
+        let last = rows.iter().map(|r| r.1.1).max().unwrap_or(first);
         self.first_band = first / BAND_ROWS;
         let bands = (last / BAND_ROWS - self.first_band + 1) as usize;
         let band_range = |(y0, y1): (i32, i32)| {
@@ -161,7 +172,7 @@ impl GrassLayer {
                 ..=(y1 / BAND_ROWS - self.first_band) as usize
         };
         let mut counts = vec![0u32; bands + 1];
-        for &r in &rows {
+        for &(_, r) in &rows {
             for b in band_range(r) {
                 counts[b + 1] += 1;
             }
@@ -171,9 +182,9 @@ impl GrassLayer {
         }
         let mut fill = counts.clone();
         self.binned = vec![0; counts[bands] as usize];
-        for (p, &r) in rows.iter().enumerate() {
+        for &(p, r) in &rows {
             for b in band_range(r) {
-                self.binned[fill[b] as usize] = p as u32;
+                self.binned[fill[b] as usize] = p;
                 fill[b] += 1;
             }
         }
@@ -182,7 +193,12 @@ impl GrassLayer {
 
     /// Blade pieces plus clipped triangles set up.
     pub fn len(&self) -> usize {
-        self.pieces.len() + self.clipped.len()
+        self.piece_count() + self.clipped.len()
+    }
+
+    /// Blade pieces set up.
+    fn piece_count(&self) -> usize {
+        self.pieces.iter().map(Vec::len).sum()
     }
 
     /// Draws the grass touching band `band` (of [`BAND_ROWS`] rows): clipped
@@ -195,7 +211,8 @@ impl GrassLayer {
         }
         let k = k as usize;
         for &p in &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize] {
-            self.pieces[p as usize].draw(target);
+            let group = &self.pieces[(p >> GROUP_BITS) as usize];
+            group[(p & ((1 << GROUP_BITS) - 1)) as usize].draw(target);
         }
     }
 }
@@ -365,9 +382,9 @@ mod tests {
             "the blade around the eye is clipped"
         );
         // The row ahead is on screen: a quad and a tip per blade at most.
-        assert!(!layer.pieces.is_empty());
-        assert!(layer.pieces.len() > blades.len() / 2);
-        assert!(layer.pieces.len() <= 2 * (blades.len() - 1));
-        assert_eq!(layer.len(), layer.pieces.len() + layer.clipped.len());
+        let pieces = layer.piece_count();
+        assert!(pieces > blades.len() / 2);
+        assert!(pieces <= 2 * (blades.len() - 1));
+        assert_eq!(layer.len(), pieces + layer.clipped.len());
     }
 }
