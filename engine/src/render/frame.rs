@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::Camera;
 use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
 use super::error::RenderError;
-use super::grass::{GrassBlade, blade_batches};
+use super::grass::{GrassBlade, GrassLayer};
 use super::mesh::MeshInstance;
 use super::raster::{Band, to_u8};
 use super::shading::Lighting;
@@ -49,10 +49,11 @@ impl Default for FrameScene<'_> {
 /// What one frame sent to the rasterizer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FrameStats {
-    /// Screen batches (visible terrain patches, mesh parts, groups of blades).
+    /// Screen batches (visible terrain patches, mesh parts; grass is one layer
+    /// beside them).
     pub batches: usize,
     /// Triangles set up after culling and clipping: those covering at least one
-    /// pixel centre.
+    /// pixel centre (grass: blade pieces, a quad or a tip each).
     pub triangles: usize,
 }
 
@@ -143,9 +144,11 @@ impl Renderer {
             height: self.height as i32,
         };
         let batches = self.project(scene, camera, vp);
+        // Grass: its own pass per band, after terrain and meshes.
+        let grass = GrassLayer::build(scene.blades, camera, &scene.lighting, vp);
         let stats = FrameStats {
             batches: batches.len(),
-            triangles: batches.iter().map(ScreenBatch::len).sum(),
+            triangles: batches.iter().map(ScreenBatch::len).sum::<usize>() + grass.len(),
         };
         let (w, h) = (self.width as usize, self.height as usize);
         let mut color = vec![0u8; w * h * 4];
@@ -178,13 +181,14 @@ impl Renderer {
                 for batch in &batches {
                     batch.draw_band(b as i32, &mut band);
                 }
+                grass.draw_band(b as i32, &mut band);
             });
         let image = RgbaImage::from_raw(self.width, self.height, color)
             .expect("the colour buffer has width * height * 4 bytes");
         (image, stats)
     }
 
-    /// All screen batches in drawing order: terrain, meshes, grass.
+    /// All screen batches in drawing order: terrain, meshes (grass is drawn after them).
     fn project(&self, scene: &FrameScene<'_>, camera: &Camera, vp: Viewport) -> Vec<ScreenBatch> {
         let lighting = &scene.lighting;
         let mut batches = match scene.terrain {
@@ -197,7 +201,6 @@ impl Renderer {
             .map(|m| m.batches(camera, lighting, vp))
             .collect();
         batches.extend(meshes.into_iter().flatten());
-        batches.extend(blade_batches(scene.blades, camera, lighting, vp));
         batches
     }
 

@@ -1,15 +1,21 @@
-//! Grass blades drawn as thin tapered triangle strips that face the camera.
+//! Grass blades: thin tapered strips facing the camera, drawn nearest first by
+//! the span rasterizer of [`super::blade_span`].
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
-use super::clip::ClipVertex;
+use super::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::blade_span::{BladePiece, SpanVertex};
+use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, outcode};
+use super::raster::Band;
 use super::shading::{Lighting, encode_display};
 
-/// Blades per screen batch (the unit of parallel vertex work).
+/// Blades per group (the unit of parallel set-up work).
 const BLADES_PER_BATCH: usize = 1024;
+/// Bits of a binned piece index that number the piece within its group (at
+/// most two pieces per blade).
+const GROUP_BITS: u32 = (2 * BLADES_PER_BATCH).next_power_of_two().trailing_zeros();
 
 /// One grass blade: a curve through three points, tapering from `width` at the
 /// root to a point at the tip.
@@ -73,57 +79,223 @@ fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<(u32, f32)> {
     keys.into_iter().map(|(key, w)| (key as u32, w)).collect()
 }
 
-/// Projects the drawn blades, nearest first, into screen batches of [`BLADES_PER_BATCH`].
-pub(crate) fn blade_batches(
-    blades: &[GrassBlade],
-    camera: &Camera,
-    lighting: &Lighting,
-    vp: Viewport,
-) -> Vec<ScreenBatch> {
-    let view_proj = camera.view_proj();
-    drawn_blades(blades, camera)
-        .par_chunks(BLADES_PER_BATCH)
-        .map(|chunk| {
-            let mut verts = Vec::with_capacity(chunk.len() * 5);
-            let mut tris = Vec::with_capacity(chunk.len() * 3);
-            for &(k, width) in chunk {
-                let blade = &blades[k as usize];
-                let base = verts.len() as u32;
-                let axis = blade.tip - blade.root;
-                let side = axis
-                    .cross(camera.eye - blade.root)
-                    .try_normalize()
-                    .unwrap_or(Vec3::X)
-                    * (0.5 * width);
-                // Darker at the root (self-shadowing in the sward), lit at the tip.
-                let low = encode_display(lighting.radiance(blade.color, Vec3::Y, 0.45, 0.35));
-                let high = encode_display(lighting.radiance(blade.color, Vec3::Y, 1.0, 0.9));
-                let mid_color = low.lerp(high, 0.6);
-                let points = [
-                    (blade.root - side, low),
-                    (blade.root + side, low),
-                    (blade.mid - side * 0.6, mid_color),
-                    (blade.mid + side * 0.6, mid_color),
-                    (blade.tip, high),
-                ];
-                for (p, c) in points {
-                    verts.push(ClipVertex {
-                        pos: to_clip(&view_proj, p),
-                        color: lighting.apply_fog(c, (p - camera.eye).length()),
-                    });
+/// The grass of one frame, set up for the bands: the blades' pieces binned by
+/// bands of rows, nearest blade first, and, drawn before them, the few blades
+/// that cross the near plane or leave the guard band, clipped as triangles.
+#[derive(Debug, Default)]
+pub(crate) struct GrassLayer {
+    /// Clipped blades, through the triangle pipeline.
+    clipped: ScreenBatch,
+    /// Each blade's lower quad then its tip, nearest blade first, as set up
+    /// by each group of blades (kept apart: concatenating them would copy
+    /// megabytes per frame).
+    pieces: Vec<Vec<BladePiece>>,
+    /// First band any piece touches.
+    first_band: i32,
+    /// `bins[k]..bins[k + 1]` indexes `binned` for band `first_band + k`.
+    bins: Vec<u32>,
+    /// Piece indices of each band, in drawing order: group index above
+    /// [`GROUP_BITS`] bits, index within the group below.
+    binned: Vec<u32>,
+}
+
+/// What one group of blades turns into.
+#[derive(Default)]
+struct BladeGroup {
+    pieces: Vec<BladePiece>,
+    clipped_verts: Vec<ClipVertex>,
+    clipped_tris: Vec<[u32; 3]>,
+}
+
+impl GrassLayer {
+    /// Projects the drawn blades (in parallel groups of [`BLADES_PER_BATCH`]),
+    /// sets up their pieces and bins them by bands.
+    pub fn build(
+        blades: &[GrassBlade],
+        camera: &Camera,
+        lighting: &Lighting,
+        vp: Viewport,
+    ) -> GrassLayer {
+        let view_proj = camera.view_proj();
+        let groups: Vec<BladeGroup> = drawn_blades(blades, camera)
+            .par_chunks(BLADES_PER_BATCH)
+            .map(|chunk| {
+                let mut group = BladeGroup {
+                    pieces: Vec::with_capacity(2 * chunk.len()),
+                    ..BladeGroup::default()
+                };
+                for &(k, width) in chunk {
+                    let verts =
+                        blade_vertices(&blades[k as usize], width, camera, &view_proj, lighting);
+                    group.add(&verts, vp);
                 }
-                tris.extend(BLADE_TRIANGLES.iter().map(|t| t.map(|v| v + base)));
+                group
+            })
+            .collect();
+        let mut layer = GrassLayer::default();
+        let mut clipped_verts = Vec::new();
+        let mut clipped_tris = Vec::new();
+        for group in groups {
+            layer.pieces.push(group.pieces);
+            let base = clipped_verts.len() as u32;
+            clipped_verts.extend(group.clipped_verts);
+            clipped_tris.extend(group.clipped_tris.iter().map(|t| t.map(|v| v + base)));
+        }
+        layer.clipped = ScreenBatch::build(
+            &clipped_verts,
+            &[TriangleGroup {
+                triangles: &clipped_tris,
+                cull: CullMode::None,
+            }],
+            vp,
+        );
+        layer.bin();
+        layer
+    }
+
+    /// Sorts the pieces into per-band lists (counting sort, order kept).
+    fn bin(&mut self) {
+        let rows: Vec<(u32, (i32, i32))> = (self.pieces.iter().enumerate())
+            .flat_map(|(g, group)| {
+                (group.iter().enumerate())
+                    .map(move |(k, p)| (((g as u32) << GROUP_BITS) | k as u32, p.rows()))
+            })
+            .collect();
+        let Some(first) = rows.iter().map(|r| r.1.0).min() else {
+            return;
+        };
+        let last = rows.iter().map(|r| r.1.1).max().unwrap_or(first);
+        self.first_band = first / BAND_ROWS;
+        let bands = (last / BAND_ROWS - self.first_band + 1) as usize;
+        let band_range = |(y0, y1): (i32, i32)| {
+            (y0 / BAND_ROWS - self.first_band) as usize
+                ..=(y1 / BAND_ROWS - self.first_band) as usize
+        };
+        let mut counts = vec![0u32; bands + 1];
+        for &(_, r) in &rows {
+            for b in band_range(r) {
+                counts[b + 1] += 1;
             }
-            ScreenBatch::build(
-                &verts,
-                &[TriangleGroup {
-                    triangles: &tris,
-                    cull: CullMode::None,
-                }],
-                vp,
-            )
-        })
-        .collect()
+        }
+        for b in 0..bands {
+            counts[b + 1] += counts[b];
+        }
+        let mut fill = counts.clone();
+        self.binned = vec![0; counts[bands] as usize];
+        for &(p, r) in &rows {
+            for b in band_range(r) {
+                self.binned[fill[b] as usize] = p;
+                fill[b] += 1;
+            }
+        }
+        self.bins = counts;
+    }
+
+    /// Blade pieces plus clipped triangles set up.
+    pub fn len(&self) -> usize {
+        self.piece_count() + self.clipped.len()
+    }
+
+    /// Blade pieces set up.
+    fn piece_count(&self) -> usize {
+        self.pieces.iter().map(Vec::len).sum()
+    }
+
+    /// Draws the grass touching band `band` (of [`BAND_ROWS`] rows): clipped
+    /// blades, then the pieces, nearest blade first.
+    pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
+        self.clipped.draw_band(band, target);
+        let k = band - self.first_band;
+        if k < 0 || k as usize + 1 >= self.bins.len() {
+            return;
+        }
+        let k = k as usize;
+        for &p in &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize] {
+            let group = &self.pieces[(p >> GROUP_BITS) as usize];
+            group[(p & ((1 << GROUP_BITS) - 1)) as usize].draw(target);
+        }
+    }
+}
+
+impl BladeGroup {
+    /// Adds one blade's five vertices: culled when outside one frustum plane,
+    /// clipped as triangles when crossing the near plane or the guard band,
+    /// otherwise set up as two pieces.
+    fn add(&mut self, verts: &[ClipVertex; 5], vp: Viewport) {
+        let (mut all, mut any) = (OUT_FRUSTUM, 0);
+        for v in verts {
+            let code = outcode(v.pos);
+            all &= code;
+            any |= code;
+        }
+        if all != 0 {
+            return;
+        }
+        if any & (OUT_NEAR | OUT_GUARD) != 0 {
+            let base = self.clipped_verts.len() as u32;
+            self.clipped_verts.extend_from_slice(verts);
+            self.clipped_tris
+                .extend(BLADE_TRIANGLES.iter().map(|t| t.map(|v| v + base)));
+            return;
+        }
+        let (half_w, half_h) = (0.5 * vp.width as f32, 0.5 * vp.height as f32);
+        let project = |v: &ClipVertex| {
+            let inv_w = 1.0 / v.pos.w;
+            SpanVertex {
+                x: (v.pos.x * inv_w + 1.0) * half_w,
+                y: (1.0 - v.pos.y * inv_w) * half_h,
+                inv_w,
+                color: v.color,
+            }
+        };
+        let s = [
+            project(&verts[0]),
+            project(&verts[1]),
+            project(&verts[2]),
+            project(&verts[3]),
+            project(&verts[4]),
+        ];
+        let quad = [s[0], s[1], s[3], s[2]];
+        let tip = [s[2], s[3], s[4]];
+        self.pieces.extend(
+            BladePiece::setup(&quad, vp.height)
+                .into_iter()
+                .chain(BladePiece::setup(&tip, vp.height)),
+        );
+    }
+}
+
+/// A blade's five clip-space vertices with their colours: the root pair, the
+/// middle pair (0.6 of the root width) and the tip, facing the camera, darker
+/// at the root (self-shadowing in the sward) and lit at the tip, fogged.
+fn blade_vertices(
+    blade: &GrassBlade,
+    width: f32,
+    camera: &Camera,
+    view_proj: &Mat4,
+    lighting: &Lighting,
+) -> [ClipVertex; 5] {
+    let axis = blade.tip - blade.root;
+    let side = axis
+        .cross(camera.eye - blade.root)
+        .try_normalize()
+        .unwrap_or(Vec3::X)
+        * (0.5 * width);
+    let low = encode_display(lighting.radiance(blade.color, Vec3::Y, 0.45, 0.35));
+    let high = encode_display(lighting.radiance(blade.color, Vec3::Y, 1.0, 0.9));
+    let mid_color = low.lerp(high, 0.6);
+    let vertex = |p: Vec3, c: Vec3| ClipVertex {
+        pos: to_clip(view_proj, p),
+        color: lighting.apply_fog(c, (p - camera.eye).length()),
+    };
+    // Written out: `[T; 5]::map` is not reliably inlined.
+    [
+        vertex(blade.root - side, low),
+        vertex(blade.root + side, low),
+        vertex(blade.mid - side * 0.6, mid_color),
+        vertex(blade.mid + side * 0.6, mid_color),
+        vertex(blade.tip, high),
+    ]
 }
 
 #[cfg(test)]
@@ -174,5 +346,45 @@ mod tests {
             "{total} vs {original}"
         );
         assert!(far.iter().all(|&(_, w)| w > 0.01));
+    }
+
+    #[test]
+    fn blades_through_the_near_plane_are_clipped_the_rest_become_pieces() {
+        // Far ahead, a row of upright blades; right at the eye, one blade
+        // leaning away from it, its root 2 cm ahead (inside the near distance).
+        let mut blades: Vec<GrassBlade> = row_of_blades(40)
+            .into_iter()
+            .map(|b| GrassBlade {
+                root: b.root + Vec3::new(-0.02, -0.1, 1.0),
+                mid: b.mid + Vec3::new(-0.02, -0.1, 1.0),
+                tip: b.tip + Vec3::new(-0.02, -0.1, 1.0),
+                ..b
+            })
+            .collect();
+        let root = Vec3::new(0.0, -0.05, 0.02);
+        blades.push(GrassBlade {
+            root,
+            mid: root + Vec3::new(0.0, 0.05, 0.15),
+            tip: root + Vec3::new(0.0, 0.08, 0.3),
+            width: 0.01,
+            color: Vec3::new(0.2, 0.5, 0.1),
+        });
+        let camera = Camera::perspective(0.9, 160, 100, 0.05, 50.0)
+            .unwrap()
+            .look_at(Vec3::ZERO, Vec3::Z, Vec3::Y);
+        let vp = Viewport {
+            width: 160,
+            height: 100,
+        };
+        let layer = GrassLayer::build(&blades, &camera, &Lighting::default(), vp);
+        assert!(
+            layer.clipped.len() > 0,
+            "the blade around the eye is clipped"
+        );
+        // The row ahead is on screen: a quad and a tip per blade at most.
+        let pieces = layer.piece_count();
+        assert!(pieces > blades.len() / 2);
+        assert!(pieces <= 2 * (blades.len() - 1));
+        assert_eq!(layer.len(), pieces + layer.clipped.len());
     }
 }
