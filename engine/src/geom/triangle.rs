@@ -195,16 +195,13 @@ impl TriPacket {
             & !(u + v).cmpgt(Vec4::ONE + slack)
             & t.cmpge(Vec4::ZERO)
             & t.cmple(Vec4::splat(max_t));
-        let mut mask = hit.bitmask();
-        let mut best: Option<(f32, usize)> = None;
-        while mask != 0 {
-            let lane = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            if best.is_none_or(|(bt, _)| t[lane] < bt) {
-                best = Some((t[lane], lane));
-            }
-        }
-        best
+        // The nearest hit lane (the lowest among equally near ones).
+        let hit_t = Vec4::select(hit, t, Vec4::INFINITY);
+        let nearest = hit_t.min_element();
+        let lanes = hit & hit_t.cmpeq(Vec4::splat(nearest));
+        lanes
+            .any()
+            .then(|| (nearest, lanes.bitmask().trailing_zeros() as usize))
     }
 }
 

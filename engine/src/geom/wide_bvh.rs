@@ -73,13 +73,11 @@ struct Visit {
 }
 
 impl Visit {
-    /// The child in the lowest lane of `hits`, removed from `hits`.
+    /// Child `lane` of `node`, entered at `entry`.
     #[inline(always)]
-    fn child(node: &Node, entry: &[f32; WIDTH], hits: &mut u32) -> Visit {
-        let lane = hits.trailing_zeros() as usize % WIDTH;
-        *hits &= *hits - 1;
+    fn child(node: &Node, lane: usize, entry: f32) -> Visit {
         Visit {
-            entry: entry[lane],
+            entry,
             first: node.first[lane],
             count: node.count[lane],
         }
@@ -177,9 +175,10 @@ impl WideBvh {
     }
 
     /// Stack entries one walk may need: each level leaves at most
-    /// `WIDTH - 1` siblings on the stack.
+    /// `WIDTH - 1` siblings on the stack, and a node writes all `WIDTH`
+    /// lanes past the top.
     fn stack_size(&self) -> usize {
-        (WIDTH - 1) * self.depth + 1
+        (WIDTH - 1) * self.depth + WIDTH
     }
 
     /// The closest (or, with `ANY`, the first found) leaf item hit by the ray
@@ -222,14 +221,14 @@ impl WideBvh {
         found: impl FnMut(usize, Option<(f32, u32)>),
     ) {
         if prefetch::available() {
-            self.interleave::<ANY, true>(rays, max_t, items, found);
+            self.interleave::<ANY, true, BATCH_LANES>(rays, max_t, items, found);
         } else {
-            self.interleave::<ANY, false>(rays, max_t, items, found);
+            self.interleave::<ANY, false, BATCH_LANES>(rays, max_t, items, found);
         }
     }
 
-    /// [`WideBvh::traverse_many`], prefetching or not.
-    fn interleave<const ANY: bool, const PREFETCH: bool>(
+    /// [`WideBvh::traverse_many`] with `LANES` walks in flight, prefetching or not.
+    pub(crate) fn interleave<const ANY: bool, const PREFETCH: bool, const LANES: usize>(
         &self,
         rays: &[Ray],
         max_t: f32,
@@ -242,16 +241,16 @@ impl WideBvh {
         }
         let size = self.stack_size();
         let mut stack = STACK.take();
-        if stack.len() < BATCH_LANES * size {
-            stack.resize(BATCH_LANES * size, Visit::default());
+        if stack.len() < LANES * size {
+            stack.resize(LANES * size, Visit::default());
         }
         let start = |k: usize| {
             let ray = &rays[k];
             (k, Walk::new(ray.origin().into(), ray.dir().into(), max_t))
         };
-        let mut lanes: [Option<(usize, Walk)>; BATCH_LANES] =
+        let mut lanes: [Option<(usize, Walk)>; LANES] =
             std::array::from_fn(|k| (k < rays.len()).then(|| start(k)));
-        let mut next_ray = BATCH_LANES.min(rays.len());
+        let mut next_ray = LANES.min(rays.len());
         let mut busy = true;
         while busy {
             busy = false;
@@ -313,9 +312,9 @@ impl WideRay {
     }
 
     /// Entry distances of the ray into the four child boxes of `node`, and
-    /// the lane bit mask of those it meets within `0..=t_max`.
+    /// which of them it meets within `0..=t_max`.
     #[inline(always)]
-    fn enter(&self, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
+    fn enter(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
         let origin = [self.origin.x, self.origin.y, self.origin.z];
         let mut t_in = Vec4::ZERO;
         let mut t_out = Vec4::splat(t_max);
@@ -328,8 +327,7 @@ impl WideRay {
             t_in = t_in.max((near - *o) * *inv);
             t_out = t_out.min((far - *o) * *inv);
         }
-        let hits: BVec4A = t_in.cmple(t_out);
-        (t_in.to_array(), hits.bitmask())
+        (t_in, t_in.cmple(t_out))
     }
 }
 
@@ -369,21 +367,31 @@ impl Walk {
     ) -> bool {
         if self.next.count == 0 {
             let node = &bvh.nodes[self.next.first as usize];
-            let (entry, mut hits) = self.ray.enter(node, self.t_max);
-            if hits != 0 {
-                // Visit the nearest child next; stack the others.
-                let mut next = Visit::child(node, &entry, &mut hits);
-                while hits != 0 {
-                    let mut other = Visit::child(node, &entry, &mut hits);
-                    if other.entry < next.entry {
-                        std::mem::swap(&mut other, &mut next);
-                    }
-                    stack[self.top] = other;
-                    self.top += 1;
+            let (entry, hits) = self.ray.enter(node, self.t_max);
+            if hits.any() {
+                // Visit the nearest hit child next (the lowest lane among
+                // equally near ones) and stack the others, without branches:
+                // every lane is written, and the top moves past hit ones only.
+                let entered = Vec4::select(hits, entry, Vec4::INFINITY);
+                let nearest = entered.min_element();
+                let lane = entered
+                    .cmpeq(Vec4::splat(nearest))
+                    .bitmask()
+                    .trailing_zeros() as usize;
+                let others = hits.bitmask() & !(1 << lane);
+                let entry = entry.to_array();
+                let pushed: &mut [Visit; WIDTH] = (&mut stack[self.top..self.top + WIDTH])
+                    .try_into()
+                    .expect("the stack holds WIDTH entries past any reachable top");
+                let mut count = 0;
+                for (k, &t) in entry.iter().enumerate() {
+                    pushed[count % WIDTH] = Visit::child(node, k, t);
+                    count += (others >> k) as usize & 1;
                 }
-                self.next = next;
+                self.top += count;
+                self.next = Visit::child(node, lane % WIDTH, nearest);
                 if PREFETCH {
-                    bvh.prefetch(next, items);
+                    bvh.prefetch(self.next, items);
                 }
                 return false;
             }
@@ -509,10 +517,10 @@ mod tests {
         let (closest, first) = (single(false), single(true));
         assert!(closest.iter().filter(|h| h.is_some()).count() > 20);
         let mut got = vec![None; rays.len()];
-        wide.interleave::<false, true>(&rays, f32::INFINITY, &boxes, |k, h| got[k] = h);
+        wide.interleave::<false, true, 8>(&rays, f32::INFINITY, &boxes, |k, h| got[k] = h);
         assert_eq!(got, closest);
         got.fill(None);
-        wide.interleave::<false, false>(&rays, f32::INFINITY, &boxes, |k, h| got[k] = h);
+        wide.interleave::<false, false, 8>(&rays, f32::INFINITY, &boxes, |k, h| got[k] = h);
         assert_eq!(got, closest);
         got.fill(None);
         wide.traverse_many::<true>(&rays, f32::INFINITY, &boxes, |k, h| got[k] = h);
