@@ -26,8 +26,9 @@ use super::triangle::Xyz;
 /// Children per node.
 const WIDTH: usize = 4;
 
-/// Rays in flight in [`WideBvh::traverse_many`] (chosen by measurement).
-pub(crate) const BATCH_LANES: usize = 8;
+/// Rays in flight in [`WideBvh::traverse_many`] (chosen by measurement: 4
+/// was at least as fast as 8 or 16 on every workload).
+pub(crate) const BATCH_LANES: usize = 4;
 
 thread_local! {
     /// Each thread's traversal stack, reused so that a cast neither allocates
