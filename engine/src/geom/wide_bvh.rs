@@ -11,8 +11,10 @@
 //! node or one leaf. [`WideBvh::traverse`] runs one walk to its end;
 //! [`WideBvh::traverse_many`] runs [`BATCH_LANES`] walks round-robin and
 //! prefetches what each will read next, so that the cache misses of
-//! independent rays overlap instead of queueing. Both run the very same steps
-//! for a ray, so they give the same answer.
+//! independent rays overlap instead of queueing. The two stack a node's
+//! children in different orders (each the faster for its case), so they find
+//! the same closest distance, bit for bit, but where two items are hit at
+//! exactly that distance they may report different ones.
 
 use std::cell::Cell;
 
@@ -205,15 +207,16 @@ impl WideBvh {
             stack.resize(self.stack_size(), Visit::default());
         }
         let mut walk = Walk::new(origin, dir, max_t);
-        while !walk.step::<ANY, false>(self, items, &mut stack) {}
+        while !walk.step::<ANY, false, false>(self, items, &mut stack) {}
         STACK.set(stack);
         walk.best
     }
 
     /// [`WideBvh::traverse`] for each of `rays`, [`BATCH_LANES`] at a time
     /// interleaved step by step, with prefetching where the CPU has it.
-    /// `found(k, hit)` receives ray `k`'s answer, which is exactly
-    /// `traverse`'s; rays finish out of order.
+    /// `found(k, hit)` receives ray `k`'s answer: `traverse`'s distance, bit
+    /// for bit (the item may be another one hit at exactly that distance);
+    /// rays finish out of order.
     pub(crate) fn traverse_many<const ANY: bool>(
         &self,
         rays: &[Ray],
@@ -259,7 +262,7 @@ impl WideBvh {
                 let Some((k, walk)) = slot else { continue };
                 busy = true;
                 let lane_stack = &mut stack[lane * size..(lane + 1) * size];
-                if walk.step::<ANY, PREFETCH>(self, items, lane_stack) {
+                if walk.step::<ANY, PREFETCH, true>(self, items, lane_stack) {
                     found(*k, walk.best);
                     *slot = (next_ray < rays.len()).then(|| start(next_ray));
                     next_ray += 1;
@@ -354,13 +357,14 @@ impl Walk {
         }
     }
 
-    /// Reads the next node (stacking the farther hit children) or leaf, then
-    /// chooses what to read after it (and with `PREFETCH` hints it to the
-    /// CPU). Returns true when the walk is over; `best` is then its answer.
+    /// Reads the next node (stacking the farther hit children, with
+    /// [`Walk::push_branchless`] or else [`Walk::push_sorting`]) or leaf,
+    /// then chooses what to read after it (and with `PREFETCH` hints it to
+    /// the CPU). Returns true when the walk is over; `best` is then its answer.
     /// `stack` must hold [`WideBvh::stack_size`] entries and be the same at
     /// every step.
     #[inline(always)]
-    fn step<const ANY: bool, const PREFETCH: bool>(
+    fn step<const ANY: bool, const PREFETCH: bool, const BRANCHLESS: bool>(
         &mut self,
         bvh: &WideBvh,
         items: &impl LeafItems,
@@ -370,27 +374,11 @@ impl Walk {
             let node = &bvh.nodes[self.next.first as usize];
             let (entry, hits) = self.ray.enter(node, self.t_max);
             if hits.any() {
-                // Visit the nearest hit child next (the lowest lane among
-                // equally near ones) and stack the others, without branches:
-                // every lane is written, and the top moves past hit ones only.
-                let entered = Vec4::select(hits, entry, Vec4::INFINITY);
-                let nearest = entered.min_element();
-                let lane = entered
-                    .cmpeq(Vec4::splat(nearest))
-                    .bitmask()
-                    .trailing_zeros() as usize;
-                let others = hits.bitmask() & !(1 << lane);
-                let entry = entry.to_array();
-                let pushed: &mut [Visit; WIDTH] = (&mut stack[self.top..self.top + WIDTH])
-                    .try_into()
-                    .expect("the stack holds WIDTH entries past any reachable top");
-                let mut count = 0;
-                for (k, &t) in entry.iter().enumerate() {
-                    pushed[count % WIDTH] = Visit::child(node, k, t);
-                    count += (others >> k) as usize & 1;
-                }
-                self.top += count;
-                self.next = Visit::child(node, lane % WIDTH, nearest);
+                self.next = if BRANCHLESS {
+                    Walk::push_branchless(node, entry, hits, stack, &mut self.top)
+                } else {
+                    Walk::push_sorting(node, entry, hits, stack, &mut self.top)
+                };
                 if PREFETCH {
                     bvh.prefetch(self.next, items);
                 }
@@ -419,6 +407,71 @@ impl Walk {
             }
         }
         true
+    }
+
+    /// Stacks the hit children of `node` but the nearest, which it returns,
+    /// by compare and swap in lane order: the nearer of each pair goes on,
+    /// so the stack top is often the second nearest. Cheapest when the
+    /// branches predict well, as for one ray after another.
+    #[inline(always)]
+    fn push_sorting(
+        node: &Node,
+        entry: Vec4,
+        hits: BVec4A,
+        stack: &mut [Visit],
+        top: &mut usize,
+    ) -> Visit {
+        let entry = entry.to_array();
+        let mut hits = hits.bitmask();
+        let mut take = || {
+            let lane = hits.trailing_zeros() as usize % WIDTH;
+            hits &= hits - 1;
+            (Visit::child(node, lane, entry[lane]), hits != 0)
+        };
+        let (mut next, mut more) = take();
+        while more {
+            let (mut other, left) = take();
+            if other.entry < next.entry {
+                std::mem::swap(&mut other, &mut next);
+            }
+            stack[*top] = other;
+            *top += 1;
+            more = left;
+        }
+        next
+    }
+
+    /// Stacks the hit children of `node` but the nearest (the lowest lane
+    /// among equally near ones), which it returns, without branches: every
+    /// lane is written past the top, which moves past the hit ones only.
+    /// Faster when walks are interleaved, as branch history then mixes
+    /// unrelated rays.
+    #[inline(always)]
+    fn push_branchless(
+        node: &Node,
+        entry: Vec4,
+        hits: BVec4A,
+        stack: &mut [Visit],
+        top: &mut usize,
+    ) -> Visit {
+        let entered = Vec4::select(hits, entry, Vec4::INFINITY);
+        let nearest = entered.min_element();
+        let lane = entered
+            .cmpeq(Vec4::splat(nearest))
+            .bitmask()
+            .trailing_zeros() as usize
+            % WIDTH;
+        let others = hits.bitmask() & !(1 << lane);
+        let pushed: &mut [Visit; WIDTH] = (&mut stack[*top..*top + WIDTH])
+            .try_into()
+            .expect("the stack holds WIDTH entries past any reachable top");
+        let mut count = 0;
+        for (k, &t) in entry.to_array().iter().enumerate() {
+            pushed[count % WIDTH] = Visit::child(node, k, t);
+            count += (others >> k) as usize & 1;
+        }
+        *top += count;
+        Visit::child(node, lane, nearest)
     }
 }
 
