@@ -1,6 +1,6 @@
 //! Ray-cast benchmarks (single thread):
 //! vertical foot rays on 512² and 4096² grids, rays against a 100k-triangle
-//! mesh (ours and obvhs's own CwBvh path, in CPU time), arbitrary rays on the
+//! mesh (ours one by one and batched, and obvhs's own CwBvh path, in CPU time), arbitrary rays on the
 //! grid per tile size, and the refit after a 40x40-cell edit.
 //!
 //! `cargo bench -p engine --bench raycast`
@@ -210,6 +210,15 @@ fn mesh(c: &mut Criterion) {
                     .filter_map(|ray| ours.cast(ray, f32::INFINITY))
                     .map(|h| h.distance)
                     .sum()
+            })
+        });
+        // The batch API: the same rays through `cast_many` (interleaved walks
+        // with prefetching), same answers.
+        let mut hits = Vec::with_capacity(rays.len());
+        group.bench_function(format!("{name}/ours_batch"), |b| {
+            cpu_timed(b, || {
+                ours.cast_many(rays, f32::INFINITY, &mut hits);
+                hits.iter().flatten().map(|h| h.distance).sum()
             })
         });
         group.bench_function(format!("{name}/obvhs_cwbvh"), |b| {

@@ -9,6 +9,7 @@ mod grid_rect;
 mod grid_tiling;
 mod height_grid;
 mod mesh_bvh;
+mod prefetch;
 mod ray;
 mod ray_scene;
 mod tri_mesh;
