@@ -49,6 +49,11 @@ impl BladeColumns {
         }
     }
 
+    /// The lowest upright middle Y (infinite for no blades).
+    pub(crate) fn lowest_mid(&self) -> f32 {
+        self.mid_y.iter().copied().fold(f32::INFINITY, f32::min)
+    }
+
     /// Root X, root Z, upright middle Y and upright tip Y of blade `i`.
     #[inline]
     pub(crate) fn upright(&self, i: usize) -> [f32; 4] {

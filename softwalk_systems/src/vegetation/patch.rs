@@ -71,6 +71,8 @@ pub struct GrassPatch {
     grid: BladeGrid,
     /// Lowest root and highest tip, to skip feet far above or below.
     y_range: (f32, f32),
+    /// Lowest upright middle point (as the candidate test computes it).
+    lowest_mid: f32,
     clock: f64,
     active_count: usize,
     /// Recovering blades with the time they may settle (lazy: re-queued when pushed again).
@@ -173,16 +175,19 @@ impl GrassPatch {
             .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), b| {
                 (lo.min(b.root.y), hi.max(b.root.y + b.height))
             });
+        let columns = BladeColumns::new(&blades);
+        let lowest_mid = columns.lowest_mid();
         Ok(Self {
             area,
             settings,
             states: StateColumns::new(blades.len()),
             field_bends: vec![Bend::ZERO; blades.len()],
             field_sizes: vec![0.0; blades.len()],
-            columns: BladeColumns::new(&blades),
+            columns,
             blades,
             grid,
             y_range,
+            lowest_mid,
             clock: 0.0,
             active_count: 0,
             retire_queue: VecDeque::new(),
@@ -379,7 +384,9 @@ impl GrassPatch {
         // Each marker's own grid ranges: the blades it can reach at all.
         marker_ranges.clear();
         for (k, m) in markers.iter().enumerate() {
-            let near = self.grid.ranges_near(m.at.xz(), radius);
+            let near = self
+                .grid
+                .ranges_near(m.at.xz(), self.reach_xz(m.at, radius));
             marker_ranges.extend(near.filter(|r| !r.is_empty()).map(|r| (k, r)));
         }
         // The blades to visit: those of the feet (a departed foot only
@@ -405,6 +412,19 @@ impl GrassPatch {
                 .collect_reached(range.clone(), relevant, radius, reached, fresh);
         }
         ranges.iter().map(|r| r.len()).sum()
+    }
+
+    /// Horizontal distance from a foot at `p` beyond which no blade's upright
+    /// middle or tip is within `radius` of it: every middle is at least
+    /// `lowest_mid` high and every tip at most the highest tip, so a foot
+    /// below the middles (a foot on the ground in tall grass) or above the
+    /// tips reaches less far horizontally than `radius`.
+    fn reach_xz(&self, p: Vec3, radius: f32) -> f32 {
+        let dy = (self.lowest_mid - p.y).max(p.y - self.y_range.1).max(0.0);
+        // Shrunk far beyond rounding: the candidate test decides exactly
+        // which blades are reached; this only bounds where it looks.
+        let dy = dy * (1.0 - 1e-3);
+        (radius * radius - dy * dy).max(0.0).sqrt()
     }
 
     /// True when a foot at `p` can reach some blade of the patch.
@@ -621,6 +641,38 @@ mod tests {
             assert!(p.blade_points(i).iter().all(|v| v.is_finite()));
         }
         assert!(p.active_count() > 0);
+    }
+
+    /// The grid query narrowed by the foot's height still finds every blade
+    /// the field pushes, and visits fewer blades for a foot below the
+    /// middles than for one among them.
+    #[test]
+    fn feet_at_any_height_push_exactly_the_blades_the_field_reaches() {
+        let area = XzRect::new(Vec2::new(-1.0, -1.0), Vec2::new(1.0, 1.0));
+        let fresh = GrassPatch::with_height_fn(area, GrassSettings::medium(), |x, _| Some(0.1 * x))
+            .unwrap();
+        let field = fresh.settings().field;
+        let mut visited = Vec::new();
+        for y in [-0.5, -0.1, 0.0, 0.15, 0.45, 0.8, 1.1, 1.4, 1.7] {
+            let foot = Vec3::new(0.1, y, -0.05);
+            let mut p = fresh.clone();
+            let stats = p.deform_points(&[foot], 0.01);
+            let brute: Vec<usize> = (0..p.blade_count())
+                .filter(|&i| {
+                    let b = &p.blades()[i];
+                    let [mid, tip] = field.on_upright_blade(b.root, b.height, &[foot]);
+                    mid.length() + tip.length() > 0.0
+                })
+                .collect();
+            let pushed: Vec<usize> = (0..p.blade_count())
+                .filter(|&i| p.state(i).treads > 0)
+                .collect();
+            assert_eq!(pushed, brute, "foot at height {y}");
+            assert_eq!(stats.pushed, brute.len());
+            visited.push(stats.visited);
+        }
+        assert!(visited[2] < visited[4], "{visited:?}");
+        assert!(visited[8] < visited[6], "{visited:?}");
     }
 
     #[test]
