@@ -70,13 +70,14 @@ fn walk(c: &mut Criterion) {
             let mut grass = patch(blades, settings);
             let mut step = 0u32;
             let label = format!("{name}/{}k_blades", blades as u32 / 1000);
-            let (mut pushed, mut reused, mut steps) = (0usize, 0usize, 0usize);
+            let (mut visited, mut pushed, mut reused, mut steps) = (0usize, 0usize, 0usize, 0usize);
             group.bench_function(label, |b| {
                 b.iter_custom(|iters| {
                     cpu_timed(iters, || {
                         step += 1;
                         let feet = feet_at(step as f32 * DT);
                         let stats = black_box(grass.deform_points(black_box(&feet), DT));
+                        visited += stats.visited;
                         pushed += stats.pushed;
                         reused += stats.reused;
                         steps += 1;
@@ -85,9 +86,10 @@ fn walk(c: &mut Criterion) {
             });
             let per_step = |n: usize| n as f64 / steps.max(1) as f64;
             println!(
-                "  {name} {}k blades: {:.0} blades pushed per step ({:.0} of them with the field of feet \
+                "  {name} {}k blades: {:.0} blades visited and {:.0} pushed per step ({:.0} of them with the field of feet \
                  standing still reused), {} recovering at the end",
                 blades as u32 / 1000,
+                per_step(visited),
                 per_step(pushed),
                 per_step(reused),
                 grass.active_count()

@@ -134,7 +134,7 @@ fn claim4_planted_foot_pushes_nearby_blades_down_and_away_and_leaves_far_ones() 
         let bend = patch.bend(i);
         if segment_distance(&patch, i, foot) >= radius {
             assert_eq!(bend, Bend::ZERO, "blade {i} beyond t_max/gamma was moved");
-            assert_eq!(patch.states()[i].treads, 0);
+            assert_eq!(patch.state(i).treads, 0);
             untouched += 1;
             continue;
         }
@@ -235,7 +235,7 @@ fn claim5_elastic_blade_recovers_in_its_documented_time_and_broken_one_stays_dow
     // The most bent blade that is still elastic, and the most bent broken one.
     let by_bend = |broken: bool| {
         (0..patch.blade_count())
-            .filter(|&i| patch.states()[i].broken == broken && patch.bend(i).size() > 0.0)
+            .filter(|&i| patch.state(i).broken == broken && patch.bend(i).size() > 0.0)
             .max_by(|&a, &b| patch.bend(a).size().total_cmp(&patch.bend(b).size()))
             .unwrap()
     };
@@ -270,7 +270,7 @@ fn claim5_elastic_blade_recovers_in_its_documented_time_and_broken_one_stays_dow
     assert_eq!(patch.bend(elastic), Bend::ZERO, "settled exactly upright");
     let stays = patch.bend(broken);
     // A broken blade keeps `broken_residual` of the largest bend it took.
-    assert_eq!(stays, patch.states()[broken].rest);
+    assert_eq!(stays, patch.state(broken).rest);
     assert!(
         stays.size() >= settings.broken_residual * broken_held.size() - 1e-6,
         "broken blade keeps its residual bend: {stays:?} of {broken_held:?}"
@@ -291,14 +291,14 @@ fn blades_trodden_several_times_break() {
     let foot = Vec3::new(0.0, GROUND_Y + 0.8, 0.0);
     let touched = |p: &GrassPatch| {
         (0..p.blade_count())
-            .filter(|&i| p.states()[i].treads > 0)
+            .filter(|&i| p.state(i).treads > 0)
             .collect::<Vec<_>>()
     };
     patch.deform_points(&[foot], 0.1);
     let first = touched(&patch);
     assert!(!first.is_empty());
     assert!(
-        first.iter().any(|&i| !patch.states()[i].broken),
+        first.iter().any(|&i| !patch.state(i).broken),
         "a light touch does not break all"
     );
     for _ in 1..settings.treads_to_break {
@@ -306,7 +306,7 @@ fn blades_trodden_several_times_break() {
         patch.deform_points(&[foot], 0.1);
     }
     for &i in &first {
-        let s = patch.states()[i];
+        let s = patch.state(i);
         if s.treads >= settings.treads_to_break {
             assert!(s.broken, "blade {i} trodden {} times", s.treads);
         }
@@ -314,7 +314,7 @@ fn blades_trodden_several_times_break() {
     assert!(
         first
             .iter()
-            .all(|&i| patch.states()[i].treads == settings.treads_to_break)
+            .all(|&i| patch.state(i).treads == settings.treads_to_break)
     );
 }
 

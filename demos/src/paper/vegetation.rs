@@ -199,7 +199,7 @@ fn field_claim(walks: &[&GrassWalk]) -> Claim {
             let (touched, beyond, radius) = w.patch(|p| {
                 let radius = p.t_max() / p.gamma();
                 let touched: Vec<usize> = (0..p.blade_count())
-                    .filter(|&i| p.states()[i].treads > 0)
+                    .filter(|&i| p.state(i).treads > 0)
                     .collect();
                 let beyond = touched
                     .iter()
@@ -237,10 +237,10 @@ fn recovery_claim(walks: &[&GrassWalk]) -> Claim {
             let (recovered, still_bent, broken, kept) = w.patch(|p| {
                 let radius = p.t_max() / p.gamma();
                 let away = |i: usize| last_feet.iter().all(|&f| segment_distance(p, i, f) >= radius);
-                let trodden = (0..p.blade_count()).filter(|&i| p.states()[i].treads > 0 && away(i));
+                let trodden = (0..p.blade_count()).filter(|&i| p.state(i).treads > 0 && away(i));
                 let (mut recovered, mut still_bent, mut broken, mut kept) = (0, 0, 0, 0);
                 for i in trodden {
-                    let s = p.states()[i];
+                    let s = p.state(i);
                     if s.broken {
                         broken += 1;
                         kept += usize::from(p.bend(i) == s.rest && s.rest != Bend::ZERO);

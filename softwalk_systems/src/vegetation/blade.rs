@@ -155,18 +155,6 @@ impl BladeState {
             self.bend_at(now, omega).size()
         }
     }
-
-    /// Records a push at `now`; true if it starts a new tread (the previous
-    /// push is more than `tread_gap` seconds ago, or there was none).
-    #[inline]
-    pub(crate) fn count_tread(&mut self, now: f64, tread_gap: f32) -> bool {
-        let new_tread = self.last_push < 0.0 || now - self.last_push > tread_gap as f64;
-        if new_tread {
-            self.treads = self.treads.saturating_add(1);
-        }
-        self.last_push = now;
-        new_tread
-    }
 }
 
 #[cfg(test)]

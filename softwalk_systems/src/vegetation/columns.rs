@@ -31,6 +31,10 @@ pub(crate) struct BladeColumns {
     z: Vec<f32>,
     mid_y: Vec<f32>,
     tip_y: Vec<f32>,
+    /// The lowest upright middle Y (infinite for no blades).
+    lowest_mid: f32,
+    /// The highest upright tip Y (minus infinity for no blades).
+    highest_tip: f32,
 }
 
 impl BladeColumns {
@@ -40,13 +44,28 @@ impl BladeColumns {
             let padding = std::iter::repeat_n(f32::INFINITY, LANES);
             blades.iter().map(f).chain(padding).collect()
         };
+        // Same arithmetic as `DeformationField::on_upright_blade`.
+        let (mid_y, tip_y) = (
+            column(&|b| b.root.y + 0.5 * b.height),
+            column(&|b| b.root.y + b.height),
+        );
+        let blades = ..blades.len();
         Self {
             x: column(&|b| b.root.x),
             z: column(&|b| b.root.z),
-            // Same arithmetic as `DeformationField::on_upright_blade`.
-            mid_y: column(&|b| b.root.y + 0.5 * b.height),
-            tip_y: column(&|b| b.root.y + b.height),
+            lowest_mid: mid_y[blades].iter().copied().fold(f32::INFINITY, f32::min),
+            highest_tip: tip_y[blades]
+                .iter()
+                .copied()
+                .fold(f32::NEG_INFINITY, f32::max),
+            mid_y,
+            tip_y,
         }
+    }
+
+    /// The lowest upright middle Y (infinite for no blades).
+    pub(crate) fn lowest_mid(&self) -> f32 {
+        self.lowest_mid
     }
 
     /// Root X, root Z, upright middle Y and upright tip Y of blade `i`.
@@ -87,11 +106,22 @@ impl BladeColumns {
             let (mut reaching, mut disturbing) = (0u32, 0u32);
             for m in markers {
                 let (dx, dz) = (x - F8::splat(m.at.x), z - F8::splat(m.at.z));
-                let (dm, dt) = (mid - F8::splat(m.at.y), tip - F8::splat(m.at.y));
-                let dx_sq = dx * dx;
-                let (dm_sq, dz_sq, dt_sq) = (dm * dm, dz * dz, dt * dt);
-                let near =
-                    ((dx_sq + dm_sq + dz_sq).lt(r2) | (dx_sq + dt_sq + dz_sq).lt(r2)).bitmask();
+                let (dx_sq, dz_sq) = (dx * dx, dz * dz);
+                let within = |y: F8| {
+                    let dy = y - F8::splat(m.at.y);
+                    (dx_sq + dy * dy + dz_sq).lt(r2)
+                };
+                // A marker below every middle is nearer each blade's middle
+                // than its tip, one above every tip nearer the tip (rounding
+                // is monotonic): then one test decides.
+                let near = if m.at.y <= self.lowest_mid {
+                    within(mid)
+                } else if m.at.y >= self.highest_tip {
+                    within(tip)
+                } else {
+                    within(mid) | within(tip)
+                }
+                .bitmask();
                 reaching |= near & u32::from(m.reaches).wrapping_neg();
                 disturbing |= near & u32::from(m.disturbs).wrapping_neg();
             }

@@ -26,21 +26,24 @@ impl FieldMemo {
 
     /// True if this field takes the blade over at `now` (re-anchors it): it is
     /// the field already holding the blade, or at least as large (by size) as
-    /// the blade's recovering bend, which recovers with `omega()` (rad/s). `sizes` bound the recovering bend's size
-    /// from above and below at all times: a field outside the bounds is
-    /// decided without evaluating the recovery (with the same answer).
+    /// the blade's recovering bend, which recovers with `omega()` (rad/s).
+    /// `ceiling` and `floor()` ([`BendSizes`]) bound the recovering bend's
+    /// size at all times: a field outside the bounds is decided without
+    /// evaluating the recovery (with the same answer); the floor is asked
+    /// for only when the field is below the ceiling.
     #[inline]
     pub(crate) fn takes_over(
         &self,
         state: &BladeState,
-        sizes: &BendSizes,
+        ceiling: f32,
+        floor: impl FnOnce() -> f32,
         now: f64,
         omega: impl FnOnce() -> f32,
     ) -> bool {
-        if state.active && self.bend == state.held || self.size >= sizes.ceiling() {
+        if state.active && self.bend == state.held || self.size >= ceiling {
             return true;
         }
-        self.size >= sizes.floor && self.size >= state.bend_size_at(now, omega())
+        self.size >= floor() && self.size >= state.bend_size_at(now, omega())
     }
 }
 
@@ -66,31 +69,47 @@ impl BendSizes {
     /// bend (a few units in the last place, far below this).
     const MARGIN: f32 = 1.0 / 16384.0;
 
+    #[cfg(test)]
     /// The sizes of `held` and `rest` and the floor between them.
     pub(crate) fn new(held: &Bend, rest: &Bend) -> Self {
         Self::with_sizes(held, held.size(), rest, rest.size())
     }
 
+    #[cfg(test)]
     /// [`BendSizes::new`] with the sizes of `held` and `rest` already known.
     #[inline]
     pub(crate) fn with_sizes(held: &Bend, held_size: f32, rest: &Bend, rest_size: f32) -> Self {
+        Self {
+            held: held_size,
+            rest: rest_size,
+            floor: Self::floor_of(held, held_size, rest, rest_size),
+        }
+    }
+
+    /// The floor of the bends `held` and `rest` of sizes `held_size` and
+    /// `rest_size`.
+    #[inline]
+    pub(crate) fn floor_of(held: &Bend, held_size: f32, rest: &Bend, rest_size: f32) -> f32 {
         // A healthy blade recovers to upright: no floor.
         let exact = if rest_size > 0.0 {
             segment_distance(rest.mid, held.mid) + segment_distance(rest.tip, held.tip)
         } else {
             0.0
         };
-        Self {
-            held: held_size,
-            rest: rest_size,
-            floor: (exact - (held_size + rest_size) * Self::MARGIN).max(0.0),
-        }
+        (exact - (held_size + rest_size) * Self::MARGIN).max(0.0)
     }
 
+    #[cfg(test)]
     /// Never below the size of the blade's bend at any time from its anchor.
     #[inline]
     pub(crate) fn ceiling(&self) -> f32 {
-        self.held.max(self.rest) * (1.0 + Self::MARGIN)
+        Self::ceiling_of(self.held, self.rest)
+    }
+
+    /// The ceiling of bends of sizes `held_size` and `rest_size`.
+    #[inline]
+    pub(crate) fn ceiling_of(held_size: f32, rest_size: f32) -> f32 {
+        held_size.max(rest_size) * (1.0 + Self::MARGIN)
     }
 }
 
@@ -125,8 +144,9 @@ mod tests {
         let omega = 2.5;
         let sizes = BendSizes::new(&held, &Bend::ZERO);
         assert_eq!(sizes.floor, 0.0, "a healthy blade recovers to upright");
-        let takes_over =
-            |m: FieldMemo, s: &BladeState, now: f64| m.takes_over(s, &sizes, now, || omega);
+        let takes_over = |m: FieldMemo, s: &BladeState, now: f64| {
+            m.takes_over(s, sizes.ceiling(), || sizes.floor, now, || omega)
+        };
         assert!(takes_over(FieldMemo::new(held), &state, 1.5), "held on");
         let weak = FieldMemo::new(held.scaled(0.5));
         assert!(

@@ -27,6 +27,7 @@ mod platform_ground;
 pub mod recovery;
 mod rng;
 mod settings;
+mod state_columns;
 
 pub use area::XzRect;
 pub use blade::{Bend, Blade, BladeState};

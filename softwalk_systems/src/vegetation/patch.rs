@@ -11,12 +11,13 @@ use super::blade::{Bend, Blade, BladeState};
 use super::columns::{BladeColumns, Marker};
 use super::error::VegetationError;
 use super::field_batch::FieldBatch;
-use super::field_memo::{BendSizes, FieldMemo};
+use super::field_memo::FieldMemo;
 use super::foot_motion::FootMotion;
 use super::grid::BladeGrid;
 use super::recovery::time_to_settle;
 use super::rng::SplitMix64;
 use super::settings::GrassSettings;
+use super::state_columns::StateColumns;
 use crate::foot::FootState;
 use crate::ground::Ground;
 
@@ -60,15 +61,18 @@ pub struct GrassPatch {
     blades: Vec<Blade>,
     /// Hot copy of the blades' roots and heights for the candidate test.
     columns: BladeColumns,
-    states: Vec<BladeState>,
-    /// Per blade, the field of the last step that reached it (valid for the
-    /// blades the previous step reached).
-    fields: Vec<FieldMemo>,
-    /// Per blade, the sizes of its held and resting bends.
-    sizes: Vec<BendSizes>,
+    /// Per blade state, in a column every push touches and one of bends.
+    states: StateColumns,
+    /// Per blade, the bend of the field of the last step that reached it
+    /// (valid for the blades the previous step reached).
+    field_bends: Vec<Bend>,
+    /// Per blade, the size of that field, apart: most pushes read only it.
+    field_sizes: Vec<f32>,
     grid: BladeGrid,
     /// Lowest root and highest tip, to skip feet far above or below.
     y_range: (f32, f32),
+    /// Lowest upright middle point (as the candidate test computes it).
+    lowest_mid: f32,
     clock: f64,
     active_count: usize,
     /// Recovering blades with the time they may settle (lazy: re-queued when pushed again).
@@ -171,16 +175,19 @@ impl GrassPatch {
             .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), b| {
                 (lo.min(b.root.y), hi.max(b.root.y + b.height))
             });
+        let columns = BladeColumns::new(&blades);
+        let lowest_mid = columns.lowest_mid();
         Ok(Self {
             area,
             settings,
-            states: vec![BladeState::default(); blades.len()],
-            fields: vec![FieldMemo::default(); blades.len()],
-            sizes: vec![BendSizes::default(); blades.len()],
-            columns: BladeColumns::new(&blades),
+            states: StateColumns::new(blades.len()),
+            field_bends: vec![Bend::ZERO; blades.len()],
+            field_sizes: vec![0.0; blades.len()],
+            columns,
             blades,
             grid,
             y_range,
+            lowest_mid,
             clock: 0.0,
             active_count: 0,
             retire_queue: VecDeque::new(),
@@ -230,8 +237,13 @@ impl GrassPatch {
     }
 
     /// The per-blade states, parallel to [`GrassPatch::blades`].
-    pub fn states(&self) -> &[BladeState] {
-        &self.states
+    pub fn states(&self) -> impl ExactSizeIterator<Item = BladeState> + '_ {
+        (0..self.blades.len()).map(|i| self.states.get(i))
+    }
+
+    /// The state of blade `index`.
+    pub fn state(&self, index: usize) -> BladeState {
+        self.states.get(index)
     }
 
     /// The spatial grid over the blades.
@@ -252,7 +264,7 @@ impl GrassPatch {
     /// Current bend of blade `index` (displacement of its middle and tip).
     pub fn bend(&self, index: usize) -> Bend {
         let omega = self.settings.recovery_omega * self.blades[index].stiffness;
-        self.states[index].bend_at(self.clock, omega)
+        self.states.get(index).bend_at(self.clock, omega)
     }
 
     /// Root, middle and tip of blade `index` as it looks now.
@@ -264,7 +276,7 @@ impl GrassPatch {
     pub fn blade_polylines(&self) -> impl Iterator<Item = BladePolyline> + '_ {
         (0..self.blades.len()).map(|i| {
             let blade = &self.blades[i];
-            let colour = if self.states[i].broken {
+            let colour = if self.states.push[i].broken {
                 std::array::from_fn(|c| 0.4 * blade.colour[c] + 0.6 * STRAW[c])
             } else {
                 blade.colour
@@ -323,12 +335,12 @@ impl GrassPatch {
         scratch
             .batch
             .evaluate(&self.settings.field, &motion.feet, |memo| {
-                let i = *fresh.next().expect("one result per fresh blade");
-                self.fields[i as usize] = memo;
+                let i = *fresh.next().expect("one result per fresh blade") as usize;
+                self.field_bends[i] = memo.bend;
+                self.field_sizes[i] = memo.size;
             });
         for &i in &scratch.reached {
-            let i = i as usize;
-            if self.push(i, self.fields[i]) {
+            if self.push(i as usize) {
                 stats.pushed += 1;
             }
         }
@@ -372,7 +384,9 @@ impl GrassPatch {
         // Each marker's own grid ranges: the blades it can reach at all.
         marker_ranges.clear();
         for (k, m) in markers.iter().enumerate() {
-            let near = self.grid.ranges_near(m.at.xz(), radius);
+            let near = self
+                .grid
+                .ranges_near(m.at.xz(), self.reach_xz(m.at, radius));
             marker_ranges.extend(near.filter(|r| !r.is_empty()).map(|r| (k, r)));
         }
         // The blades to visit: those of the feet (a departed foot only
@@ -400,6 +414,19 @@ impl GrassPatch {
         ranges.iter().map(|r| r.len()).sum()
     }
 
+    /// Horizontal distance from a foot at `p` beyond which no blade's upright
+    /// middle or tip is within `radius` of it: every middle is at least
+    /// `lowest_mid` high and every tip at most the highest tip, so a foot
+    /// below the middles (a foot on the ground in tall grass) or above the
+    /// tips reaches less far horizontally than `radius`.
+    fn reach_xz(&self, p: Vec3, radius: f32) -> f32 {
+        let dy = (self.lowest_mid - p.y).max(p.y - self.y_range.1).max(0.0);
+        // Shrunk far beyond rounding: the candidate test decides exactly
+        // which blades are reached; this only bounds where it looks.
+        let dy = dy * (1.0 - 1e-3);
+        (radius * radius - dy * dy).max(0.0).sqrt()
+    }
+
     /// True when a foot at `p` can reach some blade of the patch.
     fn within_reach(&self, p: Vec3, radius: f32) -> bool {
         let (lo, hi) = self.y_range;
@@ -412,42 +439,64 @@ impl GrassPatch {
             && p.z - radius < self.area.max.y
     }
 
-    /// Pushes blade `i` with `field`; true if it was pushed (non-zero field).
-    fn push(&mut self, i: usize, field: FieldMemo) -> bool {
-        if field.size <= 0.0 {
+    /// Pushes blade `i` with its field of this step; true if it was pushed
+    /// (non-zero field).
+    fn push(&mut self, i: usize) -> bool {
+        let size = self.field_sizes[i];
+        if size <= 0.0 {
             return false;
         }
-        let s = &self.settings;
         let now = self.clock;
-        // Read only when needed: most pushes do not look at the recovery.
-        let omega = || s.recovery_omega * self.blades[i].stiffness;
-        let state = &mut self.states[i];
-        let new_tread = state.count_tread(now, s.tread_gap);
-        // The field that already holds the blade keeps holding it; otherwise
-        // the larger of the field and the recovering bend wins.
-        let mut bend_changed = false;
-        let sizes = &mut self.sizes[i];
-        if field.takes_over(state, sizes, now, omega) {
-            bend_changed = state.held != field.bend;
-            state.held = field.bend;
-            if bend_changed {
-                *sizes = BendSizes::with_sizes(&state.held, field.size, &state.rest, sizes.rest);
-            }
-            state.anchor_time = now;
-        }
+        let state = &mut self.states.push[i];
+        let new_tread = state.count_tread(now, self.settings.tread_gap);
+        let was_active = state.active;
+        // Most pushes end here: a field below the floor loses to the
+        // recovering bend, and is not the field holding the blade (that one
+        // has the held bend's size, above the floor). An unknown (NaN) floor
+        // decides nothing here.
+        let below_floor = size < state.floor;
+        let bend_changed = !below_floor && self.take_over(i, size);
         // Damage depends on the held bend and the treads only.
         if bend_changed || new_tread {
             self.apply_damage(i);
         }
-        let state = &mut self.states[i];
-        if !state.active {
-            state.active = true;
+        if !was_active {
+            self.states.push[i].active = true;
             self.active_count += 1;
             let omega = self.settings.recovery_omega * self.blades[i].stiffness;
-            let deadline = state.anchor_time + time_to_settle(omega) as f64;
+            let deadline = self.states.bends[i].anchor_time + time_to_settle(omega) as f64;
             self.retire_queue.push_back((i as u32, deadline));
         }
         true
+    }
+
+    /// Lets the field of size `size` take blade `i` over if it is the field
+    /// already holding the blade or at least as large as its recovering bend
+    /// (re-anchoring the recovery now); true if the held bend changed.
+    fn take_over(&mut self, i: usize, size: f32) -> bool {
+        let field = FieldMemo {
+            bend: self.field_bends[i],
+            size,
+        };
+        let s = &self.settings;
+        let now = self.clock;
+        // Read only when needed: most pushes do not look at the recovery.
+        let omega = || s.recovery_omega * self.blades[i].stiffness;
+        let state = self.states.get(i);
+        let ceiling = self.states.ceiling(i);
+        let states = &mut self.states;
+        if !field.takes_over(&state, ceiling, || states.floor(i), now, omega) {
+            return false;
+        }
+        let record = &mut self.states.bends[i];
+        let changed = record.held != field.bend;
+        record.held = field.bend;
+        record.anchor_time = now;
+        if changed {
+            let rest_size = record.rest_size;
+            self.states.set_sizes(i, size, rest_size);
+        }
+        changed
     }
 
     /// Breaks blade `i` if its held bend or its treads say so, and gives a
@@ -455,18 +504,18 @@ impl GrassPatch {
     fn apply_damage(&mut self, i: usize) {
         let blade = &self.blades[i];
         let s = &self.settings;
-        let state = &mut self.states[i];
+        let StateColumns { push, bends } = &mut self.states;
+        let (state, record) = (&mut push[i], &mut bends[i]);
         let break_at = s.break_bend * blade.stiffness * blade.height;
-        let bent_too_far = state.held.tip.length_squared() > break_at * break_at;
+        let bent_too_far = record.held.tip.length_squared() > break_at * break_at;
         if bent_too_far || state.treads >= s.treads_to_break {
             state.broken = true;
         }
         if state.broken {
-            let residual = state.held.scaled(s.broken_residual);
-            let sizes = &mut self.sizes[i];
-            if residual.size() > sizes.rest {
-                state.rest = residual;
-                *sizes = BendSizes::new(&state.held, &state.rest);
+            let residual = record.held.scaled(s.broken_residual);
+            if residual.size() > record.rest_size {
+                record.rest = residual;
+                self.states.resize(i);
             }
         }
     }
@@ -479,15 +528,16 @@ impl GrassPatch {
                 break;
             }
             self.retire_queue.pop_front();
-            let omega = self.settings.recovery_omega * self.blades[i as usize].stiffness;
-            let state = &mut self.states[i as usize];
-            let settle_at = state.anchor_time + time_to_settle(omega) as f64;
+            let i = i as usize;
+            let omega = self.settings.recovery_omega * self.blades[i].stiffness;
+            let record = &mut self.states.bends[i];
+            let settle_at = record.anchor_time + time_to_settle(omega) as f64;
             if settle_at > self.clock {
-                self.retire_queue.push_back((i, settle_at));
+                self.retire_queue.push_back((i as u32, settle_at));
             } else {
-                state.active = false;
-                state.held = state.rest;
-                self.sizes[i as usize] = BendSizes::new(&state.held, &state.rest);
+                record.held = record.rest;
+                self.states.push[i].active = false;
+                self.states.resize(i);
                 self.active_count -= 1;
                 retired += 1;
             }
@@ -591,6 +641,38 @@ mod tests {
             assert!(p.blade_points(i).iter().all(|v| v.is_finite()));
         }
         assert!(p.active_count() > 0);
+    }
+
+    /// The grid query narrowed by the foot's height still finds every blade
+    /// the field pushes, and visits fewer blades for a foot below the
+    /// middles than for one among them.
+    #[test]
+    fn feet_at_any_height_push_exactly_the_blades_the_field_reaches() {
+        let area = XzRect::new(Vec2::new(-1.0, -1.0), Vec2::new(1.0, 1.0));
+        let fresh = GrassPatch::with_height_fn(area, GrassSettings::medium(), |x, _| Some(0.1 * x))
+            .unwrap();
+        let field = fresh.settings().field;
+        let mut visited = Vec::new();
+        for y in [-0.5, -0.1, 0.0, 0.15, 0.45, 0.8, 1.1, 1.4, 1.7] {
+            let foot = Vec3::new(0.1, y, -0.05);
+            let mut p = fresh.clone();
+            let stats = p.deform_points(&[foot], 0.01);
+            let brute: Vec<usize> = (0..p.blade_count())
+                .filter(|&i| {
+                    let b = &p.blades()[i];
+                    let [mid, tip] = field.on_upright_blade(b.root, b.height, &[foot]);
+                    mid.length() + tip.length() > 0.0
+                })
+                .collect();
+            let pushed: Vec<usize> = (0..p.blade_count())
+                .filter(|&i| p.state(i).treads > 0)
+                .collect();
+            assert_eq!(pushed, brute, "foot at height {y}");
+            assert_eq!(stats.pushed, brute.len());
+            visited.push(stats.visited);
+        }
+        assert!(visited[2] < visited[4], "{visited:?}");
+        assert!(visited[8] < visited[6], "{visited:?}");
     }
 
     #[test]
