@@ -1,12 +1,15 @@
-//! The grass blade rasterizer: a blade's pieces (its lower quad and its tip
-//! triangle) are small convex polygons filled as one span per pixel row.
+//! The grass blade rasterizer: a blade is one y-monotone polygon (its whole
+//! outline: root pair, middle pair, tip), or, when a row would meet that
+//! outline twice (a blade folded towards the camera), two convex pieces (its
+//! lower quad and its tip), each filled as one span per pixel row.
 //!
-//! A piece is set up once, in the parallel geometry stage: its rows are cut at
-//! its vertices into at most three runs, each bounded by one left and one right
-//! edge in fixed point, and its attributes (`1/w`, display colour) become planes
-//! over the screen. A band then fills each row with two integer edge steps, one
-//! colour (stepped in fixed point along the run's centre line: a blade is a few
-//! pixels wide) and one depth test per pixel, with `1/w` linear along the row.
+//! A piece is set up once, in the parallel geometry stage, by walking its left
+//! and right sides down from the top vertex together: its rows are cut at each
+//! vertex into at most four runs, each bounded by one left and one right edge in
+//! fixed point. `1/w` becomes a plane over the screen and the colour a
+//! fixed-point ramp from the top vertex's colour to the bottom one's. A band then
+//! fills each row with two integer edge steps, one colour and one depth test per
+//! pixel, with `1/w` linear along the row.
 //! There is no per-pixel edge function, no division and no float-to-integer
 //! conversion per row.
 //!
@@ -86,20 +89,24 @@ struct RowRun {
     right: u8,
 }
 
-/// Most runs and edges a piece of at most four vertices has.
-const MAX_RUNS: usize = 3;
-const MAX_EDGES: usize = 4;
+/// Most vertices of a piece (a whole blade: root pair, middle pair, tip).
+pub(crate) const MAX_VERTICES: usize = 5;
+/// Most runs and edges a piece has.
+const MAX_RUNS: usize = MAX_VERTICES - 1;
+const MAX_EDGES: usize = MAX_VERTICES;
 
-/// A convex polygon of at most four vertices, set up for span filling.
+/// A y-monotone polygon of at most [`MAX_VERTICES`] vertices, set up for span
+/// filling.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct BladePiece {
-    /// First covered row.
-    first_row: i32,
+    /// First covered row (`i16` like [`RowRun::end`]).
+    first_row: i16,
     /// Number of used entries in `runs`.
     run_count: u8,
     /// Row runs, top to bottom.
     runs: [RowRun; MAX_RUNS],
-    /// The piece's non-horizontal edges.
+    /// The piece's edges (`k` from vertex `k` to the next); only those that
+    /// bound a run are set.
     edges: [EdgeLine; MAX_EDGES],
     /// `1/w` at the screen origin, and its change per pixel right and down.
     depth: [f32; 3],
@@ -108,6 +115,11 @@ pub(crate) struct BladePiece {
     /// Its change per row.
     color_step: [i32; 3],
 }
+
+/// The polygon given to [`BladePiece::setup`] is not y-monotone or crosses
+/// itself: some row would meet it in more than one span.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct NotMonotone;
 
 /// Triangles with less than this doubled area (pixels²) are degenerate: no
 /// attribute plane, dropped.
@@ -138,66 +150,120 @@ fn color_fixed(v: f32) -> i32 {
     (v.clamp(0.0, 1.0) * (255 << COLOR_BITS) as f32 + (1 << (COLOR_BITS - 1)) as f32) as i32
 }
 
-impl BladePiece {
-    /// Sets up the convex polygon `v` (3 or 4 vertices in order, either
-    /// winding) on a screen `height` pixels tall. `None` when it covers no row
-    /// of pixel centres on screen or is degenerate.
-    pub fn setup(v: &[SpanVertex], height: i32) -> Option<BladePiece> {
-        debug_assert!((3..=MAX_EDGES).contains(&v.len()));
-        let row = |y: f32| first_centre(y.clamp(-1.0, height as f32 + 1.0)).clamp(0, height);
-        let mut cuts = [0.0f32; MAX_EDGES];
-        for (cut, p) in cuts.iter_mut().zip(v) {
-            *cut = p.y;
+/// The vertex indices of a polygon's two sides, each from the top vertex down
+/// to the bottom one: the left side first.
+struct Sides {
+    left: ([u8; MAX_VERTICES], usize),
+    right: ([u8; MAX_VERTICES], usize),
+}
+
+impl Sides {
+    /// Splits `v` at its top and bottom vertices; [`NotMonotone`] when a side
+    /// goes up again.
+    fn of(v: &[SpanVertex]) -> Result<Sides, NotMonotone> {
+        let n = v.len();
+        let (mut top, mut bottom) = (0, 0);
+        for (k, p) in v.iter().enumerate().skip(1) {
+            if p.y < v[top].y {
+                top = k;
+            }
+            if p.y > v[bottom].y {
+                bottom = k;
+            }
         }
-        let cuts = &mut cuts[..v.len()];
-        if cuts.iter().any(|y| y.is_nan()) {
-            return None;
-        }
-        cuts.sort_unstable_by(f32::total_cmp);
-        let first_row = row(cuts[0]);
-        if first_row >= row(cuts[cuts.len() - 1]) {
-            return None;
-        }
-        // Attribute planes from the vertex triangle of largest area.
-        let (a, b, c) = if v.len() == 4
-            && double_area(&v[0], &v[2], &v[3]).abs() > double_area(&v[0], &v[1], &v[2]).abs()
-        {
-            (&v[0], &v[2], &v[3])
-        } else {
-            (&v[0], &v[1], &v[2])
+        // Each side walked from the top vertex, forwards and backwards.
+        let walk = |forward: bool| -> Result<([u8; MAX_VERTICES], usize), NotMonotone> {
+            let mut chain = [top as u8; MAX_VERTICES];
+            let (mut k, mut len) = (top, 1);
+            while k != bottom {
+                let next = if forward {
+                    (k + 1) % n
+                } else {
+                    (k + n - 1) % n
+                };
+                if v[next].y < v[k].y {
+                    return Err(NotMonotone);
+                }
+                chain[len] = next as u8;
+                len += 1;
+                k = next;
+            }
+            Ok((chain, len))
         };
-        let area = double_area(a, b, c);
+        let (forward, backward) = (walk(true)?, walk(false)?);
+        // Clockwise on screen (positive area), the forward side is the right one.
+        let area: f32 = (1..n - 1)
+            .map(|k| double_area(&v[0], &v[k], &v[k + 1]))
+            .sum();
+        Ok(if area > 0.0 {
+            Sides {
+                left: backward,
+                right: forward,
+            }
+        } else {
+            Sides {
+                left: forward,
+                right: backward,
+            }
+        })
+    }
+}
+
+/// Which side of the line from `a` to `b` the point `p` lies on (positive:
+/// left of a downward line on a y-down screen).
+#[inline]
+fn side_of(a: &SpanVertex, b: &SpanVertex, p: &SpanVertex) -> f32 {
+    (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
+}
+
+impl BladePiece {
+    /// Sets up the simple polygon `v` (3 to [`MAX_VERTICES`] vertices in
+    /// order, either winding) on a screen `height` pixels tall.
+    ///
+    /// `Ok(None)` when it covers no row of pixel centres on screen or is
+    /// degenerate; [`NotMonotone`] when a row could meet it in two spans (a
+    /// side that goes up again, or sides that cross), which a convex polygon
+    /// never does.
+    pub fn setup(v: &[SpanVertex], height: i32) -> Result<Option<BladePiece>, NotMonotone> {
+        debug_assert!((3..=MAX_VERTICES).contains(&v.len()));
+        if v.iter().any(|p| p.y.is_nan()) {
+            return Ok(None);
+        }
+        let Sides {
+            left: (left, left_len),
+            right: (right, right_len),
+        } = Sides::of(v)?;
+        let (top, bottom) = (&v[left[0] as usize], &v[left[left_len - 1] as usize]);
+        let row = |y: f32| first_centre(y.clamp(-1.0, height as f32 + 1.0)).clamp(0, height);
+        let first_row = row(top.y);
+        let end_row = row(bottom.y);
+        if first_row >= end_row {
+            return Ok(None);
+        }
+        // Depth plane from the top, the bottom and the vertex farthest from
+        // the line through them (the largest such triangle).
+        let third = v
+            .iter()
+            .map(|p| double_area(top, bottom, p).abs())
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map_or(0, |(k, _)| k);
+        let c = &v[third];
+        let area = double_area(top, bottom, c);
         // Also rejects NaN.
         if area.abs().partial_cmp(&MIN_DOUBLE_AREA) != Some(std::cmp::Ordering::Greater) {
-            return None;
+            return Ok(None);
         }
         let inv = 1.0 / area;
-        let (bx, by, cx, cy) = (b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y);
-        let plane = |fa: Vec3, fb: Vec3, fc: Vec3| {
-            let (db, dc) = (fb - fa, fc - fa);
-            let dx = (db * cy - dc * by) * inv;
-            let dy = (dc * bx - db * cx) * inv;
-            [fa - dx * a.x - dy * a.y, dx, dy]
-        };
-        let color = plane(a.color, b.color, c.color);
-        let last_row = row(cuts[cuts.len() - 1]) - 1;
-        let x_of = |y: f32| v.iter().find(|p| p.y == y).map_or(0.0, |p| p.x);
-        let ends = [
-            (first_row, x_of(cuts[0])),
-            (last_row, x_of(cuts[cuts.len() - 1])),
-        ];
-        let (color, color_step) = color_ramp(color, ends);
-        let [d0, d_dx, d_dy] = plane(
-            Vec3::splat(a.inv_w),
-            Vec3::splat(b.inv_w),
-            Vec3::splat(c.inv_w),
-        );
-        let depth = [d0.x, d_dx.x, d_dy.x];
+        let (bx, by, cx, cy) = (bottom.x - top.x, bottom.y - top.y, c.x - top.x, c.y - top.y);
+        let (db, dc) = (bottom.inv_w - top.inv_w, c.inv_w - top.inv_w);
+        let d_dx = (db * cy - dc * by) * inv;
+        let d_dy = (dc * bx - db * cx) * inv;
+        let depth = [top.inv_w - d_dx * top.x - d_dy * top.y, d_dx, d_dy];
+        let (color, color_step) = color_ramp(top.color, bottom.color, end_row - 1 - first_row);
 
-        // Cut the rows at every vertex height; in each run the two edges that
-        // span it are its bounds.
         let mut piece = BladePiece {
-            first_row,
+            first_row: first_row as i16,
             run_count: 0,
             runs: [RowRun::default(); MAX_RUNS],
             edges: [EdgeLine::default(); MAX_EDGES],
@@ -205,49 +271,64 @@ impl BladePiece {
             color,
             color_step,
         };
-        let mut start = first_row;
-        for pair in cuts.windows(2) {
-            let (y0, y1) = (pair[0], pair[1]);
-            let end = row(y1);
-            if end <= start {
-                continue;
-            }
-            let mid = 0.5 * (y0 + y1);
-            let mut spanning = (0..v.len()).filter(|&k| {
-                let (p, q) = (&v[k], &v[(k + 1) % v.len()]);
-                p.y.min(q.y) <= y0 && p.y.max(q.y) >= y1
-            });
-            let (Some(e0), Some(e1)) = (spanning.next(), spanning.next()) else {
-                continue;
-            };
-            let x_at = |k: usize| {
-                let (p, q) = (&v[k], &v[(k + 1) % v.len()]);
-                p.x + (q.x - p.x) * ((mid - p.y) / (q.y - p.y))
-            };
-            let (left, right) = if x_at(e0) <= x_at(e1) {
-                (e0, e1)
+        // Walk both sides down together; a run ends at the next vertex of
+        // either side. Polygon edge `k` joins vertex `k` to vertex `k + 1`.
+        let n = v.len();
+        let edge_index = |a: u8, b: u8| {
+            if (a as usize + 1) % n == b as usize {
+                a
             } else {
-                (e1, e0)
-            };
-            for k in [left, right] {
-                piece.edges[k] = EdgeLine::new(&v[k], &v[(k + 1) % v.len()]);
+                b
             }
-            piece.runs[piece.run_count as usize] = RowRun {
-                end: end as i16,
-                left: left as u8,
-                right: right as u8,
-            };
-            piece.run_count += 1;
-            start = end;
+        };
+        let (mut i, mut j, mut start) = (0, 0, first_row);
+        let mut built = 0u8;
+        while i + 1 < left_len && j + 1 < right_len {
+            let (l0, l1) = (left[i], left[i + 1]);
+            let (r0, r1) = (right[j], right[j + 1]);
+            let (pl0, pl1, pr0, pr1) = (
+                &v[l0 as usize],
+                &v[l1 as usize],
+                &v[r0 as usize],
+                &v[r1 as usize],
+            );
+            let end = row(pl1.y.min(pr1.y));
+            if end > start {
+                let (el, er) = (edge_index(l0, l1), edge_index(r0, r1));
+                for (e, a, b) in [(el, pl0, pl1), (er, pr0, pr1)] {
+                    if built & (1 << e) == 0 {
+                        piece.edges[e as usize] = EdgeLine::new(a, b);
+                        built |= 1 << e;
+                    }
+                }
+                piece.runs[piece.run_count as usize] = RowRun {
+                    end: end as i16,
+                    left: el,
+                    right: er,
+                };
+                piece.run_count += 1;
+                start = end;
+            }
+            // The sides must not cross: a side's inner vertex lies on its
+            // own side of the other's edge.
+            let (advance_left, advance_right) = (pl1.y <= pr1.y, pr1.y <= pl1.y);
+            if advance_left && i + 2 < left_len && side_of(pr0, pr1, pl1) < 0.0 {
+                return Err(NotMonotone);
+            }
+            if advance_right && j + 2 < right_len && side_of(pl0, pl1, pr1) > 0.0 {
+                return Err(NotMonotone);
+            }
+            i += usize::from(advance_left);
+            j += usize::from(advance_right);
         }
-        (piece.run_count > 0).then_some(piece)
+        Ok((piece.run_count > 0).then_some(piece))
     }
 
     /// First and last pixel rows the piece covers.
     #[inline]
     pub fn rows(&self) -> (i32, i32) {
         (
-            self.first_row,
+            i32::from(self.first_row),
             i32::from(self.runs[self.run_count as usize - 1].end) - 1,
         )
     }
@@ -258,7 +339,7 @@ impl BladePiece {
     #[cold]
     #[inline(never)]
     fn write_color(&self, color: &mut [u8], k: usize, y: i32) {
-        let dy = y - self.first_row;
+        let dy = y - i32::from(self.first_row);
         let channel = |c: usize| ((self.color[c] + dy * self.color_step[c]) >> COLOR_BITS) as u8;
         color[4 * k..4 * k + 4].copy_from_slice(&[channel(0), channel(1), channel(2), 255]);
     }
@@ -272,7 +353,7 @@ impl BladePiece {
     pub fn draw(&self, band: &mut Band<'_>) {
         let width = band.width as usize;
         let [d0, d_dx, d_dy] = self.depth;
-        let mut start = self.first_row;
+        let mut start = i32::from(self.first_row);
         for run in &self.runs[..self.run_count as usize] {
             let end = i32::from(run.end);
             let (y0, y1) = (start.max(band.y0), end.min(band.y1));
@@ -314,16 +395,11 @@ impl BladePiece {
     }
 }
 
-/// A piece's colour as a fixed-point ramp down its rows: the colour plane
-/// `[at origin, per pixel right, per pixel down]` evaluated at `ends` (first
-/// row and the x of the top vertex, last row and the x of the bottom vertex),
-/// clamped there so that every row in between stays in range. A blade is a
-/// few pixels wide: its colour varies along it, one colour per row is enough.
-fn color_ramp(plane: [Vec3; 3], ends: [(i32, f32); 2]) -> ([i32; 3], [i32; 3]) {
-    let [c0, c_dx, c_dy] = plane;
-    let at = |(y, x): (i32, f32)| c0 + c_dx * x + c_dy * (y as f32 + 0.5);
-    let (first, last) = (ends[0].0, ends[1].0);
-    let (top, bottom) = (at(ends[0]), at(ends[1]));
+/// A piece's colour as a fixed-point ramp down its rows: from `top` (the top
+/// vertex's colour, used for the first row) to `bottom` (the bottom vertex's,
+/// reached `rows` rows later). A blade is a few pixels wide: its colour varies
+/// along it, one colour per row is enough.
+fn color_ramp(top: Vec3, bottom: Vec3, rows: i32) -> ([i32; 3], [i32; 3]) {
     let top = [color_fixed(top.x), color_fixed(top.y), color_fixed(top.z)];
     let bottom = [
         color_fixed(bottom.x),
@@ -331,7 +407,7 @@ fn color_ramp(plane: [Vec3; 3], ends: [(i32, f32); 2]) -> ([i32; 3], [i32; 3]) {
         color_fixed(bottom.z),
     ];
     // Truncated towards zero, so the last row stays between both ends.
-    let per_row = 1.0 / (last - first).max(1) as f32;
+    let per_row = 1.0 / rows.max(1) as f32;
     let step = |k: usize| ((bottom[k] - top[k]) as f32 * per_row) as i32;
     (top, [step(0), step(1), step(2)])
 }
@@ -341,8 +417,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_piece_fits_in_128_bytes() {
-        assert!(std::mem::size_of::<BladePiece>() <= 128);
+    fn a_piece_stays_small() {
+        // A whole blade in 136 bytes: less than half of its quad and tip (2 x 128).
+        assert!(std::mem::size_of::<BladePiece>() <= 136);
     }
 
     fn vertex(x: f32, y: f32, inv_w: f32) -> SpanVertex {
@@ -385,63 +462,151 @@ mod tests {
         writes
     }
 
-    #[test]
-    fn a_blade_quad_and_tip_cover_each_pixel_centre_once() {
-        let mut seed = 0x2545_f491_u32;
-        let mut next = move || {
+    /// A tapered, bent blade with sub-pixel vertices, either winding: root
+    /// pair, middle pair, tip.
+    fn random_blade(next: &mut impl FnMut() -> f32) -> [SpanVertex; 5] {
+        let (rx, ry) = (10.0 + 20.0 * next(), 40.0 + 20.0 * next());
+        let half = 0.3 + 3.0 * next();
+        let (mx, my) = (rx + 8.0 * (next() - 0.5), ry - 10.0 - 15.0 * next());
+        let (tx, ty) = (mx + 16.0 * (next() - 0.5), my - 5.0 - 20.0 * next());
+        let s = if next() < 0.5 { 1.0 } else { -1.0 };
+        [
+            vertex(rx - s * half, ry, 0.5),
+            vertex(rx + s * half, ry + 0.3, 0.5),
+            vertex(mx - s * 0.6 * half, my, 0.5),
+            vertex(mx + s * 0.6 * half, my + 0.2, 0.5),
+            vertex(tx, ty, 0.5),
+        ]
+    }
+
+    fn lcg(mut seed: u32) -> impl FnMut() -> f32 {
+        move || {
             seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
             (seed >> 8) as f32 / (1u32 << 24) as f32
-        };
+        }
+    }
+
+    /// Whether the pixel centre `(px, py)` lies inside the convex polygon
+    /// `poly` (either winding) by more than a small margin.
+    fn inside_convex(poly: &[SpanVertex], px: f32, py: f32) -> bool {
+        let n = poly.len();
+        let sides: Vec<f32> = (0..n)
+            .map(|k| {
+                let (a, b) = (poly[k], poly[(k + 1) % n]);
+                (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x)
+            })
+            .collect();
+        let margin = 1e-3;
+        sides.iter().all(|&e| e > margin) || sides.iter().all(|&e| e < -margin)
+    }
+
+    /// Checks that `pieces` of blade `v` cover every pixel centre inside its
+    /// quad or tip once and none twice.
+    fn assert_covers_blade_once(pieces: &[BladePiece], v: &[SpanVertex; 5]) {
+        let writes = coverage(pieces, 64, 64, 7);
+        let (quad, tip) = ([v[0], v[1], v[3], v[2]], [v[2], v[3], v[4]]);
+        for y in 0..64 {
+            for x in 0..64 {
+                let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
+                let count = writes[y * 64 + x];
+                assert!(count <= 1, "pixel ({x}, {y}) drawn {count} times");
+                if inside_convex(&quad, px, py) || inside_convex(&tip, px, py) {
+                    assert_eq!(count, 1, "pixel ({x}, {y}) inside but missed");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_blade_quad_and_tip_cover_each_pixel_centre_once() {
+        let mut next = lcg(0x2545_f491);
         for _ in 0..200 {
-            // A tapered, bent blade with sub-pixel vertices, either winding.
-            let (rx, ry) = (10.0 + 20.0 * next(), 40.0 + 20.0 * next());
-            let half = 0.3 + 3.0 * next();
-            let (mx, my) = (rx + 8.0 * (next() - 0.5), ry - 10.0 - 15.0 * next());
-            let (tx, ty) = (mx + 16.0 * (next() - 0.5), my - 5.0 - 20.0 * next());
-            let s = if next() < 0.5 { 1.0 } else { -1.0 };
-            let v = [
-                vertex(rx - s * half, ry, 0.5),
-                vertex(rx + s * half, ry + 0.3, 0.5),
-                vertex(mx - s * 0.6 * half, my, 0.5),
-                vertex(mx + s * 0.6 * half, my + 0.2, 0.5),
-                vertex(tx, ty, 0.5),
-            ];
+            let v = random_blade(&mut next);
             let pieces: Vec<BladePiece> = [
                 BladePiece::setup(&[v[0], v[1], v[3], v[2]], 64),
                 BladePiece::setup(&[v[2], v[3], v[4]], 64),
             ]
             .into_iter()
-            .flatten()
+            .filter_map(|p| p.expect("convex pieces are monotone"))
             .collect();
-            let writes = coverage(&pieces, 64, 64, 7);
-            // Reference: pixel centres inside the quad or the tip (same-side test).
-            let inside = |poly: &[SpanVertex], px: f32, py: f32| {
-                let n = poly.len();
-                let sides: Vec<f32> = (0..n)
-                    .map(|k| {
-                        let (a, b) = (poly[k], poly[(k + 1) % n]);
-                        (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x)
-                    })
-                    .collect();
-                let margin = 1e-3;
-                (
-                    sides.iter().all(|&e| e > margin),
-                    sides.iter().all(|&e| e < -margin),
-                )
-            };
-            for y in 0..64 {
-                for x in 0..64 {
-                    let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
-                    let count = writes[y * 64 + x];
-                    assert!(count <= 1, "pixel ({x}, {y}) drawn {count} times");
-                    let (q1, q2) = inside(&[v[0], v[1], v[3], v[2]], px, py);
-                    let (t1, t2) = inside(&[v[2], v[3], v[4]], px, py);
-                    if q1 || q2 || t1 || t2 {
-                        assert_eq!(count, 1, "pixel ({x}, {y}) inside but missed");
+            assert_covers_blade_once(&pieces, &v);
+        }
+    }
+
+    #[test]
+    fn a_blade_outline_covers_its_quad_and_tip_once_or_is_refused() {
+        let mut next = lcg(0x9e37_79b9);
+        let (mut whole, mut refused) = (0, 0);
+        for _ in 0..400 {
+            let v = random_blade(&mut next);
+            match BladePiece::setup(&[v[0], v[1], v[3], v[4], v[2]], 64) {
+                Ok(piece) => {
+                    whole += 1;
+                    let pieces: Vec<BladePiece> = piece.into_iter().collect();
+                    assert_covers_blade_once(&pieces, &v);
+                    // No pixel outside the outline either (same test, with
+                    // the outline split into the quad and the tip).
+                    let writes = coverage(&pieces, 64, 64, 7);
+                    let outline = [v[0], v[1], v[3], v[4], v[2]];
+                    for (k, &count) in writes.iter().enumerate() {
+                        let (px, py) = ((k % 64) as f32 + 0.5, (k / 64) as f32 + 0.5);
+                        if count > 0 {
+                            assert!(
+                                crossings(&outline, px, py) % 2 == 1 || near_edge(&outline, px, py),
+                                "pixel ({px}, {py}) outside the outline"
+                            );
+                        }
                     }
                 }
+                Err(NotMonotone) => refused += 1,
             }
         }
+        // Upright blades (tip above middle above root) are drawn whole.
+        assert!(whole > 380, "{whole} whole, {refused} refused");
+    }
+
+    /// How many edges of `poly` a ray from `(px, py)` towards +x crosses.
+    fn crossings(poly: &[SpanVertex], px: f32, py: f32) -> usize {
+        let n = poly.len();
+        (0..n)
+            .filter(|&k| {
+                let (a, b) = (poly[k], poly[(k + 1) % n]);
+                (a.y > py) != (b.y > py) && px < a.x + (py - a.y) * (b.x - a.x) / (b.y - a.y)
+            })
+            .count()
+    }
+
+    /// Whether `(px, py)` lies within a thousandth of a pixel of an edge.
+    fn near_edge(poly: &[SpanVertex], px: f32, py: f32) -> bool {
+        let n = poly.len();
+        (0..n).any(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let (dx, dy) = (b.x - a.x, b.y - a.y);
+            let t = (((px - a.x) * dx + (py - a.y) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+            (a.x + t * dx - px).hypot(a.y + t * dy - py) < 1e-3
+        })
+    }
+
+    #[test]
+    fn a_folded_or_crossed_outline_is_refused() {
+        // The tip folded back down over the root: the left side goes up again.
+        let folded = [
+            vertex(10.0, 40.0, 0.5),
+            vertex(14.0, 40.0, 0.5),
+            vertex(13.0, 20.0, 0.5),
+            vertex(12.0, 30.0, 0.5),
+            vertex(11.0, 20.0, 0.5),
+        ];
+        assert_eq!(BladePiece::setup(&folded, 64), Err(NotMonotone));
+        // Both sides go down, but they cross between y = 10 and y = 15.
+        let crossed = [
+            vertex(15.0, 0.0, 0.5),
+            vertex(25.0, 10.0, 0.5),
+            vertex(10.0, 20.0, 0.5),
+            vertex(30.0, 15.0, 0.5),
+            vertex(5.0, 5.0, 0.5),
+        ];
+        assert_eq!(BladePiece::setup(&crossed, 64), Err(NotMonotone));
     }
 
     #[test]
@@ -459,7 +624,7 @@ mod tests {
         for p in &mut v[..2] {
             p.color = Vec3::ONE;
         }
-        let piece = BladePiece::setup(&v, 32).expect("covers pixels");
+        let piece = BladePiece::setup(&v, 32).unwrap().expect("covers pixels");
         assert_eq!(piece.rows(), (2, 29));
         let mut color = vec![0u8; 32 * 32 * 4];
         let mut depth = vec![0.0f32; 32 * 32];
@@ -494,20 +659,21 @@ mod tests {
             vertex(5.0, 5.0, 0.5),
             vertex(9.0, 9.0, 0.5),
         ];
-        assert!(BladePiece::setup(&line, 32).is_none());
+        assert_eq!(BladePiece::setup(&line, 32), Ok(None));
         let below = [
             vertex(1.0, 40.0, 0.5),
             vertex(5.0, 40.0, 0.5),
             vertex(3.0, 50.0, 0.5),
         ];
-        assert!(BladePiece::setup(&below, 32).is_none());
+        assert_eq!(BladePiece::setup(&below, 32), Ok(None));
         let between = [
             vertex(1.0, 3.6, 0.5),
             vertex(9.0, 3.6, 0.5),
             vertex(3.0, 4.4, 0.5),
         ];
-        assert!(
-            BladePiece::setup(&between, 32).is_none(),
+        assert_eq!(
+            BladePiece::setup(&between, 32),
+            Ok(None),
             "no row centre inside"
         );
         let nan = [
@@ -515,6 +681,6 @@ mod tests {
             vertex(9.0, 3.6, 0.5),
             vertex(3.0, 9.4, 0.5),
         ];
-        assert!(BladePiece::setup(&nan, 32).is_none());
+        assert_eq!(BladePiece::setup(&nan, 32), Ok(None));
     }
 }

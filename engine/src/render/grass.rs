@@ -1,12 +1,12 @@
 //! Grass blades: thin tapered strips facing the camera, drawn nearest first by
 //! the span rasterizer of [`super::blade_span`].
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
-use super::blade_span::{BladePiece, SpanVertex};
+use super::blade_span::{BladePiece, NotMonotone, SpanVertex};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, outcode};
 use super::raster::Band;
 use super::shading::{Lighting, encode_display};
@@ -47,8 +47,15 @@ fn unit_hash(index: u32) -> f32 {
     ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
 }
 
-/// The blades to draw with their drawn widths, from the nearest root to the
-/// farthest (ties by index).
+/// A blade to draw: its index, drawn width and root distance from the eye.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct DrawnBlade {
+    index: u32,
+    width: f32,
+    distance: f32,
+}
+
+/// The blades to draw, from the nearest root to the farthest (ties by index).
 ///
 /// Level of detail: a blade whose root is narrower than [`MIN_BLADE_PX`] on screen
 /// is kept with a probability equal to its width in those pixels (a fixed draw
@@ -56,7 +63,7 @@ fn unit_hash(index: u32) -> f32 {
 /// [`MIN_BLADE_PX`]: the meadow keeps its covered area while far blades cost
 /// fewer, fuller rows. Front to back, most hidden pixels fail the depth test
 /// early instead of being shaded and then overwritten.
-fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<(u32, f32)> {
+fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<DrawnBlade> {
     let focal = camera.focal_px();
     let mut keys: Vec<(u64, f32)> = blades
         .par_iter()
@@ -75,8 +82,42 @@ fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<(u32, f32)> {
             Some(((u64::from(distance.to_bits()) << 32) | k as u64, width))
         })
         .collect();
-    keys.par_sort_unstable_by_key(|&(key, _)| key);
-    keys.into_iter().map(|(key, w)| (key as u32, w)).collect()
+    sort_by_distance(&mut keys);
+    keys.into_iter()
+        .map(|(key, width)| DrawnBlade {
+            index: key as u32,
+            width,
+            distance: f32::from_bits((key >> 32) as u32),
+        })
+        .collect()
+}
+
+/// Sorts blade keys (root distance bits above the blade index, in index order)
+/// by distance, keeping index order among equal distances: the order of the
+/// whole key. A radix sort, a byte of the distance per pass (passes where all
+/// keys share the byte are skipped); a comparison sort cost about four times
+/// as much.
+fn sort_by_distance(keys: &mut Vec<(u64, f32)>) {
+    let mut spare = vec![(0u64, 0f32); keys.len()];
+    for shift in (32..64).step_by(8) {
+        let digit = |key: u64| ((key >> shift) & 0xff) as usize;
+        let mut starts = [0usize; 257];
+        for &(key, _) in keys.iter() {
+            starts[digit(key) + 1] += 1;
+        }
+        if starts.contains(&keys.len()) {
+            continue;
+        }
+        for d in 0..256 {
+            starts[d + 1] += starts[d];
+        }
+        for &item in keys.iter() {
+            let d = digit(item.0);
+            spare[starts[d]] = item;
+            starts[d] += 1;
+        }
+        std::mem::swap(keys, &mut spare);
+    }
 }
 
 /// The grass of one frame, set up for the bands: the blades' pieces binned by
@@ -124,10 +165,9 @@ impl GrassLayer {
                     pieces: Vec::with_capacity(2 * chunk.len()),
                     ..BladeGroup::default()
                 };
-                for &(k, width) in chunk {
-                    let verts =
-                        blade_vertices(&blades[k as usize], width, camera, &view_proj, lighting);
-                    group.add(&verts, vp);
+                for drawn in chunk {
+                    let blade = &blades[drawn.index as usize];
+                    group.add(blade, drawn, camera, &view_proj, lighting, vp);
                 }
                 group
             })
@@ -218,84 +258,113 @@ impl GrassLayer {
 }
 
 impl BladeGroup {
-    /// Adds one blade's five vertices: culled when outside one frustum plane,
-    /// clipped as triangles when crossing the near plane or the guard band,
-    /// otherwise set up as two pieces.
-    fn add(&mut self, verts: &[ClipVertex; 5], vp: Viewport) {
+    /// Adds one blade: culled when its five vertices lie outside one frustum
+    /// plane, clipped as triangles when crossing the near plane or the guard
+    /// band, otherwise set up as one piece (its outline, when no row meets it
+    /// twice) or two (its lower quad and its tip).
+    fn add(
+        &mut self,
+        blade: &GrassBlade,
+        drawn: &DrawnBlade,
+        camera: &Camera,
+        view_proj: &Mat4,
+        lighting: &Lighting,
+        vp: Viewport,
+    ) {
+        let pos = blade_clip_positions(blade, drawn.width, camera, view_proj);
         let (mut all, mut any) = (OUT_FRUSTUM, 0);
-        for v in verts {
-            let code = outcode(v.pos);
+        for p in pos {
+            let code = outcode(p);
             all &= code;
             any |= code;
         }
         if all != 0 {
             return;
         }
+        let colors = blade_colors(blade, drawn.distance, lighting);
         if any & (OUT_NEAR | OUT_GUARD) != 0 {
             let base = self.clipped_verts.len() as u32;
-            self.clipped_verts.extend_from_slice(verts);
+            self.clipped_verts
+                .extend((pos.iter().zip(&colors)).map(|(&pos, &color)| ClipVertex { pos, color }));
             self.clipped_tris
                 .extend(BLADE_TRIANGLES.iter().map(|t| t.map(|v| v + base)));
             return;
         }
         let (half_w, half_h) = (0.5 * vp.width as f32, 0.5 * vp.height as f32);
-        let project = |v: &ClipVertex| {
-            let inv_w = 1.0 / v.pos.w;
+        let project = |k: usize| {
+            let inv_w = 1.0 / pos[k].w;
             SpanVertex {
-                x: (v.pos.x * inv_w + 1.0) * half_w,
-                y: (1.0 - v.pos.y * inv_w) * half_h,
+                x: (pos[k].x * inv_w + 1.0) * half_w,
+                y: (1.0 - pos[k].y * inv_w) * half_h,
                 inv_w,
-                color: v.color,
+                color: colors[k],
             }
         };
-        let s = [
-            project(&verts[0]),
-            project(&verts[1]),
-            project(&verts[2]),
-            project(&verts[3]),
-            project(&verts[4]),
-        ];
-        let quad = [s[0], s[1], s[3], s[2]];
-        let tip = [s[2], s[3], s[4]];
-        self.pieces.extend(
-            BladePiece::setup(&quad, vp.height)
-                .into_iter()
-                .chain(BladePiece::setup(&tip, vp.height)),
-        );
+        let s = [project(0), project(1), project(2), project(3), project(4)];
+        let outline = [s[0], s[1], s[3], s[4], s[2]];
+        match BladePiece::setup(&outline, vp.height) {
+            Ok(piece) => self.pieces.extend(piece),
+            Err(NotMonotone) => {
+                let quad = [s[0], s[1], s[3], s[2]];
+                let tip = [s[2], s[3], s[4]];
+                for piece in [&quad[..], &tip[..]] {
+                    // Convex: always monotone.
+                    self.pieces
+                        .extend(BladePiece::setup(piece, vp.height).ok().flatten());
+                }
+            }
+        }
     }
 }
 
-/// A blade's five clip-space vertices with their colours: the root pair, the
-/// middle pair (0.6 of the root width) and the tip, facing the camera, darker
-/// at the root (self-shadowing in the sward) and lit at the tip, fogged.
-fn blade_vertices(
+/// A blade's five clip-space vertices: the root pair, the middle pair (0.6 of
+/// the root width) and the tip, facing the camera. Clip space is linear in the
+/// world point, so the side offset is transformed once.
+fn blade_clip_positions(
     blade: &GrassBlade,
     width: f32,
     camera: &Camera,
     view_proj: &Mat4,
-    lighting: &Lighting,
-) -> [ClipVertex; 5] {
+) -> [Vec4; 5] {
     let axis = blade.tip - blade.root;
     let side = axis
         .cross(camera.eye - blade.root)
         .try_normalize()
         .unwrap_or(Vec3::X)
         * (0.5 * width);
-    let low = encode_display(lighting.radiance(blade.color, Vec3::Y, 0.45, 0.35));
-    let high = encode_display(lighting.radiance(blade.color, Vec3::Y, 1.0, 0.9));
-    let mid_color = low.lerp(high, 0.6);
-    let vertex = |p: Vec3, c: Vec3| ClipVertex {
-        pos: to_clip(view_proj, p),
-        color: lighting.apply_fog(c, (p - camera.eye).length()),
-    };
-    // Written out: `[T; 5]::map` is not reliably inlined.
+    let side = *view_proj * side.extend(0.0);
+    let (root, mid) = (
+        to_clip(view_proj, blade.root),
+        to_clip(view_proj, blade.mid),
+    );
     [
-        vertex(blade.root - side, low),
-        vertex(blade.root + side, low),
-        vertex(blade.mid - side * 0.6, mid_color),
-        vertex(blade.mid + side * 0.6, mid_color),
-        vertex(blade.tip, high),
+        root - side,
+        root + side,
+        mid - side * 0.6,
+        mid + side * 0.6,
+        to_clip(view_proj, blade.tip),
     ]
+}
+
+/// The colours of a blade's five vertices: darker at the root (self-shadowing
+/// in the sward), lit at the tip, fogged once at the root's `distance` (a
+/// blade is short against the fog's scale).
+fn blade_colors(blade: &GrassBlade, distance: f32, lighting: &Lighting) -> [Vec3; 5] {
+    let fog = |c: Vec3| lighting.apply_fog(c, distance);
+    let low = fog(encode_display(lighting.radiance(
+        blade.color,
+        Vec3::Y,
+        0.45,
+        0.35,
+    )));
+    let high = fog(encode_display(lighting.radiance(
+        blade.color,
+        Vec3::Y,
+        1.0,
+        0.9,
+    )));
+    let mid = low.lerp(high, 0.6);
+    [low, low, mid, mid, high]
 }
 
 #[cfg(test)]
@@ -318,8 +387,26 @@ mod tests {
     }
 
     #[test]
+    fn distance_sort_orders_by_whole_key() {
+        let mut seed = 7u64;
+        let mut keys: Vec<(u64, f32)> = (0..3000u64)
+            .map(|k| {
+                seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+                // Few distinct distances, so that ties are common.
+                let distance = 1.0 + ((seed >> 33) % 50) as f32 * 0.37;
+                ((u64::from(distance.to_bits()) << 32) | k, k as f32)
+            })
+            .collect();
+        let mut expected = keys.clone();
+        expected.sort_unstable_by_key(|&(key, _)| key);
+        sort_by_distance(&mut keys);
+        assert_eq!(keys, expected);
+    }
+
+    #[test]
     fn far_blades_are_thinned_keeping_their_covered_width() {
         let blades = row_of_blades(4000);
+        // Level of detail and order.
         let camera = |z: f32| {
             Camera::perspective(0.9, 640, 400, 0.05, 500.0)
                 .unwrap()
@@ -328,24 +415,25 @@ mod tests {
         // Near: every blade at its own width, nearest first.
         let near = drawn_blades(&blades, &camera(-1.0));
         assert_eq!(near.len(), blades.len());
-        assert!(near.iter().all(|&(_, w)| w == 0.01));
+        assert!(near.iter().all(|d| d.width == 0.01));
         let distance = |k: u32| blades[k as usize].root.distance(camera(-1.0).eye);
+        assert!(near.iter().all(|d| d.distance == distance(d.index)));
         assert!(
             near.windows(2)
-                .all(|p| distance(p[0].0) <= distance(p[1].0))
+                .all(|p| distance(p[0].index) <= distance(p[1].index))
         );
         // Far (a root spans about a quarter of a pixel): about a quarter is kept,
         // widened so that the summed width stays about the same.
         let far = drawn_blades(&blades, &camera(-16.5));
         let kept = far.len() as f32 / blades.len() as f32;
         assert!((0.15..0.35).contains(&kept), "kept {kept}");
-        let total: f32 = far.iter().map(|&(_, w)| w).sum();
+        let total: f32 = far.iter().map(|d| d.width).sum();
         let original = 0.01 * blades.len() as f32;
         assert!(
             (total / original - 1.0).abs() < 0.15,
             "{total} vs {original}"
         );
-        assert!(far.iter().all(|&(_, w)| w > 0.01));
+        assert!(far.iter().all(|d| d.width > 0.01));
     }
 
     #[test]
