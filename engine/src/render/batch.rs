@@ -113,15 +113,15 @@ impl VertexColors for EagerColors<'_> {
 }
 
 /// Colours computed on first use: `color(k)` (display RGB) of vertex `k`,
-/// whose clip position is `position(k)`.
-struct LazyColors<P, C> {
-    position: P,
+/// whose clip position is `clip[k]`.
+struct LazyColors<C> {
+    clip: Vec<Vec4>,
     color: C,
     /// Whether the vertex's colour / w is set (clipped polygons' vertices are).
     shaded: Vec<bool>,
 }
 
-impl<P: Fn(usize) -> Vec4, C: Fn(usize) -> Vec3> VertexColors for LazyColors<P, C> {
+impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
     #[inline]
     fn shade(&mut self, screen: &mut [ScreenVertex], k: usize) {
         match self.shaded.get_mut(k) {
@@ -136,7 +136,7 @@ impl<P: Fn(usize) -> Vec4, C: Fn(usize) -> Vec3> VertexColors for LazyColors<P, 
 
     fn clip_vertex(&self, k: usize) -> ClipVertex {
         ClipVertex {
-            pos: (self.position)(k),
+            pos: self.clip[k],
             color: (self.color)(k),
         }
     }
@@ -161,11 +161,11 @@ impl ScreenBatch {
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
-        let clip: Vec<Vec4> = (0..count).map(&position).collect();
+        let clip: Vec<Vec4> = (0..count).map(position).collect();
         let screen = clip.iter().map(|&p| vp.project_position(p)).collect();
         let codes = clip.iter().map(|&p| outcode(p)).collect();
         let colors = LazyColors {
-            position,
+            clip,
             color,
             shaded: vec![false; count],
         };
