@@ -2,11 +2,18 @@
 //! triangles, per-vertex colours) seen by one camera at 1280 x 720, drawn by our
 //! renderer and by `euc` (a scalar Rust software rasterizer).
 //!
-//! Rows:
-//! - `terrain_mesh_522k_tris`: both draw every triangle of the same mesh (ours as a
-//!   [`MeshInstance`], lit per vertex each frame; `euc` with precomputed colours).
+//! Rows (both renderers do the same shading work inside the timed region):
+//! - `terrain_mesh_522k_tris`: both draw every triangle of the same mesh and
+//!   light it each frame with the same formula (sun, sky, display encoding,
+//!   fog): ours as a [`MeshInstance`] (per vertex, only for vertices of
+//!   triangles that reach the screen), `euc` in its vertex shader (which it
+//!   calls once per index: it has no vertex cache).
+//! - `terrain_mesh_522k_tris_prelit`: the same mesh with the same colours
+//!   computed once before timing, no fog: ours through
+//!   [`MeshInstance::with_vertex_colors`], `euc` reading them in its vertex shader.
 //! - `terrain_patches_lod`: ours draws the same grid through [`TerrainRenderer`]
-//!   (patch culling and level of detail); `euc` still draws the full mesh.
+//!   (patch culling and level of detail; lit when the grid changes, fog per
+//!   frame); `euc` is the pre-lit full mesh of the row above.
 //!
 //! `euc` (without its `par` feature) draws on one thread, so `ours_ns` is ours on
 //! a one-thread pool: the like-for-like figure. `ours_2_threads_ns` is ours on
@@ -16,7 +23,7 @@ use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};
 use engine::render::{
     Camera, CullMode, FrameScene, Lighting, MeshInstance, Renderer, TerrainRenderer, TerrainStyle,
-    UniformColor,
+    UniformColor, encode_display,
 };
 use euc::{Pipeline, buffer::Buffer2d, rasterizer};
 
@@ -60,11 +67,24 @@ fn camera() -> Camera {
         .look_at(Vec3::new(0.0, 3.0, -8.0), Vec3::new(0.0, 0.0, 0.0), Vec3::Y)
 }
 
+/// Where `euc`'s vertex shader gets its colours.
+enum EucColors<'a> {
+    /// Lit in the shader like our mesh vertices: normal, sky term, sun, display
+    /// encoding and fog.
+    Lit {
+        normals: &'a [Vec3],
+        lighting: Lighting,
+        eye: Vec3,
+    },
+    /// Read from a table computed before timing.
+    Baked(&'a [Vec3]),
+}
+
 /// `euc` pipeline: indexed positions through our view-projection, Gouraud colours.
 struct EucTerrain<'a> {
     view_proj: Mat4,
     positions: &'a [Vec3],
-    colors: &'a [[f32; 3]],
+    colors: EucColors<'a>,
 }
 
 impl Pipeline for EucTerrain<'_> {
@@ -74,15 +94,56 @@ impl Pipeline for EucTerrain<'_> {
 
     fn vert(&self, v: &u32) -> ([f32; 4], Self::VsOut) {
         let k = *v as usize;
-        let clip = self.view_proj * self.positions[k].extend(1.0);
-        let c = self.colors[k];
-        (clip.to_array(), (c[0], c[1], c[2]))
+        let p = self.positions[k];
+        let clip = self.view_proj * p.extend(1.0);
+        let c = match &self.colors {
+            EucColors::Lit {
+                normals,
+                lighting,
+                eye,
+            } => {
+                let n = normals[k];
+                lighting.apply_fog(lit(lighting, n), (p - *eye).length())
+            }
+            EucColors::Baked(colors) => colors[k],
+        };
+        (clip.to_array(), (c.x, c.y, c.z))
     }
 
     fn frag(&self, c: &Self::VsOut) -> u32 {
         let b = |v: f32| (v.clamp(0.0, 1.0) * 255.0) as u32;
         0xff00_0000 | (b(c.0) << 16) | (b(c.1) << 8) | b(c.2)
     }
+}
+
+/// The display colour of a sand vertex with normal `n`, as our mesh path
+/// lights it (before fog).
+fn lit(lighting: &Lighting, n: Vec3) -> Vec3 {
+    let sky = 0.65 + 0.35 * n.y;
+    encode_display(lighting.radiance(SAND, n, sky, 1.0))
+}
+
+/// Times `euc` drawing `mesh` with `colors`; returns the time and the count of
+/// covered pixels.
+fn time_euc(mesh: &TriMesh, cam: &Camera, colors: EucColors<'_>) -> (f64, usize) {
+    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+    let pipeline = EucTerrain {
+        view_proj: cam.view_proj(),
+        positions: &mesh.positions,
+        colors,
+    };
+    let mut color = Buffer2d::new([WIDTH as usize, HEIGHT as usize], 0u32);
+    let mut depth = Buffer2d::new([WIDTH as usize, HEIGHT as usize], 1.0f32);
+    let ns = time_ns(3000, || {
+        euc::Target::clear(&mut color, 0);
+        euc::Target::clear(&mut depth, 1.0);
+        pipeline.draw::<rasterizer::Triangles<_, rasterizer::BackfaceCullingDisabled>, _>(
+            &indices,
+            &mut color,
+            Some(&mut depth),
+        );
+    });
+    (ns, color.as_ref().iter().filter(|&&p| p != 0).count())
 }
 
 /// Runs the group and returns one row per workload.
@@ -96,48 +157,45 @@ pub fn run() -> Vec<Row> {
             .and_then(|r| r.with_threads(n))
             .expect("renderer")
     });
-
-    // euc: the same mesh, colours lit once with the same sun.
-    let colors: Vec<[f32; 3]> = mesh
-        .normals
-        .iter()
-        .map(|&n| {
-            let c = engine::render::encode_display(lighting.radiance(SAND, n, 1.0, 1.0));
-            [c.x, c.y, c.z]
+    let time_ours = |scene: &FrameScene<'_>| {
+        threads.each_ref().map(|renderer| {
+            time_ns(3000, || {
+                std::hint::black_box(renderer.render(scene, &cam));
+            })
         })
-        .collect();
-    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
-    let pipeline = EucTerrain {
-        view_proj: cam.view_proj(),
-        positions: &mesh.positions,
-        colors: &colors,
     };
-    let mut color = Buffer2d::new([WIDTH as usize, HEIGHT as usize], 0u32);
-    let mut depth = Buffer2d::new([WIDTH as usize, HEIGHT as usize], 1.0f32);
-    let euc_ns = time_ns(3000, || {
-        euc::Target::clear(&mut color, 0);
-        euc::Target::clear(&mut depth, 1.0);
-        pipeline.draw::<rasterizer::Triangles<_, rasterizer::BackfaceCullingDisabled>, _>(
-            &indices,
-            &mut color,
-            Some(&mut depth),
-        );
-    });
-    let euc_covered = color.as_ref().iter().filter(|&&p| p != 0).count();
 
-    // Ours, the same full mesh.
+    // Lit each frame by both.
+    let (euc_lit_ns, euc_covered) = time_euc(
+        &mesh,
+        &cam,
+        EucColors::Lit {
+            normals: &mesh.normals,
+            lighting,
+            eye: cam.eye,
+        },
+    );
     let mut instance = MeshInstance::new(&mesh, Mat4::IDENTITY, SAND);
     instance.cull = CullMode::None;
-    let meshes = [instance];
-    let mesh_scene = FrameScene {
-        meshes: &meshes,
+    let lit_meshes = [instance];
+    let ours_lit_ns = time_ours(&FrameScene {
+        meshes: &lit_meshes,
         lighting,
         ..FrameScene::new()
+    });
+
+    // Pre-lit by both: the same colours, computed once; no fog.
+    let unfogged = Lighting {
+        fog_density: 0.0,
+        ..lighting
     };
-    let ours_mesh_ns = threads.each_ref().map(|renderer| {
-        time_ns(3000, || {
-            std::hint::black_box(renderer.render(&mesh_scene, &cam));
-        })
+    let baked: Vec<Vec3> = mesh.normals.iter().map(|&n| lit(&lighting, n)).collect();
+    let (euc_baked_ns, _) = time_euc(&mesh, &cam, EucColors::Baked(&baked));
+    let baked_meshes = [instance.with_vertex_colors(&baked)];
+    let ours_baked_ns = time_ours(&FrameScene {
+        meshes: &baked_meshes,
+        lighting: unfogged,
+        ..FrameScene::new()
     });
 
     // Ours, the terrain renderer on the same grid.
@@ -150,18 +208,14 @@ pub fn run() -> Vec<Row> {
         lighting,
         ..FrameScene::new()
     };
-    let ours_terrain_ns = threads.each_ref().map(|renderer| {
-        time_ns(3000, || {
-            std::hint::black_box(renderer.render(&terrain_scene, &cam));
-        })
-    });
+    let ours_terrain_ns = time_ours(&terrain_scene);
     let (_, stats) = threads[0].render_with_stats(&terrain_scene, &cam);
     eprintln!(
         "raster: euc covered {euc_covered} px; terrain patches set up {} triangles",
         stats.triangles
     );
 
-    let row = |name: &str, [one, two]: [f64; 2]| {
+    let row = |name: &str, [one, two]: [f64; 2], euc_ns: f64| {
         Row::new(
             name,
             vec![
@@ -172,7 +226,8 @@ pub fn run() -> Vec<Row> {
         )
     };
     vec![
-        row("terrain_mesh_522k_tris", ours_mesh_ns),
-        row("terrain_patches_lod", ours_terrain_ns),
+        row("terrain_mesh_522k_tris", ours_lit_ns, euc_lit_ns),
+        row("terrain_mesh_522k_tris_prelit", ours_baked_ns, euc_baked_ns),
+        row("terrain_patches_lod", ours_terrain_ns, euc_baked_ns),
     ]
 }

@@ -2,10 +2,10 @@
 //! of set-up triangles (culled, clipped, wound clockwise on screen, covering at
 //! least one pixel centre), binned by bands, which the bands then fill.
 
-use glam::Vec4;
+use glam::{Vec3, Vec4};
 
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
-use super::raster::{Band, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area};
+use super::raster::{Band, Dot, Edges, ONE, PixelSpan, ScreenVertex, Shape, Triangle, signed_area};
 
 /// Which triangles to drop by their facing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,18 +29,28 @@ pub(crate) struct TriangleGroup<'a> {
 /// result does not depend on the number of threads.
 pub(crate) const BAND_ROWS: i32 = 32;
 
+/// Bit of a [`ScreenBatch`] entry that marks a [`Dot`] (else a [`Triangle`]).
+const DOT_ENTRY: u32 = 1 << 31;
+
 /// Screen-space triangles ready to fill, binned by the bands of rows they touch.
 #[derive(Debug, Default)]
 pub(crate) struct ScreenBatch {
-    /// Set-up triangles, in submission order.
+    /// Set-up triangles covering more than one pixel centre.
     tris: Vec<Triangle>,
+    /// Triangles covering one pixel centre, kept as that pixel.
+    dots: Vec<Dot>,
+    /// Every kept triangle in submission order: an index into `tris`, or into
+    /// `dots` with [`DOT_ENTRY`] set.
+    entries: Vec<u32>,
+    /// First and last pixel row of each entry.
+    rows: Vec<(i32, i32)>,
     /// Edge functions of the triangles too big for a coverage mask.
     edges: Vec<Edges>,
     /// First band any triangle touches.
     first_band: i32,
     /// `bins[k]..bins[k + 1]` indexes `binned` for band `first_band + k`.
     bins: Vec<u32>,
-    /// Triangle indices of each band, in submission order.
+    /// Entries of each band, in submission order.
     binned: Vec<u32>,
 }
 
@@ -52,8 +62,18 @@ pub(crate) struct Viewport {
 }
 
 impl Viewport {
+    /// The screen vertex of clip position `pos`, its colour not yet set.
     #[inline]
-    fn project(&self, v: &ClipVertex) -> ScreenVertex {
+    fn project_position(&self, pos: Vec4) -> ScreenVertex {
+        self.project(&ClipVertex {
+            pos,
+            color: Vec3::ZERO,
+        })
+    }
+
+    /// The screen vertex of a clip vertex.
+    #[inline]
+    pub(crate) fn project(&self, v: &ClipVertex) -> ScreenVertex {
         let inv_w = 1.0 / v.pos.w;
         let sx = (v.pos.x * inv_w * 0.5 + 0.5) * self.width as f32;
         let sy = (0.5 - v.pos.y * inv_w * 0.5) * self.height as f32;
@@ -71,16 +91,105 @@ impl Viewport {
     }
 }
 
+/// Where the vertices of a batch get their colour: all up front
+/// ([`EagerColors`]) or only when a triangle using them is kept ([`LazyColors`]).
+trait VertexColors {
+    /// Makes sure `screen[k].color_w` is set.
+    fn shade(&mut self, screen: &mut [ScreenVertex], k: usize);
+    /// The clip vertex `k` (position and colour), for clipping.
+    fn clip_vertex(&self, k: usize) -> ClipVertex;
+}
+
+/// Colours already projected with the positions.
+struct EagerColors<'a>(&'a [ClipVertex]);
+
+impl VertexColors for EagerColors<'_> {
+    #[inline]
+    fn shade(&mut self, _: &mut [ScreenVertex], _: usize) {}
+
+    fn clip_vertex(&self, k: usize) -> ClipVertex {
+        self.0[k]
+    }
+}
+
+/// Colours computed on first use: `color(k)` (display RGB) of vertex `k`,
+/// whose clip position is `clip[k]`.
+struct LazyColors<C> {
+    clip: Vec<Vec4>,
+    color: C,
+    /// Whether the vertex's colour / w is set (clipped polygons' vertices are).
+    shaded: Vec<bool>,
+}
+
+impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
+    #[inline]
+    fn shade(&mut self, screen: &mut [ScreenVertex], k: usize) {
+        match self.shaded.get_mut(k) {
+            Some(done) if !*done => {
+                *done = true;
+                let v = &mut screen[k];
+                v.color_w = (self.color)(k) * v.inv_w;
+            }
+            _ => {}
+        }
+    }
+
+    fn clip_vertex(&self, k: usize) -> ClipVertex {
+        ClipVertex {
+            pos: self.clip[k],
+            color: (self.color)(k),
+        }
+    }
+}
+
 impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
+        let screen = verts.iter().map(|v| vp.project(v)).collect();
+        let codes = verts.iter().map(|v| outcode(v.pos)).collect();
+        ScreenBatch::build_from(screen, codes, EagerColors(verts), groups, vp)
+    }
+
+    /// Projects `count` vertices (clip position of vertex `k`: `position(k)`)
+    /// and sets up every triangle of `groups`, calling `color(k)` (display RGB)
+    /// only for vertices of triangles that survive culling and cover a pixel
+    /// centre, once each (clipping, which is rare, may ask again).
+    pub fn build_lazy(
+        count: usize,
+        position: impl Fn(usize) -> Vec4,
+        color: impl Fn(usize) -> Vec3,
+        groups: &[TriangleGroup<'_>],
+        vp: Viewport,
+    ) -> ScreenBatch {
+        let clip: Vec<Vec4> = (0..count).map(position).collect();
+        let screen = clip.iter().map(|&p| vp.project_position(p)).collect();
+        let codes = clip.iter().map(|&p| outcode(p)).collect();
+        let colors = LazyColors {
+            clip,
+            color,
+            shaded: vec![false; count],
+        };
+        ScreenBatch::build_from(screen, codes, colors, groups, vp)
+    }
+
+    /// Sets up every triangle of `groups` over projected vertices `screen` with
+    /// their clip outcodes `codes`.
+    fn build_from(
+        mut screen: Vec<ScreenVertex>,
+        codes: Vec<u8>,
+        mut colors: impl VertexColors,
+        groups: &[TriangleGroup<'_>],
+        vp: Viewport,
+    ) -> ScreenBatch {
         let submitted = groups.iter().map(|g| g.triangles.len()).sum();
+        // Growing these would copy them; untouched capacity costs nothing.
         let mut batch = ScreenBatch {
             tris: Vec::with_capacity(submitted),
+            dots: Vec::with_capacity(submitted),
+            entries: Vec::with_capacity(submitted),
+            rows: Vec::with_capacity(submitted),
             ..ScreenBatch::default()
         };
-        let mut screen: Vec<ScreenVertex> = verts.iter().map(|v| vp.project(v)).collect();
-        let codes: Vec<u8> = verts.iter().map(|v| outcode(v.pos)).collect();
         let mut polygon = Vec::with_capacity(9);
         for group in groups {
             for &tri in group.triangles {
@@ -90,18 +199,20 @@ impl ScreenBatch {
                     continue;
                 }
                 if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.push(&screen, tri, group.cull, vp);
+                    batch.push(&mut screen, &mut colors, tri, group.cull, vp);
                     continue;
                 }
-                clip_triangle([verts[a], verts[b], verts[c]], &mut polygon);
+                clip_triangle([a, b, c].map(|k| colors.clip_vertex(k)), &mut polygon);
                 if polygon.is_empty() {
                     continue;
                 }
-                // Clipped polygons append their vertices, dropped with the batch's.
+                // Clipped polygons append their (already shaded) vertices,
+                // dropped with the batch's.
                 let base = screen.len() as u32;
                 screen.extend(polygon.iter().map(|v| vp.project(v)));
                 for k in 1..polygon.len() as u32 - 1 {
-                    batch.push(&screen, [base, base + k, base + k + 1], group.cull, vp);
+                    let tri = [base, base + k, base + k + 1];
+                    batch.push(&mut screen, &mut colors, tri, group.cull, vp);
                 }
             }
         }
@@ -109,9 +220,9 @@ impl ScreenBatch {
         batch
     }
 
-    /// Sorts the triangles into per-band lists (counting sort, order kept).
+    /// Sorts the entries into per-band lists (counting sort, order kept).
     fn bin(&mut self) {
-        let rows: Vec<(i32, i32)> = self.tris.iter().map(Triangle::rows).collect();
+        let rows = &self.rows;
         let Some(first) = rows.iter().map(|r| r.0).min() else {
             return;
         };
@@ -119,11 +230,11 @@ impl ScreenBatch {
         self.first_band = first / BAND_ROWS;
         let bands = (last / BAND_ROWS - self.first_band + 1) as usize;
         let mut counts = vec![0u32; bands + 1];
+        let first_band = self.first_band;
         let band_range = |(y0, y1): (i32, i32)| {
-            (y0 / BAND_ROWS - self.first_band) as usize
-                ..=(y1 / BAND_ROWS - self.first_band) as usize
+            (y0 / BAND_ROWS - first_band) as usize..=(y1 / BAND_ROWS - first_band) as usize
         };
-        for &r in &rows {
+        for &r in rows {
             for b in band_range(r) {
                 counts[b + 1] += 1;
             }
@@ -133,18 +244,24 @@ impl ScreenBatch {
         }
         let mut fill = counts.clone();
         self.binned = vec![0; counts[bands] as usize];
-        for (t, &r) in rows.iter().enumerate() {
+        for (&entry, &r) in self.entries.iter().zip(rows) {
             for b in band_range(r) {
-                self.binned[fill[b] as usize] = t as u32;
+                self.binned[fill[b] as usize] = entry;
                 fill[b] += 1;
             }
         }
         self.bins = counts;
     }
 
-    /// Number of set-up triangles.
+    /// How many kept triangles became dots, and how many are full triangles.
+    #[cfg(test)]
+    pub fn kinds(&self) -> (usize, usize) {
+        (self.dots.len(), self.tris.len())
+    }
+
+    /// Number of set-up triangles (dots included).
     pub fn len(&self) -> usize {
-        self.tris.len()
+        self.entries.len()
     }
 
     /// Fills the band (band index `band`, of [`BAND_ROWS`] rows) with the
@@ -157,32 +274,75 @@ impl ScreenBatch {
         }
         let k = k as usize;
         for &t in &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize] {
-            self.tris[t as usize].draw(&self.edges, target);
+            if t & DOT_ENTRY != 0 {
+                self.dots[(t & !DOT_ENTRY) as usize].draw(target);
+            } else {
+                self.tris[t as usize].draw(&self.edges, target);
+            }
         }
     }
 
-    /// Culls, orients, sets up and keeps one triangle if it covers a pixel centre.
+    /// Culls, orients, sets up and keeps one triangle if it covers a pixel
+    /// centre, shading its vertices only then.
     #[inline]
-    fn push(&mut self, screen: &[ScreenVertex], tri: [u32; 3], cull: CullMode, vp: Viewport) {
-        let [a, b, c] = tri.map(|k| &screen[k as usize]);
+    fn push(
+        &mut self,
+        screen: &mut [ScreenVertex],
+        colors: &mut impl VertexColors,
+        tri: [u32; 3],
+        cull: CullMode,
+        vp: Viewport,
+    ) {
+        let [a, b, c] = tri.map(|k| k as usize);
+        let (sa, sb, sc) = (&screen[a], &screen[b], &screen[c]);
         // Most sub-pixel triangles have no pixel centre in their box: drop them
         // first (the box does not depend on the winding).
-        let span = PixelSpan::of([a, b, c], vp.width, vp.height);
+        let span = PixelSpan::of([sa, sb, sc], vp.width, vp.height);
         if span.is_empty() {
             return;
         }
-        let area = signed_area(a, b, c);
+        let area = signed_area(sa, sb, sc);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen.
-        let (v, area) = if area < 0 {
+        let (order, area) = if area < 0 {
             ([a, c, b], -area)
         } else if area > 0 && cull == CullMode::None {
             ([a, b, c], area)
         } else {
             return;
         };
-        if let Some(t) = Triangle::setup(v, area, span, &mut self.edges) {
-            self.tris.push(t);
+        if span.x0 == span.x1 && span.y0 == span.y1 {
+            // One pixel centre in the box (most small triangles): test it and
+            // keep the pixel.
+            let pixel = (span.x0, span.y0);
+            let Some(e) = Dot::covers(order.map(|k| &screen[k]), pixel) else {
+                return;
+            };
+            for k in order {
+                colors.shade(screen, k);
+            }
+            self.entries.push(self.dots.len() as u32 | DOT_ENTRY);
+            self.rows.push((pixel.1, pixel.1));
+            self.dots
+                .push(Dot::new(order.map(|k| &screen[k]), area, pixel, e));
+            return;
+        }
+        let Some(shape) = Shape::of(order.map(|k| &screen[k]), span) else {
+            return;
+        };
+        for k in order {
+            colors.shade(screen, k);
+        }
+        let v = order.map(|k| &screen[k]);
+        if shape.is_dot() {
+            let dot = shape.dot(v, area);
+            self.entries.push(self.dots.len() as u32 | DOT_ENTRY);
+            self.rows.push((dot.row(), dot.row()));
+            self.dots.push(dot);
+        } else {
+            self.entries.push(self.tris.len() as u32);
+            self.rows.push((span.y0, span.y1));
+            self.tris.push(shape.triangle(v, area, &mut self.edges));
         }
     }
 }

@@ -6,7 +6,6 @@ use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
-use super::clip::ClipVertex;
 use super::shading::{Lighting, encode_display};
 use crate::geom::TriMesh;
 
@@ -27,6 +26,10 @@ pub struct MeshInstance<'a> {
     pub color: Vec3,
     /// Facing to drop (back faces of closed meshes by default).
     pub cull: CullMode,
+    /// Display-encoded RGB per vertex (indexed like `mesh.positions`) used
+    /// instead of lighting `color`: baked or pre-lit colours. Fog still applies;
+    /// vertices past the end of the slice are lit as usual.
+    pub vertex_colors: Option<&'a [Vec3]>,
 }
 
 impl<'a> MeshInstance<'a> {
@@ -38,7 +41,15 @@ impl<'a> MeshInstance<'a> {
             part_transforms: &[],
             color,
             cull: CullMode::Back,
+            vertex_colors: None,
         }
+    }
+
+    /// The same instance drawn with baked per-vertex display colours (see
+    /// [`MeshInstance::vertex_colors`]) instead of lighting.
+    pub fn with_vertex_colors(mut self, colors: &'a [Vec3]) -> MeshInstance<'a> {
+        self.vertex_colors = Some(colors);
+        self
     }
 
     /// The same instance with one transform per part (e.g. bone poses).
@@ -93,25 +104,33 @@ impl<'a> MeshInstance<'a> {
                 let tris = mesh.triangles.get(range)?;
                 let first = tris.iter().flatten().copied().min()? as usize;
                 let last = tris.iter().flatten().copied().max()? as usize;
+                if last >= mesh.positions.len() {
+                    return None;
+                }
                 let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
-                let verts: Vec<ClipVertex> = (first..=last)
-                    .map(|v| {
-                        let p = model.transform_point3(*mesh.positions.get(v)?);
-                        let n = mesh.normals.get(v).copied().unwrap_or(Vec3::Y);
-                        let n = (normal_matrix * n).normalize_or(Vec3::Y);
-                        let sky = 0.65 + 0.35 * n.y;
-                        let radiance = lighting.radiance(self.color, n, sky, 1.0);
-                        Some(ClipVertex {
-                            pos: to_clip(&view_proj, p),
-                            color: lighting
-                                .apply_fog(encode_display(radiance), (p - camera.eye).length()),
-                        })
-                    })
-                    .collect::<Option<_>>()?;
+                let world = |v: usize| model.transform_point3(mesh.positions[v]);
+                // Lit (or baked) and fogged, only for vertices of triangles that
+                // reach the screen.
+                let color = |k: usize| {
+                    let v = first + k;
+                    let p = world(v);
+                    let display = match self.vertex_colors.and_then(|c| c.get(v)) {
+                        Some(&baked) => baked,
+                        None => {
+                            let n = mesh.normals.get(v).copied().unwrap_or(Vec3::Y);
+                            let n = (normal_matrix * n).normalize_or(Vec3::Y);
+                            let sky = 0.65 + 0.35 * n.y;
+                            encode_display(lighting.radiance(self.color, n, sky, 1.0))
+                        }
+                    };
+                    lighting.apply_fog(display, (p - camera.eye).length())
+                };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
-                Some(ScreenBatch::build(
-                    &verts,
+                Some(ScreenBatch::build_lazy(
+                    last - first + 1,
+                    |k| to_clip(&view_proj, world(first + k)),
+                    color,
                     &[TriangleGroup {
                         triangles: &local,
                         cull: self.cull,
@@ -120,5 +139,82 @@ impl<'a> MeshInstance<'a> {
                 ))
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Mat4, Vec3};
+
+    use crate::geom::TriMesh;
+    use crate::render::{Camera, FrameScene, Lighting, MeshInstance, Renderer, encode_display};
+
+    /// A bumpy 12 x 12 sheet facing up, seen from above and in front.
+    fn sheet() -> (TriMesh, Camera) {
+        let n = 12u32;
+        let positions = (0..n * n)
+            .map(|k| {
+                let (i, j) = ((k % n) as f32, (k / n) as f32);
+                Vec3::new(
+                    i / 11.0 - 0.5,
+                    0.05 * (i * 1.3).sin() * (j * 0.9).cos(),
+                    j / 11.0 - 0.5,
+                )
+            })
+            .collect();
+        let mut triangles = Vec::new();
+        for j in 0..n - 1 {
+            for i in 0..n - 1 {
+                let a = j * n + i;
+                triangles.push([a, a + n + 1, a + 1]);
+                triangles.push([a, a + n, a + n + 1]);
+            }
+        }
+        let mesh = TriMesh::new(positions, triangles).unwrap();
+        let camera = Camera::perspective(0.9, 64, 48, 0.05, 50.0)
+            .unwrap()
+            .look_at(Vec3::new(0.0, 0.9, -0.9), Vec3::ZERO, Vec3::Y);
+        (mesh, camera)
+    }
+
+    #[test]
+    fn baked_colours_equal_to_the_lighting_draw_the_same_image() {
+        let (mesh, camera) = sheet();
+        let lighting = Lighting::default();
+        let albedo = Vec3::new(0.6, 0.5, 0.3);
+        // What the mesh path computes per vertex before fog (identity transform).
+        let baked: Vec<Vec3> = mesh
+            .normals
+            .iter()
+            .map(|&n| {
+                let n = n.normalize_or(Vec3::Y);
+                encode_display(lighting.radiance(albedo, n, 0.65 + 0.35 * n.y, 1.0))
+            })
+            .collect();
+        let lit = [MeshInstance::new(&mesh, Mat4::IDENTITY, albedo)];
+        let pre_lit =
+            [MeshInstance::new(&mesh, Mat4::IDENTITY, Vec3::ONE).with_vertex_colors(&baked)];
+        let renderer = Renderer::new(64, 48).unwrap();
+        let render = |meshes: &[MeshInstance<'_>]| {
+            renderer.render(
+                &FrameScene {
+                    meshes,
+                    lighting,
+                    ..FrameScene::new()
+                },
+                &camera,
+            )
+        };
+        let (a, b) = (render(&lit), render(&pre_lit));
+        assert!(
+            a.pixels().filter(|p| p.0 != b.get_pixel(0, 0).0).count() > 500,
+            "the sheet is drawn"
+        );
+        assert_eq!(a, b);
+        // A different baked colour shows.
+        let red = vec![Vec3::X; mesh.positions.len()];
+        let red_sheet = [MeshInstance::new(&mesh, Mat4::IDENTITY, albedo).with_vertex_colors(&red)];
+        let c = render(&red_sheet);
+        assert_eq!(c.get_pixel(32, 30).0, [255, 0, 0, 255]);
     }
 }

@@ -73,7 +73,7 @@ fn last_centre(v: i32) -> i32 {
 impl PixelSpan {
     /// The span of pixel centres inside the bounding box of `v`, clipped to a
     /// `width` x `height` screen.
-    #[inline]
+    #[inline(always)]
     pub fn of(v: [&ScreenVertex; 3], width: i32, height: i32) -> PixelSpan {
         let min_x = v[0].x.min(v[1].x).min(v[2].x);
         let max_x = v[0].x.max(v[1].x).max(v[2].x);
@@ -133,12 +133,10 @@ impl Edge {
         // Interior is E > 0 (clockwise on a y-down screen). Pixels exactly on an
         // edge belong to it only when it is a top edge (horizontal, going right)
         // or a left edge (going up), so shared edges are drawn exactly once.
-        let top_left = dy < 0 || (dy == 0 && dx > 0);
-        let bias = if top_left { 0 } else { -1 };
         Edge {
             step_x: -dy * ONE,
             step_y: dx * ONE,
-            start: dx * (py - a.y as i64) - dy * (px - a.x as i64) + bias,
+            start: edge_value(dx, dy, a, px, py),
         }
     }
 
@@ -161,6 +159,31 @@ impl Edge {
             (lo, hi)
         }
     }
+}
+
+/// The value at fixed point `(px, py)` of the edge from `a` by `(dx, dy)`, with
+/// its top-left bias: covered when `>= 0`.
+#[inline]
+fn edge_value(dx: i64, dy: i64, a: &ScreenVertex, px: i64, py: i64) -> i64 {
+    // Interior is E > 0 (clockwise on a y-down screen). Pixels exactly on an
+    // edge belong to it only when it is a top edge (horizontal, going right)
+    // or a left edge (going up), so shared edges are drawn exactly once.
+    let top_left = dy < 0 || (dy == 0 && dx > 0);
+    let bias = if top_left { 0 } else { -1 };
+    dx * (py - a.y as i64) - dy * (px - a.x as i64) + bias
+}
+
+/// The attributes of vertex 0 of a triangle (positive [`signed_area`] `area`)
+/// and the attribute change for given values of edges 1 and 2 (the weights of
+/// vertices 1 and 2, times the area).
+#[inline]
+fn attribute_weights(v: [&ScreenVertex; 3], area: i64) -> (Vec4, impl Fn(i64, i64) -> Vec4) {
+    let inv_area = 1.0 / area as f32;
+    let a0 = v[0].attributes();
+    let (d1, d2) = (v[1].attributes() - a0, v[2].attributes() - a0);
+    // The top-left bias of at most 1 unit is negligible in the weights.
+    let weights = move |e1: i64, e2: i64| d1 * (e1 as f32 * inv_area) + d2 * (e2 as f32 * inv_area);
+    (a0, weights)
 }
 
 /// The three edge functions of a triangle whose box is too big for a mask.
@@ -191,67 +214,198 @@ pub(crate) struct Triangle {
     coverage: Coverage,
 }
 
-impl Triangle {
-    /// Sets up a triangle (clockwise on screen, positive [`signed_area`] `area`)
-    /// whose non-empty screen box is `span`. Returns `None` when it covers no
-    /// pixel centre; large triangles push their edge functions to `edges`.
-    pub fn setup(
-        v: [&ScreenVertex; 3],
-        area: i64,
-        span: PixelSpan,
-        edges: &mut Vec<Edges>,
-    ) -> Option<Triangle> {
+/// A triangle's coverage, found before its attributes (so that vertices of
+/// triangles that cover no pixel centre need no shading).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Shape {
+    /// Edge functions at the box's first pixel centre; edge `k` is opposite vertex `k`.
+    edges: [Edge; 3],
+    /// The covered pixel box (clipped to the screen).
+    span: PixelSpan,
+    kind: ShapeKind,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum ShapeKind {
+    /// Exactly one pixel centre is covered, this many columns and rows from
+    /// the box's first.
+    Dot(i32, i32),
+    /// Bit `8 * row + column` per covered centre of a small box.
+    Mask(u64),
+    /// Too big for a mask: the edges are walked when filling.
+    Big,
+}
+
+impl Shape {
+    /// The coverage of a triangle (clockwise on screen) whose non-empty screen
+    /// box is `span`, or `None` when it covers no pixel centre.
+    // Always inlined into the batch's set-up loop: as a call, returning the
+    // 100-byte `Option<Shape>` costs a copy per triangle (~5% of the mesh set-up).
+    #[inline(always)]
+    pub fn of(v: [&ScreenVertex; 3], span: PixelSpan) -> Option<Shape> {
         let px = span.x0 as i64 * ONE + HALF;
         let py = span.y0 as i64 * ONE + HALF;
-        // Edge k is opposite vertex k, so its value is vertex k's barycentric weight.
-        let e = [
+        let edges = [
             Edge::new(v[1], v[2], px, py),
             Edge::new(v[2], v[0], px, py),
             Edge::new(v[0], v[1], px, py),
         ];
-        let extent = |f: fn(&ScreenVertex) -> i32| {
-            let (a, b, c) = (f(v[0]), f(v[1]), f(v[2]));
-            a.max(b).max(c) - a.min(b).min(c)
-        };
-        let small = span.x1 - span.x0 < MASK_SIDE
-            && span.y1 - span.y0 < MASK_SIDE
-            && extent(|v| v.x) < MASK_EXTENT
-            && extent(|v| v.y) < MASK_EXTENT;
-        let coverage = if small {
-            let mask = if span.x0 == span.x1 && span.y0 == span.y1 {
-                // One centre (most sub-pixel triangles): test it directly.
-                u64::from((e[0].start | e[1].start | e[2].start) >= 0)
-            } else {
-                coverage_mask(&e, span)
-            };
-            if mask == 0 {
+        let kind = if span.x0 == span.x1 && span.y0 == span.y1 {
+            // One centre (most sub-pixel triangles): test it directly.
+            if (edges[0].start | edges[1].start | edges[2].start) < 0 {
                 return None;
             }
-            Coverage::Mask(mask)
+            ShapeKind::Dot(0, 0)
         } else {
-            edges.push(Edges(e));
-            Coverage::Edges(edges.len() as u32 - 1)
+            let extent = |f: fn(&ScreenVertex) -> i32| {
+                let (a, b, c) = (f(v[0]), f(v[1]), f(v[2]));
+                a.max(b).max(c) - a.min(b).min(c)
+            };
+            let small = span.x1 - span.x0 < MASK_SIDE
+                && span.y1 - span.y0 < MASK_SIDE
+                && extent(|v| v.x) < MASK_EXTENT
+                && extent(|v| v.y) < MASK_EXTENT;
+            if small {
+                match coverage_mask(&edges, span) {
+                    0 => return None,
+                    mask if mask.is_power_of_two() => {
+                        let bit = mask.trailing_zeros() as i32;
+                        ShapeKind::Dot(bit % 8, bit / 8)
+                    }
+                    mask => ShapeKind::Mask(mask),
+                }
+            } else {
+                ShapeKind::Big
+            }
         };
-        let inv_area = 1.0 / area as f32;
-        let a0 = v[0].attributes();
-        let (d1, d2) = (v[1].attributes() - a0, v[2].attributes() - a0);
-        // The top-left bias of at most 1 unit is negligible in the weights.
-        let weights = |e1: i64, e2: i64| d1 * (e1 as f32 * inv_area) + d2 * (e2 as f32 * inv_area);
-        Some(Triangle {
-            base: a0 + weights(e[1].start, e[2].start),
+        Some(Shape { edges, span, kind })
+    }
+
+    /// True when the triangle covers a single pixel centre: it becomes a [`Dot`].
+    #[inline]
+    pub fn is_dot(&self) -> bool {
+        matches!(self.kind, ShapeKind::Dot(..))
+    }
+
+    /// The attribute planes over the pixel centres: value at the box's first
+    /// centre, change per pixel right, change per pixel down.
+    #[inline]
+    fn planes(&self, v: [&ScreenVertex; 3], area: i64) -> (Vec4, impl Fn(i64, i64) -> Vec4) {
+        let (a0, weights) = attribute_weights(v, area);
+        let e = &self.edges;
+        (a0 + weights(e[1].start, e[2].start), weights)
+    }
+
+    /// The one covered pixel of a dot-shaped triangle (positive [`signed_area`]
+    /// `area`) with its depth and final colour.
+    #[inline]
+    pub fn dot(&self, v: [&ScreenVertex; 3], area: i64) -> Dot {
+        let (column, row) = match self.kind {
+            ShapeKind::Dot(column, row) => (column, row),
+            _ => (0, 0),
+        };
+        let (base, weights) = self.planes(v, area);
+        let e = &self.edges;
+        // The same sums as filling the triangle's run at that centre.
+        let a = base
+            + weights(e[1].step_y, e[2].step_y) * row as f32
+            + weights(e[1].step_x, e[2].step_x) * column as f32;
+        Dot::at((self.span.x0 + column, self.span.y0 + row), a)
+    }
+
+    /// The triangle set up for filling (positive [`signed_area`] `area`); big
+    /// ones push their edge functions to `edges`.
+    #[inline]
+    pub fn triangle(&self, v: [&ScreenVertex; 3], area: i64, edges: &mut Vec<Edges>) -> Triangle {
+        let (base, weights) = self.planes(v, area);
+        let e = &self.edges;
+        let coverage = match self.kind {
+            ShapeKind::Dot(column, row) => Coverage::Mask(1 << (8 * row + column)),
+            ShapeKind::Mask(mask) => Coverage::Mask(mask),
+            ShapeKind::Big => {
+                edges.push(Edges(self.edges));
+                Coverage::Edges(edges.len() as u32 - 1)
+            }
+        };
+        Triangle {
+            base,
             step_x: weights(e[1].step_x, e[2].step_x),
             step_y: weights(e[1].step_y, e[2].step_y),
-            span,
+            span: self.span,
             coverage,
-        })
+        }
     }
+}
 
-    /// First and last pixel rows of the triangle's box.
+/// A triangle that covers a single pixel centre, kept as that pixel: 16 bytes
+/// instead of a [`Triangle`]'s 80, its colour already converted to bytes.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Dot {
+    /// Pixel column.
+    x: i32,
+    /// Pixel row.
+    y: i32,
+    /// `1/w` at the pixel centre.
+    depth: f32,
+    /// Display colour.
+    rgba: [u8; 4],
+}
+
+impl Dot {
+    /// The values of edges 1 and 2 (see [`Shape`]) at the centre of `pixel`
+    /// when the triangle (clockwise on screen) covers that centre.
     #[inline]
-    pub fn rows(&self) -> (i32, i32) {
-        (self.span.y0, self.span.y1)
+    pub fn covers(v: [&ScreenVertex; 3], pixel: (i32, i32)) -> Option<[i64; 2]> {
+        let px = pixel.0 as i64 * ONE + HALF;
+        let py = pixel.1 as i64 * ONE + HALF;
+        let value = |a: &ScreenVertex, b: &ScreenVertex| {
+            edge_value(b.x as i64 - a.x as i64, b.y as i64 - a.y as i64, a, px, py)
+        };
+        let e = [value(v[1], v[2]), value(v[2], v[0]), value(v[0], v[1])];
+        ((e[0] | e[1] | e[2]) >= 0).then_some([e[1], e[2]])
     }
 
+    /// The dot of a triangle (positive [`signed_area`] `area`) covering the
+    /// centre of `pixel`, where edges 1 and 2 have the values `e`.
+    #[inline]
+    pub fn new(v: [&ScreenVertex; 3], area: i64, pixel: (i32, i32), e: [i64; 2]) -> Dot {
+        let (a0, weights) = attribute_weights(v, area);
+        Dot::at(pixel, a0 + weights(e[0], e[1]))
+    }
+
+    /// The dot at `pixel` with attributes `a` (`1/w`, colour / w).
+    #[inline]
+    fn at(pixel: (i32, i32), a: Vec4) -> Dot {
+        Dot {
+            x: pixel.0,
+            y: pixel.1,
+            depth: a.x,
+            rgba: display_rgba(a),
+        }
+    }
+
+    /// The dot's pixel row.
+    #[inline]
+    pub fn row(&self) -> i32 {
+        self.y
+    }
+
+    /// Writes the pixel if it lies in the band and is nearer than what is there
+    /// (the same test and value as filling its triangle).
+    #[inline]
+    pub fn draw(&self, band: &mut Band<'_>) {
+        if self.y < band.y0 || self.y >= band.y1 {
+            return;
+        }
+        let k = (self.y - band.y0) as usize * band.width as usize + self.x as usize;
+        if self.depth > band.depth[k] {
+            band.depth[k] = self.depth;
+            band.color[4 * k..4 * k + 4].copy_from_slice(&self.rgba);
+        }
+    }
+}
+
+impl Triangle {
     /// Calls `run` for every row in `rows` where the triangle covers pixel
     /// centres, with the covered columns (contiguous: the triangle is convex).
     #[inline]
@@ -381,6 +535,8 @@ fn coverage_mask(e: &[Edge; 3], span: PixelSpan) -> u64 {
     let step_y = e.map(|e| e.step_y as f32);
     let mut row = e.map(|e| e.start as f32);
     let columns = (1u32 << (span.x1 - span.x0 + 1)) - 1;
+    // Boxes up to four pixels wide need only the left half of each row.
+    let wide = span.x1 - span.x0 >= 4;
     let mut mask = 0u64;
     for r in 0..=(span.y1 - span.y0) as u32 {
         let values = |half: fn(&(Vec4, Vec4)) -> Vec4| {
@@ -388,9 +544,11 @@ fn coverage_mask(e: &[Edge; 3], span: PixelSpan) -> u64 {
                 .min(half(&ramps[1]) + row[1])
                 .min(half(&ramps[2]) + row[2])
         };
-        let left = values(|r| r.0).cmpge(Vec4::ZERO).bitmask();
-        let right = values(|r| r.1).cmpge(Vec4::ZERO).bitmask();
-        mask |= u64::from((left | right << 4) & columns) << (8 * r);
+        let mut bits = values(|r| r.0).cmpge(Vec4::ZERO).bitmask();
+        if wide {
+            bits |= values(|r| r.1).cmpge(Vec4::ZERO).bitmask() << 4;
+        }
+        mask |= u64::from(bits & columns) << (8 * r);
         for (value, step) in row.iter_mut().zip(step_y) {
             *value += step;
         }
@@ -473,10 +631,10 @@ mod tests {
                     }
                     let v = [&t[0], &t[1], &t[2]];
                     let mut edges = Vec::new();
-                    let Some(tri) = Triangle::setup(v, area, PixelSpan::of(v, 64, 64), &mut edges)
-                    else {
+                    let Some(shape) = Shape::of(v, PixelSpan::of(v, 64, 64)) else {
                         continue;
                     };
+                    let tri = shape.triangle(v, area, &mut edges);
                     tri.for_each_run(&edges, 0..64, |run| {
                         for x in run.x0..=run.x1 {
                             count[(run.y * 64 + x) as usize] += 1;
@@ -565,6 +723,118 @@ mod tests {
                 height: h,
             },
         )
+    }
+
+    /// Small random triangles (many covering one centre) in clip space, some
+    /// facing away, some off screen.
+    fn small_triangles(rng: &mut Rng, count: usize) -> (Vec<ClipVertex>, Vec<[u32; 3]>) {
+        let mut verts = Vec::new();
+        for _ in 0..count {
+            let centre = Vec2::new(rng.next() * 2.4 - 1.2, rng.next() * 2.4 - 1.2);
+            let size = 0.03 + 0.4 * rng.next() * rng.next();
+            let w = 1.0 + 3.0 * rng.next();
+            for _ in 0..3 {
+                let p = centre + Vec2::new(rng.next() - 0.5, rng.next() - 0.5) * size;
+                let colour = Vec3::new(rng.next(), rng.next(), rng.next());
+                verts.push(cv(Vec4::new(p.x * w, p.y * w, 0.5 * w, w), colour));
+            }
+        }
+        let tris = (0..count as u32)
+            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            .collect();
+        (verts, tris)
+    }
+
+    #[test]
+    fn dots_draw_exactly_what_their_triangles_draw() {
+        let mut rng = Rng(0x5851_f42d_4c95_7f2d);
+        let (w, h) = (48, 40);
+        let (verts, tris) = small_triangles(&mut rng, 3000);
+        let batch = build(&verts, &tris, w, h);
+        let (dots, tris_kept) = batch.kinds();
+        assert!(
+            dots > 300 && tris_kept > 300,
+            "{dots} dots, {tris_kept} triangles"
+        );
+        let (color, depth) = draw(&batch, w, h);
+        // Reference: every triangle set up and filled as a full triangle, in order.
+        let vp = Viewport {
+            width: w,
+            height: h,
+        };
+        let screen: Vec<ScreenVertex> = verts.iter().map(|v| vp.project(v)).collect();
+        let mut want_color = vec![0u8; (w * h * 4) as usize];
+        let mut want_depth = vec![0f32; (w * h) as usize];
+        let mut band = Band {
+            color: &mut want_color,
+            depth: &mut want_depth,
+            width: w,
+            y0: 0,
+            y1: h,
+        };
+        let mut edges = Vec::new();
+        let mut filled = 0;
+        for tri in &tris {
+            let [a, b, c] = tri.map(|k| &screen[k as usize]);
+            let mut area = signed_area(a, b, c);
+            let v = if area < 0 {
+                area = -area;
+                [a, c, b]
+            } else {
+                [a, b, c]
+            };
+            let span = PixelSpan::of(v, w, h);
+            if area == 0 || span.is_empty() {
+                continue;
+            }
+            if let Some(shape) = Shape::of(v, span) {
+                shape.triangle(v, area, &mut edges).draw(&edges, &mut band);
+                filled += 1;
+            }
+        }
+        assert_eq!(filled, batch.len());
+        assert_eq!(color, want_color);
+        assert_eq!(depth, want_depth);
+    }
+
+    #[test]
+    fn lazy_colours_shade_only_kept_vertices_and_change_nothing() {
+        let mut rng = Rng(0x1405_7b7e_f767_814f);
+        let (w, h) = (40, 32);
+        let (verts, tris) = small_triangles(&mut rng, 2000);
+        let group = [TriangleGroup {
+            triangles: &tris,
+            cull: CullMode::Back,
+        }];
+        let vp = Viewport {
+            width: w,
+            height: h,
+        };
+        let calls = std::cell::RefCell::new(vec![0u32; verts.len()]);
+        let lazy = ScreenBatch::build_lazy(
+            verts.len(),
+            |k| verts[k].pos,
+            |k| {
+                calls.borrow_mut()[k] += 1;
+                verts[k].color
+            },
+            &group,
+            vp,
+        );
+        let eager = ScreenBatch::build(&verts, &group, vp);
+        assert_eq!(draw(&lazy, w, h), draw(&eager, w, h));
+        let calls = calls.into_inner();
+        assert!(
+            calls.iter().all(|&n| n <= 1),
+            "each vertex shaded at most once"
+        );
+        let shaded = calls.iter().filter(|&&n| n == 1).count();
+        // Back faces, off-screen and centre-less triangles leave most unshaded,
+        // yet every kept triangle had its three vertices shaded.
+        assert!(shaded < verts.len() / 2, "{shaded} of {}", verts.len());
+        // Each triangle has its own three vertices and none is clipped.
+        assert!(lazy.len() > 50);
+        assert_eq!(shaded, 3 * lazy.len());
     }
 
     #[test]

@@ -87,7 +87,7 @@ impl Lighting {
     /// A display colour seen through the fog at `distance`.
     #[inline]
     pub fn apply_fog(&self, display: Vec3, distance: f32) -> Vec3 {
-        if distance <= self.fog_start {
+        if distance <= self.fog_start || self.fog_density == 0.0 {
             return display;
         }
         display.lerp(self.sky_horizon, self.fog_amount(distance))
