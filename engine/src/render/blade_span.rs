@@ -242,10 +242,14 @@ impl BladePiece {
     /// never does.
     ///
     /// Inlined: the caller's `Vec::extend` then builds the piece in place
-    /// instead of copying a returned `Result<Option<_>>`.
+    /// instead of copying a returned `Result<Option<_>>`; the vertex count
+    /// `N` is a constant, so the loops over the vertices unroll.
     #[inline]
-    pub fn setup(v: &[SpanVertex], height: i32) -> Result<Option<BladePiece>, NotMonotone> {
-        debug_assert!((3..=MAX_VERTICES).contains(&v.len()));
+    pub fn setup<const N: usize>(
+        v: &[SpanVertex; N],
+        height: i32,
+    ) -> Result<Option<BladePiece>, NotMonotone> {
+        const { assert!(3 <= N && N <= MAX_VERTICES) };
         if v.iter().any(|p| p.y.is_nan()) {
             return Ok(None);
         }
@@ -300,7 +304,9 @@ impl BladePiece {
         // Walk both sides down together; a run ends at the next vertex of
         // either side.
         let (mut i, mut j, mut start) = (0, 0, first_row);
-        let mut built = 0u8;
+        // The edge each side built last: a side's edges bound consecutive
+        // runs, and no edge lies on both sides.
+        let (mut left_edge, mut right_edge) = (u8::MAX, u8::MAX);
         while i + 1 < left.len && j + 1 < right.len {
             let (l0, l1) = (left.vertices[i] as usize, left.vertices[i + 1] as usize);
             let (r0, r1) = (right.vertices[j] as usize, right.vertices[j + 1] as usize);
@@ -308,11 +314,13 @@ impl BladePiece {
             let end = rows[l1].min(rows[r1]);
             if end > start {
                 let (el, er) = (left.edges[i], right.edges[j]);
-                for (e, a, b) in [(el, pl0, pl1), (er, pr0, pr1)] {
-                    if built & (1 << e) == 0 {
-                        piece.edges[e as usize] = EdgeLine::new(a, b);
-                        built |= 1 << e;
-                    }
+                if el != left_edge {
+                    piece.edges[el as usize] = EdgeLine::new(pl0, pl1);
+                    left_edge = el;
+                }
+                if er != right_edge {
+                    piece.edges[er as usize] = EdgeLine::new(pr0, pr1);
+                    right_edge = er;
                 }
                 piece.runs[piece.run_count as usize] = RowRun {
                     end: end as i16,
