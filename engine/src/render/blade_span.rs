@@ -150,18 +150,58 @@ fn color_fixed(v: f32) -> i32 {
     (v.clamp(0.0, 1.0) * (255 << COLOR_BITS) as f32 + (1 << (COLOR_BITS - 1)) as f32) as i32
 }
 
-/// The vertex indices of a polygon's two sides, each from the top vertex down
-/// to the bottom one: the left side first.
-struct Sides {
-    left: ([u8; MAX_VERTICES], usize),
-    right: ([u8; MAX_VERTICES], usize),
+/// One side of a polygon, from its top vertex down to its bottom one.
+#[derive(Clone, Copy)]
+struct Side {
+    /// Vertex indices, top first.
+    vertices: [u8; MAX_VERTICES],
+    /// `edges[k]`: the polygon edge from `vertices[k]` to `vertices[k + 1]`
+    /// (polygon edge `e` joins vertex `e` to vertex `e + 1`).
+    edges: [u8; MAX_VERTICES],
+    /// Number of vertices on the side.
+    len: usize,
 }
 
-impl Sides {
-    /// Splits `v` at its top and bottom vertices; [`NotMonotone`] when a side
-    /// goes up again.
-    fn of(v: &[SpanVertex]) -> Result<Sides, NotMonotone> {
-        let n = v.len();
+impl Side {
+    /// The side of `v` from `top` to `bottom` walking forwards (vertex `k` to
+    /// `k + 1`) or backwards; [`NotMonotone`] when it goes up again.
+    #[inline(always)]
+    fn walk(
+        v: &[SpanVertex],
+        top: usize,
+        bottom: usize,
+        forward: bool,
+    ) -> Result<Side, NotMonotone> {
+        let last = v.len() - 1;
+        let mut side = Side {
+            vertices: [top as u8; MAX_VERTICES],
+            edges: [0; MAX_VERTICES],
+            len: 1,
+        };
+        let mut k = top;
+        while k != bottom && side.len < MAX_VERTICES {
+            // Wrapped by a compare: no division.
+            let next = match (forward, k) {
+                (true, k) if k == last => 0,
+                (true, k) => k + 1,
+                (false, 0) => last,
+                (false, k) => k - 1,
+            };
+            if v[next].y < v[k].y {
+                return Err(NotMonotone);
+            }
+            side.edges[side.len - 1] = if forward { k } else { next } as u8;
+            side.vertices[side.len] = next as u8;
+            side.len += 1;
+            k = next;
+        }
+        Ok(side)
+    }
+
+    /// Splits `v` at its top and bottom vertices into its left and right
+    /// sides; [`NotMonotone`] when a side goes up again.
+    #[inline(always)]
+    fn of(v: &[SpanVertex]) -> Result<(Side, Side), NotMonotone> {
         let (mut top, mut bottom) = (0, 0);
         for (k, p) in v.iter().enumerate().skip(1) {
             if p.y < v[top].y {
@@ -171,40 +211,16 @@ impl Sides {
                 bottom = k;
             }
         }
-        // Each side walked from the top vertex, forwards and backwards.
-        let walk = |forward: bool| -> Result<([u8; MAX_VERTICES], usize), NotMonotone> {
-            let mut chain = [top as u8; MAX_VERTICES];
-            let (mut k, mut len) = (top, 1);
-            while k != bottom {
-                let next = if forward {
-                    (k + 1) % n
-                } else {
-                    (k + n - 1) % n
-                };
-                if v[next].y < v[k].y {
-                    return Err(NotMonotone);
-                }
-                chain[len] = next as u8;
-                len += 1;
-                k = next;
-            }
-            Ok((chain, len))
-        };
-        let (forward, backward) = (walk(true)?, walk(false)?);
+        let forward = Side::walk(v, top, bottom, true)?;
+        let backward = Side::walk(v, top, bottom, false)?;
         // Clockwise on screen (positive area), the forward side is the right one.
-        let area: f32 = (1..n - 1)
+        let area: f32 = (1..v.len() - 1)
             .map(|k| double_area(&v[0], &v[k], &v[k + 1]))
             .sum();
         Ok(if area > 0.0 {
-            Sides {
-                left: backward,
-                right: forward,
-            }
+            (backward, forward)
         } else {
-            Sides {
-                left: forward,
-                right: backward,
-            }
+            (forward, backward)
         })
     }
 }
@@ -224,19 +240,33 @@ impl BladePiece {
     /// degenerate; [`NotMonotone`] when a row could meet it in two spans (a
     /// side that goes up again, or sides that cross), which a convex polygon
     /// never does.
-    pub fn setup(v: &[SpanVertex], height: i32) -> Result<Option<BladePiece>, NotMonotone> {
-        debug_assert!((3..=MAX_VERTICES).contains(&v.len()));
+    ///
+    /// Inlined: the caller's `Vec::extend` then builds the piece in place
+    /// instead of copying a returned `Result<Option<_>>`; the vertex count
+    /// `N` is a constant, so the loops over the vertices unroll.
+    #[inline]
+    pub fn setup<const N: usize>(
+        v: &[SpanVertex; N],
+        height: i32,
+    ) -> Result<Option<BladePiece>, NotMonotone> {
+        const { assert!(3 <= N && N <= MAX_VERTICES) };
         if v.iter().any(|p| p.y.is_nan()) {
             return Ok(None);
         }
-        let Sides {
-            left: (left, left_len),
-            right: (right, right_len),
-        } = Sides::of(v)?;
-        let (top, bottom) = (&v[left[0] as usize], &v[left[left_len - 1] as usize]);
-        let row = |y: f32| first_centre(y.clamp(-1.0, height as f32 + 1.0)).clamp(0, height);
-        let first_row = row(top.y);
-        let end_row = row(bottom.y);
+        let (left, right) = Side::of(v)?;
+        let (top, bottom) = (
+            &v[left.vertices[0] as usize],
+            &v[left.vertices[left.len - 1] as usize],
+        );
+        // The first row at or below each vertex: `row(min(a, b))` is
+        // `min(row(a), row(b))`, so the runs' ends come from these.
+        let h = height as f32 + 1.0;
+        let mut rows = [0i32; MAX_VERTICES];
+        for (r, p) in rows.iter_mut().zip(v) {
+            *r = first_centre(p.y.clamp(-1.0, h)).clamp(0, height);
+        }
+        let first_row = rows[left.vertices[0] as usize];
+        let end_row = rows[left.vertices[left.len - 1] as usize];
         if first_row >= end_row {
             return Ok(None);
         }
@@ -272,34 +302,25 @@ impl BladePiece {
             color_step,
         };
         // Walk both sides down together; a run ends at the next vertex of
-        // either side. Polygon edge `k` joins vertex `k` to vertex `k + 1`.
-        let n = v.len();
-        let edge_index = |a: u8, b: u8| {
-            if (a as usize + 1) % n == b as usize {
-                a
-            } else {
-                b
-            }
-        };
+        // either side.
         let (mut i, mut j, mut start) = (0, 0, first_row);
-        let mut built = 0u8;
-        while i + 1 < left_len && j + 1 < right_len {
-            let (l0, l1) = (left[i], left[i + 1]);
-            let (r0, r1) = (right[j], right[j + 1]);
-            let (pl0, pl1, pr0, pr1) = (
-                &v[l0 as usize],
-                &v[l1 as usize],
-                &v[r0 as usize],
-                &v[r1 as usize],
-            );
-            let end = row(pl1.y.min(pr1.y));
+        // The edge each side built last: a side's edges bound consecutive
+        // runs, and no edge lies on both sides.
+        let (mut left_edge, mut right_edge) = (u8::MAX, u8::MAX);
+        while i + 1 < left.len && j + 1 < right.len {
+            let (l0, l1) = (left.vertices[i] as usize, left.vertices[i + 1] as usize);
+            let (r0, r1) = (right.vertices[j] as usize, right.vertices[j + 1] as usize);
+            let (pl0, pl1, pr0, pr1) = (&v[l0], &v[l1], &v[r0], &v[r1]);
+            let end = rows[l1].min(rows[r1]);
             if end > start {
-                let (el, er) = (edge_index(l0, l1), edge_index(r0, r1));
-                for (e, a, b) in [(el, pl0, pl1), (er, pr0, pr1)] {
-                    if built & (1 << e) == 0 {
-                        piece.edges[e as usize] = EdgeLine::new(a, b);
-                        built |= 1 << e;
-                    }
+                let (el, er) = (left.edges[i], right.edges[j]);
+                if el != left_edge {
+                    piece.edges[el as usize] = EdgeLine::new(pl0, pl1);
+                    left_edge = el;
+                }
+                if er != right_edge {
+                    piece.edges[er as usize] = EdgeLine::new(pr0, pr1);
+                    right_edge = er;
                 }
                 piece.runs[piece.run_count as usize] = RowRun {
                     end: end as i16,
@@ -312,10 +333,10 @@ impl BladePiece {
             // The sides must not cross: a side's inner vertex lies on its
             // own side of the other's edge.
             let (advance_left, advance_right) = (pl1.y <= pr1.y, pr1.y <= pl1.y);
-            if advance_left && i + 2 < left_len && side_of(pr0, pr1, pl1) < 0.0 {
+            if advance_left && i + 2 < left.len && side_of(pr0, pr1, pl1) < 0.0 {
                 return Err(NotMonotone);
             }
-            if advance_right && j + 2 < right_len && side_of(pl0, pl1, pr1) > 0.0 {
+            if advance_right && j + 2 < right.len && side_of(pl0, pl1, pr1) > 0.0 {
                 return Err(NotMonotone);
             }
             i += usize::from(advance_left);

@@ -305,13 +305,11 @@ impl BladeGroup {
         match BladePiece::setup(&outline, vp.height) {
             Ok(piece) => self.pieces.extend(piece),
             Err(NotMonotone) => {
-                let quad = [s[0], s[1], s[3], s[2]];
-                let tip = [s[2], s[3], s[4]];
-                for piece in [&quad[..], &tip[..]] {
-                    // Convex: always monotone.
-                    self.pieces
-                        .extend(BladePiece::setup(piece, vp.height).ok().flatten());
-                }
+                // Convex: always monotone.
+                let quad = BladePiece::setup(&[s[0], s[1], s[3], s[2]], vp.height);
+                let tip = BladePiece::setup(&[s[2], s[3], s[4]], vp.height);
+                self.pieces.extend(quad.ok().flatten());
+                self.pieces.extend(tip.ok().flatten());
             }
         }
     }
