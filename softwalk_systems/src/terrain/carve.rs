@@ -108,8 +108,9 @@ impl FootPrint {
 /// with no rim sample on the grid the volume counts as compacted).
 ///
 /// Without `contact`, a foot that was in contact is released: nothing is
-/// carved and the whole touched rectangle is returned so that smoothing and
-/// settling run once more without the foot holding the walls.
+/// carved and the whole touched rectangle is returned (and added to
+/// [`super::StepChanges::released`]) so that smoothing and settling run once
+/// more without the foot holding the walls.
 ///
 /// A footprint partly off the grid carves what exists; fully off, nothing.
 pub fn carve(
@@ -127,7 +128,10 @@ pub fn carve(
     }
     let foot = Footprint::from_sole(sole)?;
     if !contact {
-        return Ok(print.release());
+        let released = print.release();
+        let changes = hf.parts_mut().changes;
+        changes.released = changes.released.union(&released);
+        return Ok(released);
     }
     let grid = hf.grid();
     let (origin, cell, nx, nz) = (grid.origin(), grid.cell_size(), grid.nx(), grid.nz());

@@ -34,6 +34,10 @@ pub struct StepChanges {
     /// Samples held by a foot: everything its current contact has pressed so far
     /// (smoothing and settling leave them alone until the foot lifts).
     pub held: Vec<usize>,
+    /// Union of the rectangles released this step by feet that lifted (see
+    /// [`super::carve`]): their settling starts in the next step
+    /// ([`super::settle_step`]), as the release step already smooths them.
+    pub released: GridRect,
     /// Pairwise transfers made by settling.
     pub settle_transfers: usize,
     /// Samples visited by settling sweeps (its work).

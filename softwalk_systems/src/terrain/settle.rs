@@ -74,7 +74,7 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
 /// window is assumed stable; slumps still spread anywhere in `window`.
 pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
     match first_sweep(hf, window, seeds) {
-        Some((w, first)) => relax_window(hf, w, Start::Scan(first), usize::MAX, 0).changed,
+        Some((w, first)) => relax_window(hf, w, &Start::Scan(first), usize::MAX, 0).changed,
         None => GridRect::EMPTY,
     }
 }
@@ -87,14 +87,25 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
 ///
 /// A released print slumps over a few steps instead of in one (a real sand
 /// wall takes a moment to run down too), so no single step pays for a whole
-/// print. The end state meets the same stopping rule as [`settle_from`]
+/// print. When `seeds` meet a print released this step
+/// ([`super::StepChanges::released`]), the whole run, first sweep included,
+/// waits for the next step: the release step already pays for smoothing the
+/// whole print. The end state meets the same stopping rule as [`settle_from`]
 /// (no moving slope above repose by more than [`SETTLE_TOLERANCE`]); the
 /// order of the transfers differs slightly when a sweep is cut.
 pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
     let Some((w, first)) = first_sweep(hf, window, seeds) else {
         return GridRect::EMPTY;
     };
-    let outcome = relax_window(hf, w, Start::Scan(first), SETTLE_STEP_VISITS, 0);
+    if !hf.changes().released.intersect(&seeds).is_empty() {
+        hf.pending_settle_mut().push(PendingSettle {
+            window: w,
+            start: Start::Scan(first),
+            sweeps: 0,
+        });
+        return GridRect::EMPTY;
+    }
+    let outcome = relax_window(hf, w, &Start::Scan(first), SETTLE_STEP_VISITS, 0);
     hf.pending_settle_mut().extend(outcome.left);
     outcome.changed
 }
@@ -110,7 +121,7 @@ pub fn settle_pending(hf: &mut Heightfield) -> GridRect {
         let outcome = relax_window(
             hf,
             work.window,
-            Start::Queued(&work.queued),
+            &work.start,
             SETTLE_STEP_VISITS,
             work.sweeps,
         );
@@ -127,12 +138,12 @@ pub fn settle_pending(hf: &mut Heightfield) -> GridRect {
 /// visits, so it slumps over about six steps (0.1 s at 60 Hz).
 pub const SETTLE_STEP_VISITS: usize = 96;
 
-/// Settling work left for later steps: a window (grid samples) and the
-/// samples its next sweep visits (grid indices, row-major).
-#[derive(Debug, Clone, Default)]
+/// Settling work left for later steps: a window (grid samples) and where
+/// its next sweep starts.
+#[derive(Debug, Clone)]
 pub(crate) struct PendingSettle {
     window: GridRect,
-    queued: Vec<usize>,
+    start: Start,
     /// Sweeps made so far (the run stops at [`SETTLE_MAX_SWEEPS`]).
     sweeps: usize,
 }
@@ -157,11 +168,13 @@ fn first_sweep(
 }
 
 /// Where a relaxation starts.
-enum Start<'a> {
+#[derive(Debug, Clone)]
+enum Start {
     /// A first sweep over the steep samples of this rectangle (grid samples).
     Scan(GridRect),
-    /// A sweep over the samples an interrupted run had queued (grid indices).
-    Queued(&'a [usize]),
+    /// A sweep over the samples an interrupted run had queued (grid indices,
+    /// row-major).
+    Queued(Vec<usize>),
 }
 
 /// What one [`relax_window`] call did.
@@ -178,7 +191,7 @@ struct Outcome {
 fn relax_window(
     hf: &mut Heightfield,
     w: GridRect,
-    start: Start<'_>,
+    start: &Start,
     budget: usize,
     sweeps_done: usize,
 ) -> Outcome {
@@ -206,7 +219,7 @@ fn relax_window(
                 Some((patch.local(r.i0, r.j0), r.width(), r.height())),
                 &[][..],
             ),
-            Start::Queued(q) => (None, q),
+            Start::Queued(q) => (None, &q[..]),
         };
         let nx = parts.nx;
         let queued_local: Vec<usize> = queued
@@ -244,7 +257,7 @@ fn relax_window(
         let sweeps = sweeps_done + sweeps;
         let left = (!left.is_empty() && sweeps < SETTLE_MAX_SWEEPS).then(|| PendingSettle {
             window: w,
-            queued: left.into_iter().map(|l| patch.grid_index(l, nx)).collect(),
+            start: Start::Queued(left.into_iter().map(|l| patch.grid_index(l, nx)).collect()),
             sweeps,
         });
         Outcome { changed, left }
@@ -632,6 +645,29 @@ mod tests {
         let mut again = block();
         settle_in_steps(&mut again, window);
         assert_eq!(again.grid(), budgeted.grid());
+    }
+
+    #[test]
+    fn a_print_released_this_step_starts_settling_in_the_next_step() {
+        let window = GridRect::new(5, 5, 36, 36);
+        let seeds = GridRect::new(18, 18, 23, 23);
+        let mut deferred = block();
+        let before = deferred.grid().clone();
+        deferred.begin_step();
+        deferred.parts_mut().changes.released = seeds;
+        assert!(settle_step(&mut deferred, window, seeds).is_empty());
+        assert_eq!(deferred.grid(), &before);
+        assert_eq!(deferred.changes().settle_visits, 0);
+        assert!(deferred.settling_pending());
+        // The next step does what the release step would have done.
+        deferred.begin_step();
+        let changed = settle_pending(&mut deferred);
+        let mut direct = block();
+        direct.begin_step();
+        assert_eq!(settle_step(&mut direct, window, seeds), changed);
+        assert!(!changed.is_empty());
+        assert_eq!(deferred.grid(), direct.grid());
+        assert_eq!(deferred.changes(), direct.changes());
     }
 
     #[test]
