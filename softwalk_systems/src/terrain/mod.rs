@@ -48,8 +48,9 @@ pub use heightfield::{
 pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
 pub use material_table::{MaterialId, MaterialTable};
 pub use settle::{
-    SETTLE_MARGIN_CELLS, SETTLE_MAX_SWEEPS, SETTLE_OVERRELAXATION, SETTLE_STEP_VISITS,
-    SETTLE_TOLERANCE, settle, settle_from, settle_pending, settle_step, stage_window,
+    SETTLE_MARGIN_CELLS, SETTLE_MAX_SWEEPS, SETTLE_OVERRELAXATION, SETTLE_RELEASE_SCAN_VISITS,
+    SETTLE_STEP_VISITS, SETTLE_TOLERANCE, settle, settle_from, settle_pending, settle_step,
+    stage_window,
 };
 pub use smooth::{DIFFUSION_RATE, smooth, smoothing_radius};
 pub use step::{FootSize, FootholdReport, plant_foothold, sole_on_ground, step_foot};

@@ -111,20 +111,19 @@ pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
 }
 
 /// Continues the settling work that earlier [`settle_step`] calls left
-/// pending, each window for up to [`SETTLE_STEP_VISITS`] sample visits;
+/// pending, each window for up to [`SETTLE_STEP_VISITS`] sample visits
+/// ([`SETTLE_RELEASE_SCAN_VISITS`] for a released print's first sweep);
 /// returns the rectangle of samples that changed. Call it once per step
 /// (the terrain systems and [`super::step_foot`] do).
 pub fn settle_pending(hf: &mut Heightfield) -> GridRect {
     let pending = std::mem::take(hf.pending_settle_mut());
     let mut changed = GridRect::EMPTY;
     for work in pending {
-        let outcome = relax_window(
-            hf,
-            work.window,
-            &work.start,
-            SETTLE_STEP_VISITS,
-            work.sweeps,
-        );
+        let budget = match work.start {
+            Start::Scan(_) => SETTLE_RELEASE_SCAN_VISITS,
+            Start::Queued(_) => SETTLE_STEP_VISITS,
+        };
+        let outcome = relax_window(hf, work.window, &work.start, budget, work.sweeps);
         changed = changed.union(&outcome.changed);
         hf.pending_settle_mut().extend(outcome.left);
     }
@@ -137,6 +136,11 @@ pub fn settle_pending(hf: &mut Heightfield) -> GridRect {
 /// heaviest case: the whole print's walls slump at once) needs about 500
 /// visits, so it slumps over about six steps (0.1 s at 60 Hz).
 pub const SETTLE_STEP_VISITS: usize = 96;
+
+/// Sample visits of the step that starts settling a print released in the
+/// step before (see [`settle_step`]): that step also scans the whole print
+/// for its first sweep, which costs about as much as 48 visits.
+pub const SETTLE_RELEASE_SCAN_VISITS: usize = SETTLE_STEP_VISITS / 2;
 
 /// Settling work left for later steps: a window (grid samples) and where
 /// its next sweep starts.
@@ -659,15 +663,17 @@ mod tests {
         assert_eq!(deferred.grid(), &before);
         assert_eq!(deferred.changes().settle_visits, 0);
         assert!(deferred.settling_pending());
-        // The next step does what the release step would have done.
+        // The next step scans the print and relaxes it on a smaller budget.
         deferred.begin_step();
-        let changed = settle_pending(&mut deferred);
-        let mut direct = block();
-        direct.begin_step();
-        assert_eq!(settle_step(&mut direct, window, seeds), changed);
-        assert!(!changed.is_empty());
-        assert_eq!(deferred.grid(), direct.grid());
-        assert_eq!(deferred.changes(), direct.changes());
+        assert!(!settle_pending(&mut deferred).is_empty());
+        let visits = deferred.changes().settle_visits;
+        assert!(visits > 0 && visits <= SETTLE_RELEASE_SCAN_VISITS + window.width());
+        while deferred.settling_pending() {
+            deferred.begin_step();
+            settle_pending(&mut deferred);
+        }
+        // It ends stable, as a settling started in the release step would.
+        assert!(settle(&mut deferred, window).is_empty());
     }
 
     #[test]
