@@ -46,12 +46,8 @@ pub(crate) struct ScreenBatch {
     rows: Vec<(i32, i32)>,
     /// Edge functions of the triangles too big for a coverage mask.
     edges: Vec<Edges>,
-    /// First band any triangle touches.
-    first_band: i32,
-    /// `bins[k]..bins[k + 1]` indexes `binned` for band `first_band + k`.
-    bins: Vec<u32>,
     /// Entries of each band, in submission order.
-    binned: Vec<u32>,
+    bins: BandBins,
 }
 
 /// The viewport a batch is built for.
@@ -216,41 +212,9 @@ impl ScreenBatch {
                 }
             }
         }
-        batch.bin();
+        let entries = batch.entries.iter().copied();
+        batch.bins = BandBins::new(entries.zip(batch.rows.iter().copied()));
         batch
-    }
-
-    /// Sorts the entries into per-band lists (counting sort, order kept).
-    fn bin(&mut self) {
-        let rows = &self.rows;
-        let Some(first) = rows.iter().map(|r| r.0).min() else {
-            return;
-        };
-        let last = rows.iter().map(|r| r.1).max().unwrap_or(first);
-        self.first_band = first / BAND_ROWS;
-        let bands = (last / BAND_ROWS - self.first_band + 1) as usize;
-        let mut counts = vec![0u32; bands + 1];
-        let first_band = self.first_band;
-        let band_range = |(y0, y1): (i32, i32)| {
-            (y0 / BAND_ROWS - first_band) as usize..=(y1 / BAND_ROWS - first_band) as usize
-        };
-        for &r in rows {
-            for b in band_range(r) {
-                counts[b + 1] += 1;
-            }
-        }
-        for b in 0..bands {
-            counts[b + 1] += counts[b];
-        }
-        let mut fill = counts.clone();
-        self.binned = vec![0; counts[bands] as usize];
-        for (&entry, &r) in self.entries.iter().zip(rows) {
-            for b in band_range(r) {
-                self.binned[fill[b] as usize] = entry;
-                fill[b] += 1;
-            }
-        }
-        self.bins = counts;
     }
 
     /// How many kept triangles became dots, and how many are full triangles.
@@ -268,12 +232,7 @@ impl ScreenBatch {
     /// triangles touching it, in submission order.
     #[inline]
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
-        let k = band - self.first_band;
-        if k < 0 || k as usize + 1 >= self.bins.len() {
-            return;
-        }
-        let k = k as usize;
-        for &t in &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize] {
+        for &t in self.bins.band(band) {
             if t & DOT_ENTRY != 0 {
                 self.dots[(t & !DOT_ENTRY) as usize].draw(target);
             } else {
@@ -347,8 +306,108 @@ impl ScreenBatch {
     }
 }
 
+/// Items binned by the bands of rows they touch: a counting sort that keeps
+/// each band's items in the order given (so depth ties resolve the same way
+/// whatever the thread count). Shared by the screen batches and the grass layer.
+#[derive(Debug, Default)]
+pub(crate) struct BandBins {
+    /// First band any item touches.
+    first_band: i32,
+    /// `starts[k]..starts[k + 1]` indexes `binned` for band `first_band + k`.
+    starts: Vec<u32>,
+    /// Items of each band, in the order given.
+    binned: Vec<u32>,
+}
+
+impl BandBins {
+    /// Bins `items`, each an id and its first and last pixel row (`0 <= y0 <=
+    /// y1`); the iterator is walked three times.
+    pub(crate) fn new<I>(items: I) -> BandBins
+    where
+        I: Iterator<Item = (u32, (i32, i32))> + Clone,
+    {
+        let (first, last) = items
+            .clone()
+            .fold((i32::MAX, i32::MIN), |(lo, hi), (_, (y0, y1))| {
+                (lo.min(y0), hi.max(y1))
+            });
+        if first > last {
+            return BandBins::default();
+        }
+        let first_band = first / BAND_ROWS;
+        let bands = (last / BAND_ROWS - first_band + 1) as usize;
+        let band_range = |(y0, y1): (i32, i32)| {
+            (
+                (y0 / BAND_ROWS - first_band) as usize,
+                (y1 / BAND_ROWS - first_band) as usize,
+            )
+        };
+        let mut starts = vec![0u32; bands + 1];
+        for (_, rows) in items.clone() {
+            let (b0, b1) = band_range(rows);
+            // Most items touch one band: no range to iterate.
+            starts[b0 + 1] += 1;
+            for b in b0 + 1..=b1 {
+                starts[b + 1] += 1;
+            }
+        }
+        for b in 0..bands {
+            starts[b + 1] += starts[b];
+        }
+        let mut fill = starts.clone();
+        let mut binned = vec![0; starts[bands] as usize];
+        for (id, rows) in items {
+            let (b0, b1) = band_range(rows);
+            for b in b0..=b1 {
+                binned[fill[b] as usize] = id;
+                fill[b] += 1;
+            }
+        }
+        BandBins {
+            first_band,
+            starts,
+            binned,
+        }
+    }
+
+    /// The items touching band `band` (of [`BAND_ROWS`] rows), in the order given.
+    #[inline]
+    pub(crate) fn band(&self, band: i32) -> &[u32] {
+        let k = band - self.first_band;
+        if k < 0 || k as usize + 1 >= self.starts.len() {
+            return &[];
+        }
+        let k = k as usize;
+        &self.binned[self.starts[k] as usize..self.starts[k + 1] as usize]
+    }
+}
+
 /// A clip-space position from a world point and a world-to-clip matrix.
 #[inline]
 pub(crate) fn to_clip(view_proj: &glam::Mat4, p: glam::Vec3) -> Vec4 {
     *view_proj * p.extend(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn band_bins_keep_order_and_repeat_items_spanning_bands() {
+        let b = BAND_ROWS;
+        let items = [
+            (7, (b + 3, b + 3)),
+            (1, (2 * b - 1, 3 * b + 2)),
+            (4, (b, 2 * b - 1)),
+            (9, (3 * b, 3 * b)),
+        ];
+        let bins = BandBins::new(items.iter().copied());
+        assert!(bins.band(0).is_empty());
+        assert_eq!(bins.band(1), &[7, 1, 4]);
+        assert_eq!(bins.band(2), &[1]);
+        assert_eq!(bins.band(3), &[1, 9]);
+        assert!(bins.band(4).is_empty());
+        assert!(bins.band(-1).is_empty());
+        assert!(BandBins::new(std::iter::empty()).band(0).is_empty());
+    }
 }

@@ -169,7 +169,7 @@ impl Renderer {
                 depth.fill(0.0);
                 for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
                     let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
-                    row.chunks_exact_mut(4).for_each(|p| p.copy_from_slice(&px));
+                    fill_row(row, px);
                 }
                 let mut band = Band {
                     color,
@@ -215,5 +215,37 @@ impl Renderer {
                 lighting.sky(dir.y)
             })
             .collect()
+    }
+}
+
+/// Fills an RGBA8 row with one pixel value: the first pixel, then doubling
+/// copies (a few `memcpy`s per row instead of one 4-byte store per pixel).
+fn fill_row(row: &mut [u8], px: [u8; 4]) {
+    let Some(first) = row.get_mut(..4) else {
+        return;
+    };
+    first.copy_from_slice(&px);
+    let mut filled = 4;
+    while filled < row.len() {
+        let n = filled.min(row.len() - filled);
+        row.copy_within(..n, filled);
+        filled += n;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fill_row;
+
+    #[test]
+    fn fill_row_writes_every_pixel() {
+        for pixels in [0usize, 1, 2, 3, 5, 8, 13, 1280] {
+            let mut row = vec![0u8; 4 * pixels];
+            fill_row(&mut row, [1, 2, 3, 255]);
+            assert!(
+                row.chunks_exact(4).all(|p| p == [1, 2, 3, 255]),
+                "{pixels} pixels"
+            );
+        }
     }
 }

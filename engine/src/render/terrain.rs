@@ -42,7 +42,7 @@ impl Default for TerrainStyle {
             ao_radius: 0.3,
             shadow_range: 4.0,
             disturbed_darkening: 0.25,
-            max_cell_px: 8.0,
+            max_cell_px: 12.0,
             max_error_px: 1.0,
         }
     }
