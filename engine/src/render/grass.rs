@@ -5,7 +5,7 @@ use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::batch::{BandBins, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::blade_span::{BladePiece, NotMonotone, SpanVertex};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, outcode};
 use super::raster::Band;
@@ -131,13 +131,9 @@ pub(crate) struct GrassLayer {
     /// by each group of blades (kept apart: concatenating them would copy
     /// megabytes per frame).
     pieces: Vec<Vec<BladePiece>>,
-    /// First band any piece touches.
-    first_band: i32,
-    /// `bins[k]..bins[k + 1]` indexes `binned` for band `first_band + k`.
-    bins: Vec<u32>,
-    /// Piece indices of each band, in drawing order: group index above
+    /// Piece ids of each band, in drawing order: group index above
     /// [`GROUP_BITS`] bits, index within the group below.
-    binned: Vec<u32>,
+    bins: BandBins,
 }
 
 /// What one group of blades turns into.
@@ -193,42 +189,13 @@ impl GrassLayer {
         layer
     }
 
-    /// Sorts the pieces into per-band lists (counting sort, order kept).
+    /// Sorts the pieces into per-band lists (order kept).
     fn bin(&mut self) {
-        let rows: Vec<(u32, (i32, i32))> = (self.pieces.iter().enumerate())
-            .flat_map(|(g, group)| {
-                (group.iter().enumerate())
-                    .map(move |(k, p)| (((g as u32) << GROUP_BITS) | k as u32, p.rows()))
-            })
-            .collect();
-        let Some(first) = rows.iter().map(|r| r.1.0).min() else {
-            return;
-        };
-        let last = rows.iter().map(|r| r.1.1).max().unwrap_or(first);
-        self.first_band = first / BAND_ROWS;
-        let bands = (last / BAND_ROWS - self.first_band + 1) as usize;
-        let band_range = |(y0, y1): (i32, i32)| {
-            (y0 / BAND_ROWS - self.first_band) as usize
-                ..=(y1 / BAND_ROWS - self.first_band) as usize
-        };
-        let mut counts = vec![0u32; bands + 1];
-        for &(_, r) in &rows {
-            for b in band_range(r) {
-                counts[b + 1] += 1;
-            }
-        }
-        for b in 0..bands {
-            counts[b + 1] += counts[b];
-        }
-        let mut fill = counts.clone();
-        self.binned = vec![0; counts[bands] as usize];
-        for &(p, r) in &rows {
-            for b in band_range(r) {
-                self.binned[fill[b] as usize] = p;
-                fill[b] += 1;
-            }
-        }
-        self.bins = counts;
+        let pieces = &self.pieces;
+        self.bins = BandBins::new(pieces.iter().enumerate().flat_map(|(g, group)| {
+            (group.iter().enumerate())
+                .map(move |(k, p)| (((g as u32) << GROUP_BITS) | k as u32, p.rows()))
+        }));
     }
 
     /// Blade pieces plus clipped triangles set up.
@@ -241,16 +208,11 @@ impl GrassLayer {
         self.pieces.iter().map(Vec::len).sum()
     }
 
-    /// Draws the grass touching band `band` (of [`BAND_ROWS`] rows): clipped
+    /// Draws the grass touching band `band` (of `BAND_ROWS` rows): clipped
     /// blades, then the pieces, nearest blade first.
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
         self.clipped.draw_band(band, target);
-        let k = band - self.first_band;
-        if k < 0 || k as usize + 1 >= self.bins.len() {
-            return;
-        }
-        let k = k as usize;
-        for &p in &self.binned[self.bins[k] as usize..self.bins[k + 1] as usize] {
+        for &p in self.bins.band(band) {
             let group = &self.pieces[(p >> GROUP_BITS) as usize];
             group[(p & ((1 << GROUP_BITS) - 1)) as usize].draw(target);
         }
