@@ -19,7 +19,7 @@
 //! pieces sharing an edge (a blade's quad and tip) step it identically and split
 //! its pixels exactly: no gap, no pixel drawn twice.
 
-use glam::Vec3;
+use glam::{IVec3, Vec3, Vec3A};
 
 use super::raster::Band;
 
@@ -144,10 +144,13 @@ fn double_area(a: &SpanVertex, b: &SpanVertex, c: &SpanVertex) -> f32 {
     (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)
 }
 
-/// A display value in `[0, 1]` as a fixed-point byte.
+/// A display colour (channels in `[0, 1]`) as fixed-point bytes, the three
+/// channels at once.
 #[inline]
-fn color_fixed(v: f32) -> i32 {
-    (v.clamp(0.0, 1.0) * (255 << COLOR_BITS) as f32 + (1 << (COLOR_BITS - 1)) as f32) as i32
+fn color_fixed(c: Vec3) -> IVec3 {
+    let scaled = Vec3A::from(c).clamp(Vec3A::ZERO, Vec3A::ONE) * (255 << COLOR_BITS) as f32
+        + (1 << (COLOR_BITS - 1)) as f32;
+    scaled.as_ivec3()
 }
 
 /// One side of a polygon, from its top vertex down to its bottom one.
@@ -490,16 +493,11 @@ impl BladePiece {
 /// reached `rows` rows later). A blade is a few pixels wide: its colour varies
 /// along it, one colour per row is enough.
 fn color_ramp(top: Vec3, bottom: Vec3, rows: i32) -> ([i32; 3], [i32; 3]) {
-    let top = [color_fixed(top.x), color_fixed(top.y), color_fixed(top.z)];
-    let bottom = [
-        color_fixed(bottom.x),
-        color_fixed(bottom.y),
-        color_fixed(bottom.z),
-    ];
+    let top = color_fixed(top);
     // Truncated towards zero, so the last row stays between both ends.
     let per_row = 1.0 / rows.max(1) as f32;
-    let step = |k: usize| ((bottom[k] - top[k]) as f32 * per_row) as i32;
-    (top, [step(0), step(1), step(2)])
+    let step = ((color_fixed(bottom) - top).as_vec3a() * per_row).as_ivec3();
+    (top.to_array(), step.to_array())
 }
 
 #[cfg(test)]
