@@ -143,9 +143,19 @@ impl Renderer {
             width: self.width as i32,
             height: self.height as i32,
         };
-        let batches = self.project(scene, camera, vp);
-        // Grass: its own pass per band, after terrain and meshes.
-        let grass = GrassLayer::build(scene.blades, camera, &scene.lighting, vp);
+        // Terrain and meshes project while the grass layer builds (its blade
+        // sort and binning are serial), and the sky rows beside them: one
+        // barrier instead of three before the bands.
+        let ((batches, sky_rows), grass) = rayon::join(
+            || {
+                rayon::join(
+                    || self.project(scene, camera, vp),
+                    || self.sky_rows(camera, &scene.lighting),
+                )
+            },
+            // Grass: its own pass per band, after terrain and meshes.
+            || GrassLayer::build(scene.blades, camera, &scene.lighting, vp),
+        );
         let stats = FrameStats {
             batches: batches.len(),
             triangles: batches.iter().map(ScreenBatch::len).sum::<usize>() + grass.len(),
@@ -157,12 +167,14 @@ impl Renderer {
         let depth = cached.as_deref_mut().unwrap_or(&mut own);
         // Every band clears its own rows below, while they are in cache.
         depth.resize(w * h, 0.0);
-        let sky_rows = self.sky_rows(camera, &scene.lighting);
         let band_rows = BAND_ROWS as usize;
         color
             .par_chunks_mut(w * 4 * band_rows)
             .zip(depth.par_chunks_mut(w * band_rows))
             .enumerate()
+            // One band per job: a thread that runs out of bands steals a single
+            // band, not half of a run of them, so both finish together.
+            .with_max_len(1)
             .for_each(|(b, (color, depth))| {
                 let y0 = b as i32 * BAND_ROWS;
                 let y1 = y0 + (depth.len() / w) as i32;
@@ -191,15 +203,19 @@ impl Renderer {
     /// All screen batches in drawing order: terrain, meshes (grass is drawn after them).
     fn project(&self, scene: &FrameScene<'_>, camera: &Camera, vp: Viewport) -> Vec<ScreenBatch> {
         let lighting = &scene.lighting;
-        let mut batches = match scene.terrain {
-            Some(t) => t.batches(camera, lighting, vp),
-            None => Vec::new(),
-        };
-        let meshes: Vec<Vec<ScreenBatch>> = scene
-            .meshes
-            .par_iter()
-            .map(|m| m.batches(camera, lighting, vp))
-            .collect();
+        let (mut batches, meshes) = rayon::join(
+            || match scene.terrain {
+                Some(t) => t.batches(camera, lighting, vp),
+                None => Vec::new(),
+            },
+            || -> Vec<Vec<ScreenBatch>> {
+                scene
+                    .meshes
+                    .par_iter()
+                    .map(|m| m.batches(camera, lighting, vp))
+                    .collect()
+            },
+        );
         batches.extend(meshes.into_iter().flatten());
         batches
     }
