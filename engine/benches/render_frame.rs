@@ -78,6 +78,17 @@ fn blades(grid: &HeightGrid) -> Vec<GrassBlade> {
         .collect()
 }
 
+/// The 1280 x 720 camera both frame benchmarks look through.
+fn bench_camera() -> Camera {
+    Camera::perspective(0.9, 1280, 720, 0.05, 200.0)
+        .expect("camera")
+        .look_at(
+            Vec3::new(-1.5, 1.6, -3.2),
+            Vec3::new(0.0, 0.2, 0.5),
+            Vec3::Y,
+        )
+}
+
 fn bench(c: &mut Criterion) {
     let grid = terrain_grid();
     let lighting = Lighting::default();
@@ -97,13 +108,7 @@ fn bench(c: &mut Criterion) {
         blades: &blades,
         lighting,
     };
-    let camera = Camera::perspective(0.9, 1280, 720, 0.05, 200.0)
-        .expect("camera")
-        .look_at(
-            Vec3::new(-1.5, 1.6, -3.2),
-            Vec3::new(0.0, 0.2, 0.5),
-            Vec3::Y,
-        );
+    let camera = bench_camera();
     let renderer = Renderer::new(1280, 720).expect("size");
     let (_, stats) = renderer.render_with_stats(&scene, &camera);
     eprintln!("frame: {stats:?}");
@@ -131,13 +136,7 @@ fn bench_grass(c: &mut Criterion) {
         blades: &blades,
         ..FrameScene::new()
     };
-    let camera = Camera::perspective(0.9, 1280, 720, 0.05, 200.0)
-        .expect("camera")
-        .look_at(
-            Vec3::new(-1.5, 1.6, -3.2),
-            Vec3::new(0.0, 0.2, 0.5),
-            Vec3::Y,
-        );
+    let camera = bench_camera();
     let renderer = Renderer::new(1280, 720)
         .expect("size")
         .with_threads(1)
