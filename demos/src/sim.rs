@@ -10,7 +10,7 @@
 
 use engine::ecs::World;
 use engine::geom::HeightGrid;
-use glam::{Vec3, Vec3Swizzles};
+use glam::Vec3Swizzles;
 use image::RgbaImage;
 use serde::Serialize;
 use softwalk_systems::sim::{SystemTimings, TerrainVolume, WalkerMetrics, world_hash};
@@ -81,28 +81,10 @@ pub struct StepRecord {
     pub t: f64,
     /// Index of the character in `Scene::characters`.
     pub character: usize,
-    /// Centre of mass (world).
-    pub com: Vec3,
-    /// Forward tilt of the rigid proxy, radians (positive leans forward).
-    pub tilt: f32,
-    /// Tilt rate, radians per second.
-    pub tilt_rate: f32,
-    /// Balance torque applied this step, N m.
-    pub torque: f32,
-    /// Pelvis height (world y), metres.
-    pub pelvis_y: f32,
-    /// Foot (sole centre) positions, left then right.
-    pub feet: [Vec3; 2],
-    /// Whether each foot touches the ground.
-    pub contacts: [bool; 2],
-    /// Height of each foot's IK target, metres.
-    pub target_y: [f32; 2],
-    /// Height of each foot's virtual platform, when one exists.
-    pub platform_y: [Option<f32>; 2],
-    /// Knee flexion, radians (0 = straight leg).
-    pub knee: [f32; 2],
-    /// Mean height of the grass blades near the character (0 without grass), metres.
-    pub grass_height: f32,
+    /// What the character recorded this step: its own metrics (COM, tilt,
+    /// torque, pelvis, feet, contacts, IK targets, knees) plus the platforms
+    /// and the grass height under it.
+    pub walker: WalkerMetrics,
     /// Volume of the terrain above height 0, cubic metres (shows mass conservation).
     pub terrain_volume: f64,
 }
@@ -279,7 +261,13 @@ pub fn run(
             };
             prints.observe(character, &m);
             observer
-                .on_step(&StepRecord::new(step, t, character, &m, volume))
+                .on_step(&StepRecord {
+                    step,
+                    t,
+                    character,
+                    walker: *m,
+                    terrain_volume: volume,
+                })
                 .map_err(SimError::Observer)?;
         }
         if let Some(view) = view.as_mut()
@@ -335,36 +323,6 @@ pub fn terrain_grid(world: &World) -> HeightGrid {
         .expect("build_sim always adds a terrain")
 }
 
-impl StepRecord {
-    /// The row of one character's metrics after step `step`.
-    pub fn new(
-        step: u64,
-        t: f64,
-        character: usize,
-        m: &WalkerMetrics,
-        terrain_volume: f64,
-    ) -> StepRecord {
-        let c = &m.character;
-        StepRecord {
-            step,
-            t,
-            character,
-            com: c.com,
-            tilt: c.tilt,
-            tilt_rate: c.tilt_rate,
-            torque: c.torque,
-            pelvis_y: c.pelvis_y,
-            feet: c.feet,
-            contacts: c.contact,
-            target_y: c.ik_target_y,
-            platform_y: m.platform_y,
-            knee: c.knee_flexion,
-            grass_height: m.grass_height,
-            terrain_volume,
-        }
-    }
-}
-
 /// Where each character's feet lifted off (the prints they left), to measure print depths at the end.
 struct PrintTracker(Vec<LiftOffs>);
 
@@ -398,6 +356,44 @@ impl PrintTracker {
                 }
             })
             .collect()
+    }
+}
+
+/// Records for the output writers' tests.
+#[cfg(test)]
+pub(crate) mod test_records {
+    use glam::Vec3;
+    use softwalk_systems::character::CharacterMetrics;
+    use softwalk_systems::foot::FootSole;
+    use softwalk_systems::sim::WalkerMetrics;
+
+    /// A character standing at the origin on flat bare ground; tests adjust
+    /// the fields they check with struct update syntax.
+    pub(crate) fn standing() -> WalkerMetrics {
+        let sole = |x: f32| FootSole {
+            heel: Vec3::new(x, 0.0, -0.1),
+            toe: Vec3::new(x, 0.0, 0.15),
+            width: 0.1,
+        };
+        WalkerMetrics {
+            character: CharacterMetrics {
+                com: Vec3::new(0.0, 0.9, 0.0),
+                tilt: 0.0,
+                tilt_rate: 0.0,
+                torque: 0.0,
+                pelvis_y: 0.95,
+                feet: [Vec3::new(-0.1, 0.0, 0.0), Vec3::new(0.1, 0.0, 0.0)],
+                soles: [sole(-0.1), sole(0.1)],
+                contact: [true; 2],
+                ik_target_y: [0.0; 2],
+                knee_flexion: [0.0; 2],
+                ground_slope: 0.0,
+            },
+            platform_y: [None; 2],
+            grass_height: 0.0,
+            ground_y: 0.0,
+            velocity: Vec3::ZERO,
+        }
     }
 }
 

@@ -10,8 +10,9 @@
 
 use std::f32::consts::PI;
 
+use demos::output::LastFrame;
 use demos::scene::Scene;
-use demos::sim::{Frame, ObserverError, RunObserver, RunOptions, run};
+use demos::sim::{RunOptions, run};
 use engine::geom::HeightGrid;
 use engine::render::{
     Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors, Sun,
@@ -30,17 +31,6 @@ const TOLERANCE: Tolerance = Tolerance {
     max_diff_pixels: 24,
 };
 
-/// Keeps the last frame of a run.
-#[derive(Default)]
-struct LastFrame(Option<RgbaImage>);
-
-impl RunObserver for LastFrame {
-    fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
-        self.0 = Some(frame.image.clone());
-        Ok(())
-    }
-}
-
 /// The last frame of the default scene's first 60 steps, drawn at 200 x 112
 /// every 2nd step (the follow camera moves as in a real run) with `threads`.
 fn default_scene_frame(threads: usize) -> RgbaImage {
@@ -55,7 +45,7 @@ fn default_scene_frame(threads: usize) -> RgbaImage {
     };
     let mut last = LastFrame::default();
     run(&scene, &options, &mut last).expect("the default scene runs");
-    last.0.expect("frames were rendered")
+    last.into_image().expect("frames were rendered")
 }
 
 #[test]

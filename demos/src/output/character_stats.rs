@@ -54,15 +54,16 @@ impl StatsCollector {
                 .resize(r.character + 1, Accumulator::default());
         }
         let a = &mut self.per_character[r.character];
+        let m = &r.walker.character;
         a.samples += 1;
-        a.tilt_sum += f64::from(r.tilt);
-        a.tilt_sq_sum += f64::from(r.tilt) * f64::from(r.tilt);
-        a.pelvis_sum += f64::from(r.pelvis_y);
+        a.tilt_sum += f64::from(m.tilt);
+        a.tilt_sq_sum += f64::from(m.tilt) * f64::from(m.tilt);
+        a.pelvis_sum += f64::from(m.pelvis_y);
         if let Some(last) = a.last_com {
-            a.distance += f64::from((r.com.x - last.x).hypot(r.com.z - last.z));
+            a.distance += f64::from((m.com.x - last.x).hypot(m.com.z - last.z));
         }
-        a.last_com = Some(r.com);
-        a.max_knee = a.max_knee.max(r.knee[0]).max(r.knee[1]);
+        a.last_com = Some(m.com);
+        a.max_knee = a.max_knee.max(m.knee_flexion[0]).max(m.knee_flexion[1]);
     }
 
     /// The figures so far, one per character in scene order.
@@ -98,27 +99,31 @@ impl RunObserver for StatsCollector {
 
 #[cfg(test)]
 mod tests {
+    use softwalk_systems::character::CharacterMetrics;
+    use softwalk_systems::sim::WalkerMetrics;
+
     use super::*;
+    use crate::sim::test_records;
 
     #[test]
     fn figures_match_hand_computation() {
         let mut c = StatsCollector::new(2);
         for (k, tilt) in [0.1f32, 0.3].into_iter().enumerate() {
+            let standing = test_records::standing();
             c.add(&StepRecord {
                 step: k as u64,
                 t: k as f64,
                 character: 1,
-                com: Vec3::new(3.0 * k as f32, 1.0, 4.0 * k as f32),
-                tilt,
-                tilt_rate: 0.0,
-                torque: 0.0,
-                pelvis_y: 0.9 + k as f32 * 0.2,
-                feet: [Vec3::ZERO; 2],
-                contacts: [true; 2],
-                target_y: [0.0; 2],
-                platform_y: [None; 2],
-                knee: [0.4, 0.7 - k as f32],
-                grass_height: 0.0,
+                walker: WalkerMetrics {
+                    character: CharacterMetrics {
+                        com: Vec3::new(3.0 * k as f32, 1.0, 4.0 * k as f32),
+                        tilt,
+                        pelvis_y: 0.9 + k as f32 * 0.2,
+                        knee_flexion: [0.4, 0.7 - k as f32],
+                        ..standing.character
+                    },
+                    ..standing
+                },
                 terrain_volume: 0.0,
             });
         }

@@ -65,34 +65,35 @@ impl MetricsCsv {
             source: io::Error::other("metrics file already finished"),
         })?;
         let platform = |p: Option<f32>| p.map_or_else(String::new, |v| v.to_string());
-        let [lf, rf] = r.feet;
+        let (w, m) = (&r.walker, &r.walker.character);
+        let [lf, rf] = m.feet;
         writeln!(
             writer,
             "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.t,
             name,
-            r.com.x,
-            r.com.y,
-            r.com.z,
-            r.tilt,
-            r.tilt_rate,
-            r.torque,
-            r.pelvis_y,
+            m.com.x,
+            m.com.y,
+            m.com.z,
+            m.tilt,
+            m.tilt_rate,
+            m.torque,
+            m.pelvis_y,
             lf.x,
             lf.y,
             lf.z,
             rf.x,
             rf.y,
             rf.z,
-            u8::from(r.contacts[0]),
-            u8::from(r.contacts[1]),
-            r.target_y[0],
-            r.target_y[1],
-            platform(r.platform_y[0]),
-            platform(r.platform_y[1]),
-            r.knee[0],
-            r.knee[1],
-            r.grass_height,
+            u8::from(m.contact[0]),
+            u8::from(m.contact[1]),
+            m.ik_target_y[0],
+            m.ik_target_y[1],
+            platform(w.platform_y[0]),
+            platform(w.platform_y[1]),
+            m.knee_flexion[0],
+            m.knee_flexion[1],
+            w.grass_height,
             r.terrain_volume,
         )
         .map_err(|source| WriteError {
@@ -141,25 +142,35 @@ impl RunObserver for MetricsCsv {
 #[cfg(test)]
 mod tests {
     use glam::Vec3;
+    use softwalk_systems::character::CharacterMetrics;
+    use softwalk_systems::sim::WalkerMetrics;
 
     use super::*;
+    use crate::sim::test_records;
 
     fn record(step: u64, character: usize) -> StepRecord {
+        let standing = test_records::standing();
         StepRecord {
             step,
             t: (step + 1) as f64 * 0.5,
             character,
-            com: Vec3::new(1.0, 0.9, 2.0),
-            tilt: 0.1,
-            tilt_rate: -0.2,
-            torque: 3.0,
-            pelvis_y: 0.95,
-            feet: [Vec3::new(1.0, 0.0, 1.9), Vec3::new(1.2, 0.1, 2.1)],
-            contacts: [true, false],
-            target_y: [0.0, 0.05],
-            platform_y: [None, Some(0.3)],
-            knee: [0.2, 0.6],
-            grass_height: 0.0,
+            walker: WalkerMetrics {
+                character: CharacterMetrics {
+                    com: Vec3::new(1.0, 0.9, 2.0),
+                    tilt: 0.1,
+                    tilt_rate: -0.2,
+                    torque: 3.0,
+                    pelvis_y: 0.95,
+                    feet: [Vec3::new(1.0, 0.0, 1.9), Vec3::new(1.2, 0.1, 2.1)],
+                    contact: [true, false],
+                    ik_target_y: [0.0, 0.05],
+                    knee_flexion: [0.2, 0.6],
+                    ..standing.character
+                },
+                platform_y: [None, Some(0.3)],
+                grass_height: 0.0,
+                ..standing
+            },
             terrain_volume: 12.5,
         }
     }

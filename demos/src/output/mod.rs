@@ -1,11 +1,13 @@
 //! Output writers: `metrics.csv`, `summary.json`, frame PNGs, animations, the
-//! contact sheet, plots, heightmaps and the printed summary. Every file is
+//! contact sheet, plots, heightmaps and the printed summary, and [`LastFrame`],
+//! which keeps a run's last frame in memory. Every file is
 //! written whole or not at all.
 
 mod animation;
 mod character_stats;
 mod frames;
 mod heightmaps;
+mod last_frame;
 mod metrics_csv;
 mod plots;
 mod run_report;
@@ -15,6 +17,7 @@ pub use animation::{AnimationWriter, ContactSheet};
 pub use character_stats::{CharacterStats, StatsCollector};
 pub use frames::FrameWriter;
 pub use heightmaps::HeightmapWriter;
+pub use last_frame::LastFrame;
 pub use metrics_csv::{METRICS_HEADER, MetricsCsv};
 pub use plots::PlotCollector;
 pub use run_report::{

@@ -33,35 +33,41 @@ const QUANTITIES: [Quantity; 5] = [
         title: "Forward tilt of the proxy",
         y_label: "degrees",
         labels: &[""],
-        read: |r| vec![r.tilt.to_degrees()],
+        read: |r| vec![r.walker.character.tilt.to_degrees()],
     },
     Quantity {
         file: "torque.png",
         title: "Balance torque (eq. 1)",
         y_label: "N m",
         labels: &[""],
-        read: |r| vec![r.torque],
+        read: |r| vec![r.walker.character.torque],
     },
     Quantity {
         file: "pelvis.png",
         title: "Pelvis height",
         y_label: "m",
         labels: &[""],
-        read: |r| vec![r.pelvis_y],
+        read: |r| vec![r.walker.character.pelvis_y],
     },
     Quantity {
         file: "knees.png",
         title: "Knee flexion",
         y_label: "degrees",
         labels: &[" left", " right"],
-        read: |r| vec![r.knee[0].to_degrees(), r.knee[1].to_degrees()],
+        read: |r| {
+            let [left, right] = r.walker.character.knee_flexion;
+            vec![left.to_degrees(), right.to_degrees()]
+        },
     },
     Quantity {
         file: "feet.png",
         title: "Foot height",
         y_label: "m",
         labels: &[" left", " right"],
-        read: |r| vec![r.feet[0].y, r.feet[1].y],
+        read: |r| {
+            let [left, right] = r.walker.character.feet;
+            vec![left.y, right.y]
+        },
     },
 ];
 

@@ -7,8 +7,9 @@ use image::RgbaImage;
 use super::report::GalleryImage;
 use super::variants::builtin;
 use super::{PaperError, PaperOptions};
+use crate::output::LastFrame;
 use crate::scene::Scene;
-use crate::sim::{self, Frame, ObserverError, RunObserver, RunOptions};
+use crate::sim::{self, RunOptions};
 
 /// Frame size of the gallery, pixels.
 pub const GALLERY_SIZE: (u32, u32) = (480, 270);
@@ -40,17 +41,6 @@ pub const GALLERY: [(&str, &str); 9] = [
     ("default", "the default scene"),
 ];
 
-/// Keeps the last frame a run renders.
-#[derive(Default)]
-struct LastFrame(Option<RgbaImage>);
-
-impl RunObserver for LastFrame {
-    fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
-        self.0 = Some(frame.image.clone());
-        Ok(())
-    }
-}
-
 /// The frame of `scene` after `seconds` of walking, at `width` x `height`.
 pub fn render_at(
     scene: &Scene,
@@ -69,7 +59,7 @@ pub fn render_at(
         scene: scene.name.clone(),
         source,
     })?;
-    Ok(last.0.expect("the run renders its last step"))
+    Ok(last.into_image().expect("the run renders its last step"))
 }
 
 /// Renders every gallery scene into `dir/<name>.png`.

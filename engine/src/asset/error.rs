@@ -104,3 +104,20 @@ pub enum AssetError {
     #[error(transparent)]
     Write(#[from] WriteError),
 }
+
+impl AssetError {
+    /// The error for a file that could not be opened or read: [`AssetError::Missing`]
+    /// when it does not exist, [`AssetError::Read`] otherwise.
+    pub(crate) fn reading(path: &std::path::Path, source: std::io::Error) -> AssetError {
+        if source.kind() == std::io::ErrorKind::NotFound {
+            AssetError::Missing {
+                path: path.to_path_buf(),
+            }
+        } else {
+            AssetError::Read {
+                path: path.to_path_buf(),
+                source,
+            }
+        }
+    }
+}

@@ -126,18 +126,7 @@ pub fn save_heightmap_png16(grid: &HeightGrid, path: &Path) -> Result<HeightmapI
 
 /// Decodes a grayscale PNG into values in `0..=1`, row-major.
 fn read_gray_png(path: &Path) -> Result<(usize, usize, Vec<f32>), AssetError> {
-    let file = File::open(path).map_err(|source| {
-        if source.kind() == std::io::ErrorKind::NotFound {
-            AssetError::Missing {
-                path: path.to_path_buf(),
-            }
-        } else {
-            AssetError::Read {
-                path: path.to_path_buf(),
-                source,
-            }
-        }
-    })?;
+    let file = File::open(path).map_err(|source| AssetError::reading(path, source))?;
     let corrupt = |e: png::DecodingError| AssetError::CorruptPng {
         path: path.to_path_buf(),
         reason: e.to_string(),

@@ -13,18 +13,7 @@ use crate::io::write_atomic;
 /// are fan-triangulated, materials are ignored, and normals are computed when
 /// the file has none.
 pub fn load_obj(path: &Path) -> Result<TriMesh, AssetError> {
-    let text = std::fs::read_to_string(path).map_err(|source| {
-        if source.kind() == std::io::ErrorKind::NotFound {
-            AssetError::Missing {
-                path: path.to_path_buf(),
-            }
-        } else {
-            AssetError::Read {
-                path: path.to_path_buf(),
-                source,
-            }
-        }
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|source| AssetError::reading(path, source))?;
     parse_obj(text.as_bytes(), path)
 }
 
