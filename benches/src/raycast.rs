@@ -11,26 +11,13 @@ use engine::geom::{GridBvh, GridRect, HeightGrid, MeshBvh, Ray, TriMesh, ray_tri
 use engine::glam::{Vec2, Vec3, Vec3A};
 
 use crate::{Row, time_ns};
+use engine::rng::SplitMix64;
 
 const CELL: f32 = 10.0 / 511.0;
 const RAYS: usize = 2048;
 /// The brute-force loop is so slow that it runs on a few rays only.
 const BRUTE_RAYS: usize = 8;
 const BUDGET_MS: u64 = 300;
-
-/// SplitMix64, seeded: every run measures the same rays.
-struct Rng(u64);
-
-impl Rng {
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        let u = ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32;
-        lo + (hi - lo) * u
-    }
-}
 
 /// Runs the group and returns one row per workload.
 pub fn run() -> Vec<Row> {
@@ -41,7 +28,7 @@ pub fn run() -> Vec<Row> {
     let ours = GridBvh::build(&grid);
     let mesh = grid.to_tri_mesh();
     let tri_bvh = MeshBvh::build(&mesh).expect("a valid mesh");
-    let mut rng = Rng(1);
+    let mut rng = SplitMix64::new(1);
     let vertical: Vec<Ray> = (0..RAYS)
         .map(|_| Ray::down(rng.range(4.0, 6.0), 5.0, rng.range(4.0, 6.0)).expect("finite"))
         .collect();

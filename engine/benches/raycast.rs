@@ -11,26 +11,11 @@ use std::time::{Duration, Instant};
 use criterion::{Bencher, Criterion, Throughput, criterion_group, criterion_main};
 use engine::geom::{GridBvh, GridRect, HeightGrid, MeshBvh, Ray, TriMesh};
 use engine::glam::{Vec2, Vec3, Vec3A};
+use engine::rng::SplitMix64;
 use obvhs::BvhBuildParams;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
 use obvhs::ray::{Ray as ObRay, RayHit};
 use obvhs::triangle::Triangle;
-
-/// SplitMix64: seeded, so every run measures the same rays.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-}
 
 /// The paper's terrain resolution: 512 samples over 10 m.
 const CELL: f32 = 10.0 / 511.0;
@@ -44,7 +29,7 @@ fn terrain(n: usize) -> HeightGrid {
 }
 
 /// Foot rays: a walking character's feet stay in a 2 m x 2 m window per step.
-fn foot_points(rng: &mut Rng) -> Vec<(f32, f32)> {
+fn foot_points(rng: &mut SplitMix64) -> Vec<(f32, f32)> {
     (0..RAYS)
         .map(|_| (rng.range(4.0, 6.0), rng.range(4.0, 6.0)))
         .collect()
@@ -53,7 +38,7 @@ fn foot_points(rng: &mut Rng) -> Vec<(f32, f32)> {
 fn vertical(c: &mut Criterion) {
     let mut group = c.benchmark_group("vertical_rays");
     group.throughput(Throughput::Elements(RAYS as u64));
-    let points = foot_points(&mut Rng(1));
+    let points = foot_points(&mut SplitMix64::new(1));
     for n in [512usize, 4096] {
         let grid = terrain(n);
         let bvh = GridBvh::build(&grid);
@@ -119,7 +104,7 @@ fn blob(n: usize) -> TriMesh {
 /// Incoherent rays: from random points in a cube of 3 radii around the object
 /// towards random points of its central half-radius cube (every ray meets the
 /// mesh from outside, each in an unrelated place).
-fn arbitrary_rays(rng: &mut Rng, centre: Vec3, radius: f32) -> Vec<Ray> {
+fn arbitrary_rays(rng: &mut SplitMix64, centre: Vec3, radius: f32) -> Vec<Ray> {
     let mut point = |scale: f32| {
         centre
             + Vec3::new(
@@ -197,7 +182,10 @@ fn mesh(c: &mut Criterion) {
         .map(|&k| triangles[k as usize])
         .collect();
     let workloads = [
-        ("arbitrary", arbitrary_rays(&mut Rng(2), Vec3::ZERO, 1.0)),
+        (
+            "arbitrary",
+            arbitrary_rays(&mut SplitMix64::new(2), Vec3::ZERO, 1.0),
+        ),
         ("camera_64x64", camera_rays(64, 64)),
         ("camera_640x480", camera_rays(640, 480)),
     ];
@@ -241,7 +229,7 @@ fn mesh(c: &mut Criterion) {
 /// Arbitrary rays on the 512² grid for several tile sizes (how the default was chosen).
 fn grid_tiles(c: &mut Criterion) {
     let grid = terrain(512);
-    let mut rng = Rng(3);
+    let mut rng = SplitMix64::new(3);
     let rays: Vec<Ray> = (0..RAYS)
         .map(|_| {
             let o = Vec3::new(

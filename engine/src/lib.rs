@@ -7,6 +7,7 @@
 //! - [`io`]: atomic file output;
 //! - [`asset`]: OBJ meshes and heightmap PNGs in and out;
 //! - [`render`]: a software rasterizer, overlays, plots and image/animation output;
+//! - [`rng`]: the seeded SplitMix64 generator everything random uses;
 //! - [`snapshot`]: golden-image tests on rendered PNGs.
 #![warn(missing_docs)]
 
@@ -15,6 +16,7 @@ pub mod ecs;
 pub mod geom;
 pub mod io;
 pub mod render;
+pub mod rng;
 pub mod schedule;
 pub mod snapshot;
 

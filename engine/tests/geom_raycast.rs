@@ -6,25 +6,7 @@ use engine::geom::{
     GridBvh, GridRect, HeightGrid, Hit, HitTarget, MeshBvh, Ray, RayScene, TriMesh, ray_triangle,
 };
 use engine::glam::{Vec2, Vec3, Vec3A};
-
-/// SplitMix64: a small seeded generator, so every run sees the same rays.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-}
+use engine::rng::SplitMix64;
 
 const TILE: usize = 8;
 const CELL: f32 = 0.25;
@@ -109,7 +91,7 @@ fn check_against_brute(g: &HeightGrid, rays: &[Ray], what: &str) {
     );
 }
 
-fn random_rays(g: &HeightGrid, rng: &mut Rng, n: usize) -> Vec<Ray> {
+fn random_rays(g: &HeightGrid, rng: &mut SplitMix64, n: usize) -> Vec<Ray> {
     let ext = g.extent();
     (0..n)
         .map(|_| {
@@ -128,7 +110,7 @@ fn random_rays(g: &HeightGrid, rng: &mut Rng, n: usize) -> Vec<Ray> {
         .collect()
 }
 
-fn grazing_rays(g: &HeightGrid, rng: &mut Rng, n: usize) -> Vec<Ray> {
+fn grazing_rays(g: &HeightGrid, rng: &mut SplitMix64, n: usize) -> Vec<Ray> {
     let ext = g.extent();
     (0..n)
         .map(|_| {
@@ -164,7 +146,7 @@ fn edge_rays(g: &HeightGrid) -> Vec<Ray> {
 
 #[test]
 fn random_grazing_and_edge_rays_match_brute_force_on_every_grid() {
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64::new(7);
     for (name, g) in [
         ("flat", flat()),
         ("sloped", sloped()),
@@ -183,7 +165,7 @@ fn vertical_rays_hit_height_at_exactly_also_on_cell_edges_and_tile_borders() {
     let g = edited();
     let bvh = GridBvh::build_with_tiles(&g, TILE).unwrap();
     let mesh = g.to_tri_mesh();
-    let mut rng = Rng(11);
+    let mut rng = SplitMix64::new(11);
     let mut points: Vec<(f32, f32)> = (0..500)
         .map(|_| (rng.range(-3.0, 7.0), rng.range(2.0, 11.0)))
         .collect();
@@ -243,7 +225,7 @@ fn hits_name_the_cell_and_an_upward_normal() {
 fn refit_after_edits_answers_like_a_rebuild() {
     let mut g = bumpy();
     let mut bvh = GridBvh::build_with_tiles(&g, TILE).unwrap();
-    let mut rng = Rng(3);
+    let mut rng = SplitMix64::new(3);
     // Several edits, some on tile borders, one digging deep and one raising a wall.
     let edits = [
         (GridRect::new(7, 7, 10, 10), 0.5),
@@ -329,7 +311,7 @@ fn blob(n: usize) -> TriMesh {
 fn mesh_bvh_matches_brute_force() {
     let mesh = blob(40);
     let bvh = MeshBvh::build(&mesh).unwrap();
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64::new(5);
     let mut hits = 0;
     for k in 0..600 {
         let o = Vec3::new(
@@ -398,7 +380,7 @@ fn scene_returns_the_closest_of_ground_and_meshes() {
     let rock_id = scene.add_mesh(rock.clone()).unwrap();
     let rock_bvh = MeshBvh::build(&rock).unwrap();
     let ground = GridBvh::build(&g);
-    let mut rng = Rng(9);
+    let mut rng = SplitMix64::new(9);
     for ray in random_rays(&g, &mut rng, 300) {
         let a = ground.cast(&g, &ray, 50.0);
         let b = rock_bvh.cast(&ray, 50.0);

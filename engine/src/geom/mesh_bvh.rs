@@ -245,15 +245,7 @@ impl MeshBvh {
 mod tests {
     use super::*;
     use crate::geom::ray_triangle;
-
-    /// SplitMix64 in `[lo, hi)`.
-    fn range(state: &mut u64, lo: f32, hi: f32) -> f32 {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        lo + (hi - lo) * (((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32)
-    }
+    use crate::rng::SplitMix64;
 
     /// A wavy `n` x `n` terrain of unit cells: shared edges on integer
     /// coordinates, where exactly vertical rays test the lost-hit case.
@@ -292,15 +284,15 @@ mod tests {
     fn one_by_one_and_batched_casts_match_brute_force() {
         let mesh = terrain(24);
         let bvh = MeshBvh::build(&mesh).unwrap();
-        let mut rng = 11u64;
+        let mut rng = SplitMix64::new(11);
         let mut rays: Vec<Ray> = (0..400)
             .map(|_| {
                 let o = Vec3::new(
-                    range(&mut rng, -4.0, 28.0),
-                    range(&mut rng, -2.0, 4.0),
-                    range(&mut rng, -4.0, 28.0),
+                    rng.range(-4.0, 28.0),
+                    rng.range(-2.0, 4.0),
+                    rng.range(-4.0, 28.0),
                 );
-                let to = Vec3::new(range(&mut rng, 0.0, 24.0), 0.0, range(&mut rng, 0.0, 24.0));
+                let to = Vec3::new(rng.range(0.0, 24.0), 0.0, rng.range(0.0, 24.0));
                 Ray::new(o, to - o).unwrap()
             })
             .collect();

@@ -208,6 +208,7 @@ impl TriPacket {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::SplitMix64;
 
     #[test]
     fn hits_inside_and_on_edges_misses_outside() {
@@ -239,19 +240,16 @@ mod tests {
         );
     }
 
-    /// SplitMix64 in `[-1, 1)`.
-    fn signed(state: &mut u64) -> f32 {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 23) as f32 - 1.0
-    }
-
     #[test]
     fn packet_lanes_match_the_scalar_test_bit_for_bit() {
-        let mut rng = 7u64;
-        let point = |rng: &mut u64| Vec3A::new(signed(rng), signed(rng), signed(rng));
+        let mut rng = SplitMix64::new(7);
+        let point = |rng: &mut SplitMix64| {
+            Vec3A::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            )
+        };
         let (mut hits, mut rays) = (0, 0);
         for round in 0..3000 {
             // Random triangles, plus an edge-on one, a degenerate one and a

@@ -10,6 +10,7 @@ use super::blade_span::{BladePiece, NotMonotone, SpanVertex};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, outcode};
 use super::raster::Band;
 use super::shading::{Lighting, encode_display};
+use crate::rng::SplitMix64;
 
 /// Blades per group (the unit of parallel set-up work).
 const BLADES_PER_BATCH: usize = 1024;
@@ -39,12 +40,10 @@ const BLADE_TRIANGLES: [[u32; 3]; 3] = [[0, 1, 3], [0, 3, 2], [2, 3, 4]];
 /// Blades narrower than this many pixels are thinned out and the rest widened to it.
 const MIN_BLADE_PX: f32 = 1.0;
 
-/// A number in `[0, 1)` fixed for each blade index (a SplitMix64 finaliser).
+/// A number in `[0, 1)` fixed for each blade index (the first draw of a
+/// SplitMix64 seeded with the index).
 fn unit_hash(index: u32) -> f32 {
-    let mut z = u64::from(index).wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    SplitMix64::new(u64::from(index)).next_f32()
 }
 
 /// A blade to draw: its index, drawn width and root distance from the eye.

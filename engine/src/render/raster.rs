@@ -590,17 +590,7 @@ mod tests {
     use crate::render::Camera;
     use crate::render::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport};
     use crate::render::clip::ClipVertex;
-
-    /// A tiny deterministic generator (xorshift) for jitter.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
+    use crate::rng::SplitMix64;
 
     fn sv(x: f32, y: f32) -> ScreenVertex {
         ScreenVertex {
@@ -612,13 +602,13 @@ mod tests {
     }
 
     /// Coverage counts of a triangulated grid of points over a 64 x 64 screen.
-    fn coverage(points: &[Vec2], n: usize, rng: &mut Rng) -> Vec<u32> {
+    fn coverage(points: &[Vec2], n: usize, rng: &mut SplitMix64) -> Vec<u32> {
         let mut count = vec![0u32; 64 * 64];
         let at = |c: usize, r: usize| sv(points[r * n + c].x, points[r * n + c].y);
         for r in 0..n - 1 {
             for c in 0..n - 1 {
                 let (a, b, cc, d) = (at(c, r), at(c + 1, r), at(c, r + 1), at(c + 1, r + 1));
-                let tris = if rng.next() < 0.5 {
+                let tris = if rng.next_f32() < 0.5 {
                     [[a, b, d], [a, d, cc]]
                 } else {
                     [[a, b, cc], [b, d, cc]]
@@ -648,7 +638,7 @@ mod tests {
 
     #[test]
     fn shared_edges_draw_every_pixel_exactly_once() {
-        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut rng = SplitMix64::new(0x9e37_79b9_7f4a_7c15);
         // Vertices exactly on pixel centres (edges through centres: the fill rule
         // decides), then jittered sub-pixel vertices; big cells exercise the
         // edge walk with solved row runs, small ones the coverage masks.
@@ -666,7 +656,7 @@ mod tests {
                         Vec2::new((k % n) as f32, (k / n) as f32) * spacing + Vec2::splat(4.5);
                     let on_border = k % n == 0 || k / n == 0 || k % n == n - 1 || k / n == n - 1;
                     let j = if on_border { 0.0 } else { jitter };
-                    base + Vec2::new(rng.next() - 0.5, rng.next() - 0.5) * j
+                    base + Vec2::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5) * j
                 })
                 .collect();
             let count = coverage(&points, n, &mut rng);
@@ -727,15 +717,15 @@ mod tests {
 
     /// Small random triangles (many covering one centre) in clip space, some
     /// facing away, some off screen.
-    fn small_triangles(rng: &mut Rng, count: usize) -> (Vec<ClipVertex>, Vec<[u32; 3]>) {
+    fn small_triangles(rng: &mut SplitMix64, count: usize) -> (Vec<ClipVertex>, Vec<[u32; 3]>) {
         let mut verts = Vec::new();
         for _ in 0..count {
-            let centre = Vec2::new(rng.next() * 2.4 - 1.2, rng.next() * 2.4 - 1.2);
-            let size = 0.03 + 0.4 * rng.next() * rng.next();
-            let w = 1.0 + 3.0 * rng.next();
+            let centre = Vec2::new(rng.next_f32() * 2.4 - 1.2, rng.next_f32() * 2.4 - 1.2);
+            let size = 0.03 + 0.4 * rng.next_f32() * rng.next_f32();
+            let w = 1.0 + 3.0 * rng.next_f32();
             for _ in 0..3 {
-                let p = centre + Vec2::new(rng.next() - 0.5, rng.next() - 0.5) * size;
-                let colour = Vec3::new(rng.next(), rng.next(), rng.next());
+                let p = centre + Vec2::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5) * size;
+                let colour = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
                 verts.push(cv(Vec4::new(p.x * w, p.y * w, 0.5 * w, w), colour));
             }
         }
@@ -747,7 +737,7 @@ mod tests {
 
     #[test]
     fn dots_draw_exactly_what_their_triangles_draw() {
-        let mut rng = Rng(0x5851_f42d_4c95_7f2d);
+        let mut rng = SplitMix64::new(0x5851_f42d_4c95_7f2d);
         let (w, h) = (48, 40);
         let (verts, tris) = small_triangles(&mut rng, 3000);
         let batch = build(&verts, &tris, w, h);
@@ -799,7 +789,7 @@ mod tests {
 
     #[test]
     fn lazy_colours_shade_only_kept_vertices_and_change_nothing() {
-        let mut rng = Rng(0x1405_7b7e_f767_814f);
+        let mut rng = SplitMix64::new(0x1405_7b7e_f767_814f);
         let (w, h) = (40, 32);
         let (verts, tris) = small_triangles(&mut rng, 2000);
         let group = [TriangleGroup {
@@ -839,15 +829,15 @@ mod tests {
 
     #[test]
     fn display_rgba_rounds_like_to_u8() {
-        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let mut rng = SplitMix64::new(0x2545_f491_4f6c_dd1d);
         let edges = [0.0, 0.5 / 255.0, 1.0, 1.0 + 1e-3, -1e-3, 127.5 / 255.0];
         for k in 0..20_000 {
             let c = if k < edges.len() * 3 {
                 Vec3::new(edges[k % 6], edges[k / 3 % 6], edges[k / 6 % 6])
             } else {
-                Vec3::new(rng.next(), rng.next(), rng.next()) * 1.2 - 0.1
+                Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 1.2 - 0.1
             };
-            let inv_w = 0.05 + rng.next() * 4.0;
+            let inv_w = 0.05 + rng.next_f32() * 4.0;
             let a = Vec4::new(inv_w, c.x * inv_w, c.y * inv_w, c.z * inv_w);
             let d = Vec3::new(a.y, a.z, a.w) / a.x;
             assert_eq!(

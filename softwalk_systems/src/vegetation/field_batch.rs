@@ -217,7 +217,7 @@ fn capped(t_max: f32, v: Points) -> (Points, F8) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::vegetation::rng::SplitMix64;
+    use engine::rng::SplitMix64;
 
     /// The batch against the scalar field, bit for bit, on random blades and
     /// feet, plus the edge cases: a foot on a blade's middle, far feet, and

@@ -121,7 +121,7 @@ impl BladeGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::vegetation::rng::SplitMix64;
+    use engine::rng::SplitMix64;
 
     #[test]
     fn query_finds_exactly_what_brute_force_finds() {

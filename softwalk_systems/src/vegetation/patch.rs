@@ -15,11 +15,11 @@ use super::field_memo::FieldMemo;
 use super::foot_motion::FootMotion;
 use super::grid::BladeGrid;
 use super::recovery::time_to_settle;
-use super::rng::SplitMix64;
 use super::settings::GrassSettings;
 use super::state_columns::StateColumns;
 use crate::foot::FootState;
 use crate::ground::Ground;
+use engine::rng::SplitMix64;
 
 /// Most blades one patch may hold.
 pub const MAX_BLADES: usize = 1 << 26;
