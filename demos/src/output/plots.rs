@@ -55,8 +55,11 @@ const QUANTITIES: [Quantity; 5] = [
         y_label: "degrees",
         labels: &[" left", " right"],
         read: |r| {
-            let [left, right] = r.walker.character.knee_flexion;
-            vec![left.to_degrees(), right.to_degrees()]
+            r.walker
+                .character
+                .knee_flexion
+                .map(f32::to_degrees)
+                .to_vec()
         },
     },
     Quantity {
@@ -64,10 +67,7 @@ const QUANTITIES: [Quantity; 5] = [
         title: "Foot height",
         y_label: "m",
         labels: &[" left", " right"],
-        read: |r| {
-            let [left, right] = r.walker.character.feet;
-            vec![left.y, right.y]
-        },
+        read: |r| r.walker.character.feet.map(|f| f.y).to_vec(),
     },
 ];
 
