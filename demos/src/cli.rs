@@ -87,6 +87,10 @@ pub struct BenchArgs {
     /// Scene, duration and threads.
     #[command(flatten)]
     pub scene: SceneArgs,
+    /// Run the scene this many times and report the median and the fastest
+    /// run (single runs vary a lot on a shared machine).
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub repeats: u32,
 }
 
 /// Arguments of `softwalk paper`.
@@ -160,6 +164,12 @@ pub enum CliError {
     /// An animation, contact sheet or plot could not be written.
     #[error("writing the outputs failed")]
     Output(#[source] crate::sim::ObserverError),
+    /// Repeated runs of one scene ended in different worlds.
+    #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]
+    Nondeterministic {
+        /// The scene's name.
+        scene: String,
+    },
 }
 
 /// Runs one parsed command line, printing to `stdout`.

@@ -109,12 +109,25 @@ fn run_writes_outputs_and_prints_a_summary() {
 
 #[test]
 fn bench_prints_per_step_cost() {
-    let out = softwalk(&["bench", "soil-up", "--steps", "5", "--threads", "1"]);
+    let out = softwalk(&[
+        "bench",
+        "soil-up",
+        "--steps",
+        "5",
+        "--threads",
+        "1",
+        "--repeats",
+        "3",
+    ]);
     assert!(out.status.success());
     let stdout = text(&out.stdout);
     assert!(
-        stdout.starts_with("scene soil-up: 5 steps on 1 thread(s)"),
+        stdout.starts_with("scene soil-up: 5 steps on 1 thread(s), 3 run(s): median"),
         "{stdout}"
     );
-    assert!(stdout.contains("us/step"), "{stdout}");
+    assert!(stdout.contains("carve"), "{stdout}");
+    assert!(stdout.contains(": same in every run"), "{stdout}");
+    let refused = softwalk(&["bench", "soil-up", "--repeats", "0"]);
+    assert!(!refused.status.success());
+    assert!(text(&refused.stderr).contains("--repeats"));
 }

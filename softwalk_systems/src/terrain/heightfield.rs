@@ -128,7 +128,9 @@ impl Heightfield {
     }
 
     /// Per-sample trodden amount, row-major: 0 untouched, [`DISTURBED_SLUMPED`]
-    /// slumped, [`DISTURBED_RIM`] rim, [`DISTURBED_PRESSED`] pressed by a sole.
+    /// slumped, [`DISTURBED_RIM`] rim, [`DISTURBED_PRESSED`] pressed by a sole;
+    /// samples moved by smoothing take half their neighbours' level, so the
+    /// amount fades over a few samples around each print.
     pub fn disturbed(&self) -> &[u8] {
         &self.disturbed
     }

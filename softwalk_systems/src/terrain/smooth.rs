@@ -3,12 +3,22 @@
 
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_SLUMPED, Heightfield, StageBuffers};
+use super::heightfield::{DISTURBED_RIM, Heightfield, StageBuffers};
 use super::patch::{Patch, edge_moves};
 
 /// Diffusion rate per pass (stable below 0.25; each pass adds a Gaussian
 /// variance of `2 * DIFFUSION_RATE` = 0.4 cell² per axis).
 pub const DIFFUSION_RATE: f32 = 0.2;
+
+/// Smallest trodden level (`Heightfield::disturbed`) through which smoothing
+/// conducts. An edge runs its passes scaled by the larger trodden level of its
+/// two samples over [`DISTURBED_RIM`] (full on prints and rims), and a sample
+/// that smoothing moves takes half its neighbours' largest level. So the
+/// filter fades over the few samples around a rim (levels 64, 32, ... 2)
+/// however many steps a stance lasts: the rim keeps the print's round shape
+/// and tapers smoothly instead of spreading to the window's rectangular
+/// border, and the darkening of disturbed ground fades with it.
+pub const SMOOTHING_MIN_LEVEL: u8 = 2;
 
 /// How far smoothing reaches beyond the window it is given, in samples:
 /// one sample per pass, `ceil(max s_t)` passes.
@@ -23,9 +33,10 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
 /// in flux form: `flux = DIFFUSION_RATE * (h_b - h_a)`, added to one sample and
 /// taken from the other (the same float on both sides), so the volume is
 /// conserved (to float rounding); no flux crosses the rectangle's border. An
-/// edge carries flux only if one of its samples is disturbed (pressed or rim),
-/// so natural terrain is never flattened (samples that change become slightly
-/// disturbed, so settling can relax them), and not if one of its samples is
+/// edge carries flux only if one of its samples has a trodden level of at least
+/// [`SMOOTHING_MIN_LEVEL`], so natural terrain is never flattened, and it runs
+/// fewer passes the lower that level (see [`SMOOTHING_MIN_LEVEL`]), so the
+/// filter stays on and around the deformed ground. It does not conduct either if one of its samples is
 /// held by a sole this step (the foot occupies the print; its walls are
 /// smoothed once it lifts). The edge between materials of smoothness s_a and
 /// s_b runs `(s_a + s_b) / 2` passes (the last one fractional).
@@ -77,11 +88,14 @@ pub(crate) struct SmoothBuffers {
     next: Vec<f32>,
     /// Per sample of the inner rows: 1 once a pass changed it.
     changed: Vec<u8>,
+    /// The patch's trodden levels before this call marked the changed samples.
+    levels: Vec<u8>,
 }
 
 impl SmoothBuffers {
-    /// Runs `passes` diffusion passes on `patch`; marks the samples they
-    /// changed as slumped and returns their bounding rectangle (grid samples).
+    /// Runs `passes` diffusion passes on `patch`; gives each sample they
+    /// changed half the largest trodden level of its 4 neighbours (if that is
+    /// more than its own) and returns their bounding rectangle (grid samples).
     fn run(&mut self, patch: &mut Patch, passes: usize) -> GridRect {
         if !self.conducting_edges(patch) {
             return GridRect::EMPTY;
@@ -121,9 +135,19 @@ impl SmoothBuffers {
         }
         let changed = &self.changed;
         let rect = patch.bounds_of(|l| changed[l - s] != 0);
-        for (d, &c) in patch.disturbed[s..len - s].iter_mut().zip(changed) {
+        self.levels.clear();
+        self.levels.extend_from_slice(&patch.disturbed);
+        let t = &self.levels;
+        let (up, down) = (&t[..n], &t[2 * s..2 * s + n]);
+        let (left, right) = (&t[s - 1..s - 1 + n], &t[s + 1..s + 1 + n]);
+        let neighbours = up.iter().zip(down).zip(left.iter().zip(right));
+        for ((d, &c), ((&u, &dn), (&l, &r))) in patch.disturbed[s..len - s]
+            .iter_mut()
+            .zip(changed)
+            .zip(neighbours)
+        {
             if c != 0 {
-                *d = (*d).max(DISTURBED_SLUMPED);
+                *d = (*d).max(u.max(dn).max(l.max(r)) / 2);
             }
         }
         rect
@@ -137,17 +161,20 @@ impl SmoothBuffers {
         self.sample.clear();
         self.sample
             .extend(patch.material.iter().map(|&m| table[m as usize]));
+        const RIM_LEVEL: f32 = DISTURBED_RIM as f32;
         let sm = &self.sample;
+        let trodden = &patch.disturbed;
         let edges = |out: &mut Vec<f32>, d: usize| {
             out.clear();
             out.extend(
-                f[..len - d]
-                    .iter()
-                    .zip(&f[d..])
+                (f[..len - d].iter().zip(&f[d..]))
+                    .zip(trodden[..len - d].iter().zip(&trodden[d..]))
                     .zip(sm[..len - d].iter().zip(&sm[d..]))
-                    .map(|((&fa, &fb), (&sa, &sb))| {
-                        if edge_moves(fa, fb) {
-                            0.5 * (sa + sb)
+                    .map(|(((&fa, &fb), (&ta, &tb)), (&sa, &sb))| {
+                        let level = ta.max(tb);
+                        if edge_moves(fa, fb) && level >= SMOOTHING_MIN_LEVEL {
+                            let weight = f32::from(level.min(DISTURBED_RIM)) / RIM_LEVEL;
+                            0.5 * (sa + sb) * weight
                         } else {
                             0.0
                         }
@@ -199,5 +226,39 @@ mod tests {
             }
         }
         assert!(spiked > before);
+    }
+
+    #[test]
+    fn repeated_smoothing_stays_near_the_rim_and_fades_its_level() {
+        // A stance smooths the same window every step. The filter must not
+        // spread the rim to the window's border (a rectangular plateau) however
+        // many calls run, and the trodden level must fall off with distance.
+        let mut hf = field(flat(GridSpec::square(1.0, 81), 1.0).unwrap());
+        let rim = GridRect::new(38, 38, 43, 43);
+        for (i, j) in rim.iter() {
+            hf.grid_mut().set_height(i, j, 1.05);
+            let k = hf.grid().index(i, j);
+            hf.parts_mut().disturbed[k] = DISTURBED_RIM;
+        }
+        let window = rim.expand(12, 81, 81);
+        for _ in 0..300 {
+            smooth(&mut hf, window);
+        }
+        let reach = (SMOOTHING_MIN_LEVEL.leading_zeros() as usize) + 1;
+        let near = rim.expand(reach, 81, 81);
+        let level = |i, j| hf.disturbed()[hf.grid().index(i, j)];
+        for (i, j) in hf.grid().full_rect().iter() {
+            if !near.contains(i, j) {
+                assert_eq!(hf.grid().height(i, j), 1.0, "sample ({i}, {j}) moved");
+                assert_eq!(level(i, j), 0);
+            }
+        }
+        // Along a row leaving the rim the level halves sample by sample.
+        let row: Vec<u8> = (43..43 + reach).map(|i| level(i, 40)).collect();
+        assert!(row.windows(2).all(|w| w[1] <= w[0] / 2 + 1), "{row:?}");
+        assert!(row[0] > 0 && row[0] < DISTURBED_RIM);
+        // The rim's material tapers outward instead of ending in a step.
+        let heights: Vec<f32> = (40..43 + reach).map(|i| hf.grid().height(i, 40)).collect();
+        assert!(heights.windows(2).all(|w| w[1] <= w[0]), "{heights:?}");
     }
 }
