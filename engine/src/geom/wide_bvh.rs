@@ -33,6 +33,9 @@ const WIDTH: usize = 4;
 /// workload).
 pub(crate) const BATCH_LANES: usize = 4;
 
+/// Bits of a [`Visit::child`] reference that hold a leaf's item count.
+const COUNT_BITS: u32 = 4;
+
 thread_local! {
     /// Each thread's traversal stack, reused so that a cast neither allocates
     /// nor clears one. Taken out while in use: a nested cast (from inside a
@@ -48,43 +51,52 @@ thread_local! {
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 struct Node {
-    /// Per axis (x, y, z), the children's box minima.
-    min: [Vec4; 3],
-    /// Per axis, the children's box maxima.
-    max: [Vec4; 3],
-    /// Node index of an inner child, or first leaf item of a leaf child.
-    first: [u32; WIDTH],
-    /// Leaf item count of a leaf child, 0 for an inner child.
-    count: [u32; WIDTH],
+    /// `planes[0]` holds per axis (x, y, z) the children's box minima,
+    /// `planes[1]` their maxima, so that a ray picks its entry and exit
+    /// planes by index rather than by branch.
+    planes: [[Vec4; 3]; 2],
+    /// Per lane, the child as a [`Visit::child`] reference.
+    child: [u32; WIDTH],
 }
 
 impl Node {
     const EMPTY: Node = Node {
-        min: [Vec4::INFINITY; 3],
-        max: [Vec4::NEG_INFINITY; 3],
-        first: [0; WIDTH],
-        count: [0; WIDTH],
+        planes: [[Vec4::INFINITY; 3], [Vec4::NEG_INFINITY; 3]],
+        child: [0; WIDTH],
     };
 }
 
-/// What the traversal visits next: a node or a leaf's item range.
+/// What the traversal visits next: a node or a leaf's item range, in eight
+/// bytes.
 #[derive(Clone, Copy, Debug, Default)]
 struct Visit {
     /// Distance at which the ray enters the child's box.
     entry: f32,
-    first: u32,
-    count: u32,
+    /// `first << COUNT_BITS | count`: node index `first` when `count` is 0,
+    /// else the leaf's items `first..first + count`.
+    child: u32,
 }
 
 impl Visit {
-    /// Child `lane` of `node`, entered at `entry`.
+    /// The child reference of a node (`count == 0`) or of a leaf's item range.
+    fn reference(first: u32, count: u32) -> u32 {
+        assert!(
+            count < 1 << COUNT_BITS && first < 1 << (32 - COUNT_BITS),
+            "a leaf holds at most 15 items and a tree at most 2^28 nodes or items"
+        );
+        first << COUNT_BITS | count
+    }
+
+    /// Node index or first leaf item.
     #[inline(always)]
-    fn child(node: &Node, lane: usize, entry: f32) -> Visit {
-        Visit {
-            entry,
-            first: node.first[lane],
-            count: node.count[lane],
-        }
+    fn first(self) -> u32 {
+        self.child >> COUNT_BITS
+    }
+
+    /// Leaf item count, 0 for a node.
+    #[inline(always)]
+    fn count(self) -> u32 {
+        self.child & ((1 << COUNT_BITS) - 1)
     }
 }
 
@@ -114,8 +126,8 @@ impl WideBvh {
     ///
     /// `leaf(first, count)` is called for each binary leaf (its primitive slot
     /// range), in depth-first order of the wide tree, and returns the leaf's
-    /// item range `(first, count)` (`count >= 1`), so that the caller can lay
-    /// out its items in traversal order.
+    /// item range `(first, count)` (`1 <= count <= 15`), so that the caller
+    /// can lay out its items in traversal order.
     pub(crate) fn from_bvh2(bvh2: &Bvh2, mut leaf: impl FnMut(u32, u32) -> (u32, u32)) -> WideBvh {
         let mut wide = WideBvh {
             nodes: Vec::with_capacity(bvh2.nodes.len() / 2 + 1),
@@ -164,15 +176,18 @@ impl WideBvh {
             let b = &bvh2.nodes[c];
             let aabb = b.aabb();
             for axis in 0..3 {
-                node.min[axis][lane] = aabb.min[axis];
-                node.max[axis][lane] = aabb.max[axis];
+                node.planes[0][axis][lane] = aabb.min[axis];
+                node.planes[1][axis][lane] = aabb.max[axis];
             }
-            if b.is_leaf() {
-                (node.first[lane], node.count[lane]) = leaf(b.first_index, b.prim_count);
+            let (first, count) = if b.is_leaf() {
+                let (first, count) = leaf(b.first_index, b.prim_count);
+                debug_assert!(count >= 1);
+                (first, count)
             } else {
                 let pair = vec![b.first_index as usize, b.first_index as usize + 1];
-                node.first[lane] = self.emit(bvh2, pair, depth + 1, leaf);
-            }
+                (self.emit(bvh2, pair, depth + 1, leaf), 0)
+            };
+            node.child[lane] = Visit::reference(first, count);
         }
         self.nodes[index] = node;
         index as u32
@@ -240,6 +255,9 @@ impl WideBvh {
         items: &impl LeafItems,
         mut found: impl FnMut(usize, Option<(f32, u32)>),
     ) {
+        if rays.is_empty() {
+            return;
+        }
         if self.nodes.is_empty() {
             (0..rays.len()).for_each(|k| found(k, None));
             return;
@@ -251,22 +269,35 @@ impl WideBvh {
         }
         let start = |k: usize| {
             let ray = &rays[k];
-            (k, Walk::new(ray.origin().into(), ray.dir().into(), max_t))
+            Walk::new(ray.origin().into(), ray.dir().into(), max_t)
         };
-        let mut lanes: [Option<(usize, Walk)>; LANES] =
-            std::array::from_fn(|k| (k < rays.len()).then(|| start(k)));
+        // Lane `l` walks ray `ray_of[l]` (`usize::MAX` once the rays run out).
+        let mut ray_of: [usize; LANES] =
+            std::array::from_fn(|l| if l < rays.len() { l } else { usize::MAX });
+        let mut walks: [Walk; LANES] =
+            std::array::from_fn(|l| start(if l < rays.len() { l } else { 0 }));
+        let stacks: [&mut [Visit]; LANES] = {
+            let mut chunks = stack.chunks_exact_mut(size);
+            std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
+        };
         let mut next_ray = LANES.min(rays.len());
-        let mut busy = true;
-        while busy {
-            busy = false;
-            for (lane, slot) in lanes.iter_mut().enumerate() {
-                let Some((k, walk)) = slot else { continue };
-                busy = true;
-                let lane_stack = &mut stack[lane * size..(lane + 1) * size];
-                if walk.step::<ANY, PREFETCH, true>(self, items, lane_stack) {
-                    found(*k, walk.best);
-                    *slot = (next_ray < rays.len()).then(|| start(next_ray));
-                    next_ray += 1;
+        let mut busy = LANES.min(rays.len());
+        while busy > 0 {
+            for lane in 0..LANES {
+                if ray_of[lane] == usize::MAX {
+                    continue;
+                }
+                let walk = &mut walks[lane];
+                if walk.step::<ANY, PREFETCH, true>(self, items, stacks[lane]) {
+                    found(ray_of[lane], walk.best);
+                    if next_ray < rays.len() {
+                        *walk = start(next_ray);
+                        ray_of[lane] = next_ray;
+                        next_ray += 1;
+                    } else {
+                        ray_of[lane] = usize::MAX;
+                        busy -= 1;
+                    }
                 }
             }
         }
@@ -276,11 +307,10 @@ impl WideBvh {
     /// Hints that `visit`'s node or leaf items will be read soon.
     #[inline(always)]
     fn prefetch(&self, visit: Visit, items: &impl LeafItems) {
-        if visit.count == 0 {
-            let node = visit.first as usize;
-            prefetch::lines(&self.nodes[node..=node]);
+        if visit.count() == 0 {
+            prefetch::lines(std::slice::from_ref(&self.nodes[visit.first() as usize]));
         } else {
-            items.prefetch(visit.first, visit.count);
+            items.prefetch(visit.first(), visit.count());
         }
     }
 }
@@ -293,9 +323,10 @@ pub(crate) struct WideRay {
     /// The direction, each component in all four lanes.
     pub(crate) dir: Xyz<Vec4>,
     inv_dir: [Vec4; 3],
-    /// Per axis, whether the ray runs towards negative coordinates (it then
-    /// enters a box through its max plane).
-    negative: [bool; 3],
+    /// Per axis, the index in [`Node::planes`] of the planes through which
+    /// the ray enters a box: 1 (the maxima) when it runs towards negative
+    /// coordinates, else 0.
+    near: [usize; 3],
 }
 
 impl WideRay {
@@ -304,33 +335,28 @@ impl WideRay {
         // every t or for none, and a ray lying exactly in a box's face plane
         // (the product is NaN) can only touch primitives padded inside it.
         let inv = dir.recip();
+        let near = |d: f32| usize::from(d.is_sign_negative());
         WideRay {
             origin: Xyz::from(origin),
             dir: Xyz::from(dir),
             inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
-            negative: [
-                dir.x.is_sign_negative(),
-                dir.y.is_sign_negative(),
-                dir.z.is_sign_negative(),
-            ],
+            near: [near(dir.x), near(dir.y), near(dir.z)],
         }
     }
 
     /// Entry distances of the ray into the four child boxes of `node`, and
     /// which of them it meets within `0..=t_max`.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // one index picks the axis in four arrays
     fn enter(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
         let origin = [self.origin.x, self.origin.y, self.origin.z];
         let mut t_in = Vec4::ZERO;
         let mut t_out = Vec4::splat(t_max);
-        for (axis, (o, inv)) in origin.iter().zip(&self.inv_dir).enumerate() {
-            let (near, far) = if self.negative[axis] {
-                (node.max[axis], node.min[axis])
-            } else {
-                (node.min[axis], node.max[axis])
-            };
-            t_in = t_in.max((near - *o) * *inv);
-            t_out = t_out.min((far - *o) * *inv);
+        for axis in 0..3 {
+            let near = self.near[axis] & 1;
+            let (o, inv) = (origin[axis], self.inv_dir[axis]);
+            t_in = t_in.max((node.planes[near][axis] - o) * inv);
+            t_out = t_out.min((node.planes[near ^ 1][axis] - o) * inv);
         }
         (t_in, t_in.cmple(t_out))
     }
@@ -371,8 +397,9 @@ impl Walk {
         items: &impl LeafItems,
         stack: &mut [Visit],
     ) -> bool {
-        if self.next.count == 0 {
-            let node = &bvh.nodes[self.next.first as usize];
+        let (first, count) = (self.next.first(), self.next.count());
+        if count == 0 {
+            let node = &bvh.nodes[first as usize];
             let (entry, hits) = self.ray.enter(node, self.t_max);
             if hits.any() {
                 self.next = if BRANCHLESS {
@@ -386,7 +413,7 @@ impl Walk {
                 return false;
             }
         } else {
-            for item in self.next.first..self.next.first + self.next.count {
+            for item in first..first + count {
                 if let Some(hit) = items.nearest(item, &self.ray, self.t_max) {
                     self.best = Some(hit);
                     if ANY {
@@ -427,7 +454,11 @@ impl Walk {
         let mut take = || {
             let lane = hits.trailing_zeros() as usize % WIDTH;
             hits &= hits - 1;
-            (Visit::child(node, lane, entry[lane]), hits != 0)
+            let visit = Visit {
+                entry: entry[lane],
+                child: node.child[lane],
+            };
+            (visit, hits != 0)
         };
         let (mut next, mut more) = take();
         while more {
@@ -467,12 +498,15 @@ impl Walk {
             .try_into()
             .expect("the stack holds WIDTH entries past any reachable top");
         let mut count = 0;
-        for (k, &t) in entry.to_array().iter().enumerate() {
-            pushed[count % WIDTH] = Visit::child(node, k, t);
+        for (k, (&entry, &child)) in entry.to_array().iter().zip(&node.child).enumerate() {
+            pushed[count % WIDTH] = Visit { entry, child };
             count += (others >> k) as usize & 1;
         }
         *top += count;
-        Visit::child(node, lane, nearest)
+        Visit {
+            entry: nearest,
+            child: node.child[lane],
+        }
     }
 }
 
