@@ -6,7 +6,7 @@
 /// Bytes per cache line.
 const LINE: usize = 64;
 
-/// True when this CPU has the prefetch instruction used by [`lines`]
+/// True when this CPU has the prefetch instruction used by [`span`]
 /// (checked at run time; SSE on x86_64).
 pub(crate) fn available() -> bool {
     #[cfg(target_arch = "x86_64")]
@@ -19,28 +19,26 @@ pub(crate) fn available() -> bool {
     }
 }
 
-/// Hints that every cache line `items` spans will be read soon.
+/// Hints that the cache lines holding the bytes at `start`, `start + 64` and
+/// `start + len - 1` will be read soon: all of `start..start + len` when
+/// `len` is 65 to 192 bytes (a BVH node or a triangle packet), with no loop
+/// and so no branch to mispredict. `start` need not point to anything: a
+/// prefetch never reads.
 #[inline(always)]
-pub(crate) fn lines<T>(items: &[T]) {
+pub(crate) fn span(start: *const u8, len: usize) {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse"))]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let start = items.as_ptr().cast::<i8>();
-        let skew = start as usize % LINE;
-        let mut offset = 0;
-        while offset < skew + size_of_val(items) {
-            // SAFETY: this code is compiled only for targets with SSE (part of
-            // the x86_64 baseline), which `_mm_prefetch` needs; a prefetch is a
-            // hint that never faults and has no visible effect, whatever the
-            // address, and `wrapping_sub`/`wrapping_add` never dereference.
-            unsafe {
-                _mm_prefetch::<_MM_HINT_T0>(start.wrapping_sub(skew).wrapping_add(offset));
-            }
-            offset += LINE;
+        let start = start.cast::<i8>();
+        for offset in [0, LINE, len.saturating_sub(1)] {
+            // SAFETY: as in `lines`: SSE is in the target's baseline, and a
+            // prefetch never faults whatever the address; `wrapping_add`
+            // never dereferences.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset)) }
         }
     }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse")))]
     {
-        let _ = (items, LINE);
+        let _ = (start, len);
     }
 }

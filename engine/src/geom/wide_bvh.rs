@@ -107,8 +107,10 @@ pub(crate) trait LeafItems {
     /// with an id of the implementor's choosing.
     fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)>;
 
-    /// Hints that items `first..first + count` will be read soon.
-    fn prefetch(&self, first: u32, count: u32);
+    /// Where items `first..first + count` lie in memory, as a pointer and a
+    /// length in bytes, for prefetching (the pointer is never dereferenced, so
+    /// it may be computed without bounds checks).
+    fn span(&self, first: u32, count: u32) -> (*const u8, usize);
 }
 
 /// A 4-wide BVH over leaf items.
@@ -304,14 +306,22 @@ impl WideBvh {
         STACK.set(stack);
     }
 
-    /// Hints that `visit`'s node or leaf items will be read soon.
+    /// Hints that `visit`'s node or leaf items will be read soon (their first
+    /// three cache lines, see [`prefetch::span`]), choosing between the two
+    /// without a branch: interleaved walks mix unrelated rays, so a branch on
+    /// the kind of visit would mispredict often.
     #[inline(always)]
     fn prefetch(&self, visit: Visit, items: &impl LeafItems) {
-        if visit.count() == 0 {
-            prefetch::lines(std::slice::from_ref(&self.nodes[visit.first() as usize]));
-        } else {
-            items.prefetch(visit.first(), visit.count());
-        }
+        let node = (
+            self.nodes
+                .as_ptr()
+                .wrapping_add(visit.first() as usize)
+                .cast::<u8>(),
+            size_of::<Node>(),
+        );
+        let leaf = items.span(visit.first(), visit.count());
+        let (start, len) = if visit.count() == 0 { node } else { leaf };
+        prefetch::span(start, len);
     }
 }
 
@@ -535,8 +545,9 @@ mod tests {
             (t <= t_max).then_some((t, k))
         }
 
-        fn prefetch(&self, first: u32, count: u32) {
-            prefetch::lines(&self.boxes[first as usize..(first + count) as usize]);
+        fn span(&self, first: u32, count: u32) -> (*const u8, usize) {
+            let start = self.boxes.as_ptr().wrapping_add(first as usize);
+            (start.cast(), count as usize * size_of::<Aabb>())
         }
     }
 
@@ -637,7 +648,9 @@ mod tests {
                     .push(cast::<false>(self.wide, self.boxes, o, Vec3A::X));
                 None
             }
-            fn prefetch(&self, _: u32, _: u32) {}
+            fn span(&self, _: u32, _: u32) -> (*const u8, usize) {
+                (std::ptr::null(), 0)
+            }
         }
         let (wide, boxes) = cubes(500);
         let o = Vec3A::new(-1.0, 0.5, 0.5);
