@@ -84,9 +84,8 @@ impl LeafItems for Packets {
     }
 
     #[inline(always)]
-    fn span(&self, first: u32, count: u32) -> (*const u8, usize) {
-        let start = self.packets.as_ptr().wrapping_add(first as usize);
-        (start.cast(), count as usize * size_of::<TriPacket>())
+    fn address(&self, item: u32) -> *const u8 {
+        self.packets.as_ptr().wrapping_add(item as usize).cast()
     }
 }
 

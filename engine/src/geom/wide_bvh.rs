@@ -51,17 +51,17 @@ thread_local! {
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 struct Node {
-    /// `planes[0]` holds per axis (x, y, z) the children's box minima,
-    /// `planes[1]` their maxima, so that a ray picks its entry and exit
-    /// planes by index rather than by branch.
-    planes: [[Vec4; 3]; 2],
+    /// Per axis (x, y, z), the children's box minima (`[axis][0]`) and
+    /// maxima (`[axis][1]`), so that a ray picks its entry and exit planes by
+    /// index rather than by branch.
+    planes: [[Vec4; 2]; 3],
     /// Per lane, the child as a [`Visit::child`] reference.
     child: [u32; WIDTH],
 }
 
 impl Node {
     const EMPTY: Node = Node {
-        planes: [[Vec4::INFINITY; 3], [Vec4::NEG_INFINITY; 3]],
+        planes: [[Vec4::INFINITY, Vec4::NEG_INFINITY]; 3],
         child: [0; WIDTH],
     };
 }
@@ -107,10 +107,10 @@ pub(crate) trait LeafItems {
     /// with an id of the implementor's choosing.
     fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)>;
 
-    /// Where items `first..first + count` lie in memory, as a pointer and a
-    /// length in bytes, for prefetching (the pointer is never dereferenced, so
-    /// it may be computed without bounds checks).
-    fn span(&self, first: u32, count: u32) -> (*const u8, usize);
+    /// Where item `item` lies in memory, for prefetching: its first
+    /// [`prefetch::SPAN`] bytes are hinted (the pointer is never
+    /// dereferenced, so it may be computed without bounds checks).
+    fn address(&self, item: u32) -> *const u8;
 }
 
 /// A 4-wide BVH over leaf items.
@@ -178,8 +178,8 @@ impl WideBvh {
             let b = &bvh2.nodes[c];
             let aabb = b.aabb();
             for axis in 0..3 {
-                node.planes[0][axis][lane] = aabb.min[axis];
-                node.planes[1][axis][lane] = aabb.max[axis];
+                node.planes[axis][0][lane] = aabb.min[axis];
+                node.planes[axis][1][lane] = aabb.max[axis];
             }
             let (first, count) = if b.is_leaf() {
                 let (first, count) = leaf(b.first_index, b.prim_count);
@@ -306,22 +306,19 @@ impl WideBvh {
         STACK.set(stack);
     }
 
-    /// Hints that `visit`'s node or leaf items will be read soon (their first
-    /// three cache lines, see [`prefetch::span`]), choosing between the two
-    /// without a branch: interleaved walks mix unrelated rays, so a branch on
-    /// the kind of visit would mispredict often.
+    /// Hints that `visit`'s node or first leaf item will be read soon (see
+    /// [`prefetch::span`]), choosing between the two without a branch:
+    /// interleaved walks mix unrelated rays, so a branch on the kind of visit
+    /// would mispredict often.
     #[inline(always)]
     fn prefetch(&self, visit: Visit, items: &impl LeafItems) {
-        let node = (
-            self.nodes
-                .as_ptr()
-                .wrapping_add(visit.first() as usize)
-                .cast::<u8>(),
-            size_of::<Node>(),
-        );
-        let leaf = items.span(visit.first(), visit.count());
-        let (start, len) = if visit.count() == 0 { node } else { leaf };
-        prefetch::span(start, len);
+        let node = self.nodes.as_ptr().wrapping_add(visit.first() as usize);
+        let leaf = items.address(visit.first());
+        prefetch::span(if visit.count() == 0 {
+            node.cast()
+        } else {
+            leaf
+        });
     }
 }
 
@@ -333,10 +330,9 @@ pub(crate) struct WideRay {
     /// The direction, each component in all four lanes.
     pub(crate) dir: Xyz<Vec4>,
     inv_dir: [Vec4; 3],
-    /// Per axis, the index in [`Node::planes`] of the planes through which
-    /// the ray enters a box: 1 (the maxima) when it runs towards negative
-    /// coordinates, else 0.
-    near: [usize; 3],
+    /// Per axis, whether the ray runs towards negative coordinates: it then
+    /// enters a box through its maximum plane ([`Node::planes`] index 1).
+    negative: [bool; 3],
 }
 
 impl WideRay {
@@ -345,12 +341,16 @@ impl WideRay {
         // every t or for none, and a ray lying exactly in a box's face plane
         // (the product is NaN) can only touch primitives padded inside it.
         let inv = dir.recip();
-        let near = |d: f32| usize::from(d.is_sign_negative());
+
         WideRay {
             origin: Xyz::from(origin),
             dir: Xyz::from(dir),
             inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
-            near: [near(dir.x), near(dir.y), near(dir.z)],
+            negative: [
+                dir.x.is_sign_negative(),
+                dir.y.is_sign_negative(),
+                dir.z.is_sign_negative(),
+            ],
         }
     }
 
@@ -363,10 +363,10 @@ impl WideRay {
         let mut t_in = Vec4::ZERO;
         let mut t_out = Vec4::splat(t_max);
         for axis in 0..3 {
-            let near = self.near[axis] & 1;
+            let near = usize::from(self.negative[axis]);
             let (o, inv) = (origin[axis], self.inv_dir[axis]);
-            t_in = t_in.max((node.planes[near][axis] - o) * inv);
-            t_out = t_out.min((node.planes[near ^ 1][axis] - o) * inv);
+            t_in = t_in.max((node.planes[axis][near] - o) * inv);
+            t_out = t_out.min((node.planes[axis][near ^ 1] - o) * inv);
         }
         (t_in, t_in.cmple(t_out))
     }
@@ -545,9 +545,8 @@ mod tests {
             (t <= t_max).then_some((t, k))
         }
 
-        fn span(&self, first: u32, count: u32) -> (*const u8, usize) {
-            let start = self.boxes.as_ptr().wrapping_add(first as usize);
-            (start.cast(), count as usize * size_of::<Aabb>())
+        fn address(&self, item: u32) -> *const u8 {
+            self.boxes.as_ptr().wrapping_add(item as usize).cast()
         }
     }
 
@@ -648,8 +647,8 @@ mod tests {
                     .push(cast::<false>(self.wide, self.boxes, o, Vec3A::X));
                 None
             }
-            fn span(&self, _: u32, _: u32) -> (*const u8, usize) {
-                (std::ptr::null(), 0)
+            fn address(&self, _: u32) -> *const u8 {
+                std::ptr::null()
             }
         }
         let (wide, boxes) = cubes(500);
