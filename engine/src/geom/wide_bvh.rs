@@ -278,11 +278,26 @@ impl WideBvh {
             std::array::from_fn(|l| if l < rays.len() { l } else { usize::MAX });
         let mut walks: [Walk; LANES] =
             std::array::from_fn(|l| start(if l < rays.len() { l } else { 0 }));
-        let stacks: [&mut [Visit]; LANES] = {
+        let mut stacks: [&mut [Visit]; LANES] = {
             let mut chunks = stack.chunks_exact_mut(size);
             std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
         };
         let mut next_ray = LANES.min(rays.len());
+        // While rays remain to be started, every lane is busy.
+        'full: while next_ray < rays.len() {
+            for ((walk, stack), ray) in walks.iter_mut().zip(stacks.iter_mut()).zip(&mut ray_of) {
+                if walk.step::<ANY, PREFETCH, true>(self, items, stack) {
+                    found(*ray, walk.best);
+                    *walk = start(next_ray);
+                    *ray = next_ray;
+                    next_ray += 1;
+                    if next_ray == rays.len() {
+                        continue 'full;
+                    }
+                }
+            }
+        }
+        // Then the lanes finish one by one.
         let mut busy = LANES.min(rays.len());
         while busy > 0 {
             for lane in 0..LANES {
