@@ -6,7 +6,10 @@
 /// Bytes per cache line.
 const LINE: usize = 64;
 
-/// True when this CPU has the prefetch instruction used by [`lines`]
+/// Bytes [`span`] covers from its start, wherever that lies in a line.
+pub(crate) const SPAN: usize = 2 * LINE + 16;
+
+/// True when this CPU has the prefetch instruction used by [`span`]
 /// (checked at run time; SSE on x86_64).
 pub(crate) fn available() -> bool {
     #[cfg(target_arch = "x86_64")]
@@ -19,28 +22,25 @@ pub(crate) fn available() -> bool {
     }
 }
 
-/// Hints that every cache line `items` spans will be read soon.
+/// Hints that the cache lines holding the bytes at `start`, `start + 64`
+/// and `start + SPAN - 1` will be read soon: all of a BVH node or triangle
+/// packet (up to [`SPAN`] bytes) from `start`, with no loop and so no branch
+/// to mispredict. `start` need not point to anything: a prefetch never reads.
 #[inline(always)]
-pub(crate) fn lines<T>(items: &[T]) {
+pub(crate) fn span(start: *const u8) {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse"))]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let start = items.as_ptr().cast::<i8>();
-        let skew = start as usize % LINE;
-        let mut offset = 0;
-        while offset < skew + size_of_val(items) {
-            // SAFETY: this code is compiled only for targets with SSE (part of
-            // the x86_64 baseline), which `_mm_prefetch` needs; a prefetch is a
-            // hint that never faults and has no visible effect, whatever the
-            // address, and `wrapping_sub`/`wrapping_add` never dereference.
-            unsafe {
-                _mm_prefetch::<_MM_HINT_T0>(start.wrapping_sub(skew).wrapping_add(offset));
-            }
-            offset += LINE;
+        let start = start.cast::<i8>();
+        for offset in [0, LINE, SPAN - 1] {
+            // SAFETY: as in `lines`: SSE is in the target's baseline, and a
+            // prefetch never faults whatever the address; `wrapping_add`
+            // never dereferences.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset)) }
         }
     }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse")))]
     {
-        let _ = (items, LINE);
+        let _ = start;
     }
 }

@@ -33,6 +33,9 @@ const WIDTH: usize = 4;
 /// workload).
 pub(crate) const BATCH_LANES: usize = 4;
 
+/// Bits of a [`Visit::child`] reference that hold a leaf's item count.
+const COUNT_BITS: u32 = 4;
+
 thread_local! {
     /// Each thread's traversal stack, reused so that a cast neither allocates
     /// nor clears one. Taken out while in use: a nested cast (from inside a
@@ -48,43 +51,52 @@ thread_local! {
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 struct Node {
-    /// Per axis (x, y, z), the children's box minima.
-    min: [Vec4; 3],
-    /// Per axis, the children's box maxima.
-    max: [Vec4; 3],
-    /// Node index of an inner child, or first leaf item of a leaf child.
-    first: [u32; WIDTH],
-    /// Leaf item count of a leaf child, 0 for an inner child.
-    count: [u32; WIDTH],
+    /// Per axis (x, y, z), the children's box minima (`[axis][0]`) and
+    /// maxima (`[axis][1]`), so that a ray picks its entry and exit planes by
+    /// index rather than by branch.
+    planes: [[Vec4; 2]; 3],
+    /// Per lane, the child as a [`Visit::child`] reference.
+    child: [u32; WIDTH],
 }
 
 impl Node {
     const EMPTY: Node = Node {
-        min: [Vec4::INFINITY; 3],
-        max: [Vec4::NEG_INFINITY; 3],
-        first: [0; WIDTH],
-        count: [0; WIDTH],
+        planes: [[Vec4::INFINITY, Vec4::NEG_INFINITY]; 3],
+        child: [0; WIDTH],
     };
 }
 
-/// What the traversal visits next: a node or a leaf's item range.
+/// What the traversal visits next: a node or a leaf's item range, in eight
+/// bytes.
 #[derive(Clone, Copy, Debug, Default)]
 struct Visit {
     /// Distance at which the ray enters the child's box.
     entry: f32,
-    first: u32,
-    count: u32,
+    /// `first << COUNT_BITS | count`: node index `first` when `count` is 0,
+    /// else the leaf's items `first..first + count`.
+    child: u32,
 }
 
 impl Visit {
-    /// Child `lane` of `node`, entered at `entry`.
+    /// The child reference of a node (`count == 0`) or of a leaf's item range.
+    fn reference(first: u32, count: u32) -> u32 {
+        assert!(
+            count < 1 << COUNT_BITS && first < 1 << (32 - COUNT_BITS),
+            "a leaf holds at most 15 items and a tree at most 2^28 nodes or items"
+        );
+        first << COUNT_BITS | count
+    }
+
+    /// Node index or first leaf item.
     #[inline(always)]
-    fn child(node: &Node, lane: usize, entry: f32) -> Visit {
-        Visit {
-            entry,
-            first: node.first[lane],
-            count: node.count[lane],
-        }
+    fn first(self) -> u32 {
+        self.child >> COUNT_BITS
+    }
+
+    /// Leaf item count, 0 for a node.
+    #[inline(always)]
+    fn count(self) -> u32 {
+        self.child & ((1 << COUNT_BITS) - 1)
     }
 }
 
@@ -95,8 +107,10 @@ pub(crate) trait LeafItems {
     /// with an id of the implementor's choosing.
     fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)>;
 
-    /// Hints that items `first..first + count` will be read soon.
-    fn prefetch(&self, first: u32, count: u32);
+    /// Where item `item` lies in memory, for prefetching: its first
+    /// [`prefetch::SPAN`] bytes are hinted (the pointer is never
+    /// dereferenced, so it may be computed without bounds checks).
+    fn address(&self, item: u32) -> *const u8;
 }
 
 /// A 4-wide BVH over leaf items.
@@ -114,8 +128,8 @@ impl WideBvh {
     ///
     /// `leaf(first, count)` is called for each binary leaf (its primitive slot
     /// range), in depth-first order of the wide tree, and returns the leaf's
-    /// item range `(first, count)` (`count >= 1`), so that the caller can lay
-    /// out its items in traversal order.
+    /// item range `(first, count)` (`1 <= count <= 15`), so that the caller
+    /// can lay out its items in traversal order.
     pub(crate) fn from_bvh2(bvh2: &Bvh2, mut leaf: impl FnMut(u32, u32) -> (u32, u32)) -> WideBvh {
         let mut wide = WideBvh {
             nodes: Vec::with_capacity(bvh2.nodes.len() / 2 + 1),
@@ -164,15 +178,18 @@ impl WideBvh {
             let b = &bvh2.nodes[c];
             let aabb = b.aabb();
             for axis in 0..3 {
-                node.min[axis][lane] = aabb.min[axis];
-                node.max[axis][lane] = aabb.max[axis];
+                node.planes[axis][0][lane] = aabb.min[axis];
+                node.planes[axis][1][lane] = aabb.max[axis];
             }
-            if b.is_leaf() {
-                (node.first[lane], node.count[lane]) = leaf(b.first_index, b.prim_count);
+            let (first, count) = if b.is_leaf() {
+                let (first, count) = leaf(b.first_index, b.prim_count);
+                debug_assert!(count >= 1);
+                (first, count)
             } else {
                 let pair = vec![b.first_index as usize, b.first_index as usize + 1];
-                node.first[lane] = self.emit(bvh2, pair, depth + 1, leaf);
-            }
+                (self.emit(bvh2, pair, depth + 1, leaf), 0)
+            };
+            node.child[lane] = Visit::reference(first, count);
         }
         self.nodes[index] = node;
         index as u32
@@ -240,6 +257,9 @@ impl WideBvh {
         items: &impl LeafItems,
         mut found: impl FnMut(usize, Option<(f32, u32)>),
     ) {
+        if rays.is_empty() {
+            return;
+        }
         if self.nodes.is_empty() {
             (0..rays.len()).for_each(|k| found(k, None));
             return;
@@ -251,37 +271,69 @@ impl WideBvh {
         }
         let start = |k: usize| {
             let ray = &rays[k];
-            (k, Walk::new(ray.origin().into(), ray.dir().into(), max_t))
+            Walk::new(ray.origin().into(), ray.dir().into(), max_t)
         };
-        let mut lanes: [Option<(usize, Walk)>; LANES] =
-            std::array::from_fn(|k| (k < rays.len()).then(|| start(k)));
+        // Lane `l` walks ray `ray_of[l]` (`usize::MAX` once the rays run out).
+        let mut ray_of: [usize; LANES] =
+            std::array::from_fn(|l| if l < rays.len() { l } else { usize::MAX });
+        let mut walks: [Walk; LANES] =
+            std::array::from_fn(|l| start(if l < rays.len() { l } else { 0 }));
+        let mut stacks: [&mut [Visit]; LANES] = {
+            let mut chunks = stack.chunks_exact_mut(size);
+            std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
+        };
         let mut next_ray = LANES.min(rays.len());
-        let mut busy = true;
-        while busy {
-            busy = false;
-            for (lane, slot) in lanes.iter_mut().enumerate() {
-                let Some((k, walk)) = slot else { continue };
-                busy = true;
-                let lane_stack = &mut stack[lane * size..(lane + 1) * size];
-                if walk.step::<ANY, PREFETCH, true>(self, items, lane_stack) {
-                    found(*k, walk.best);
-                    *slot = (next_ray < rays.len()).then(|| start(next_ray));
+        // While rays remain to be started, every lane is busy.
+        'full: while next_ray < rays.len() {
+            for ((walk, stack), ray) in walks.iter_mut().zip(stacks.iter_mut()).zip(&mut ray_of) {
+                if walk.step::<ANY, PREFETCH, true>(self, items, stack) {
+                    found(*ray, walk.best);
+                    *walk = start(next_ray);
+                    *ray = next_ray;
                     next_ray += 1;
+                    if next_ray == rays.len() {
+                        continue 'full;
+                    }
+                }
+            }
+        }
+        // Then the lanes finish one by one.
+        let mut busy = LANES.min(rays.len());
+        while busy > 0 {
+            for lane in 0..LANES {
+                if ray_of[lane] == usize::MAX {
+                    continue;
+                }
+                let walk = &mut walks[lane];
+                if walk.step::<ANY, PREFETCH, true>(self, items, stacks[lane]) {
+                    found(ray_of[lane], walk.best);
+                    if next_ray < rays.len() {
+                        *walk = start(next_ray);
+                        ray_of[lane] = next_ray;
+                        next_ray += 1;
+                    } else {
+                        ray_of[lane] = usize::MAX;
+                        busy -= 1;
+                    }
                 }
             }
         }
         STACK.set(stack);
     }
 
-    /// Hints that `visit`'s node or leaf items will be read soon.
+    /// Hints that `visit`'s node or first leaf item will be read soon (see
+    /// [`prefetch::span`]), choosing between the two without a branch:
+    /// interleaved walks mix unrelated rays, so a branch on the kind of visit
+    /// would mispredict often.
     #[inline(always)]
     fn prefetch(&self, visit: Visit, items: &impl LeafItems) {
-        if visit.count == 0 {
-            let node = visit.first as usize;
-            prefetch::lines(&self.nodes[node..=node]);
+        let node = self.nodes.as_ptr().wrapping_add(visit.first() as usize);
+        let leaf = items.address(visit.first());
+        prefetch::span(if visit.count() == 0 {
+            node.cast()
         } else {
-            items.prefetch(visit.first, visit.count);
-        }
+            leaf
+        });
     }
 }
 
@@ -293,8 +345,8 @@ pub(crate) struct WideRay {
     /// The direction, each component in all four lanes.
     pub(crate) dir: Xyz<Vec4>,
     inv_dir: [Vec4; 3],
-    /// Per axis, whether the ray runs towards negative coordinates (it then
-    /// enters a box through its max plane).
+    /// Per axis, whether the ray runs towards negative coordinates: it then
+    /// enters a box through its maximum plane ([`Node::planes`] index 1).
     negative: [bool; 3],
 }
 
@@ -304,6 +356,7 @@ impl WideRay {
         // every t or for none, and a ray lying exactly in a box's face plane
         // (the product is NaN) can only touch primitives padded inside it.
         let inv = dir.recip();
+
         WideRay {
             origin: Xyz::from(origin),
             dir: Xyz::from(dir),
@@ -319,18 +372,16 @@ impl WideRay {
     /// Entry distances of the ray into the four child boxes of `node`, and
     /// which of them it meets within `0..=t_max`.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // one index picks the axis in four arrays
     fn enter(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
         let origin = [self.origin.x, self.origin.y, self.origin.z];
         let mut t_in = Vec4::ZERO;
         let mut t_out = Vec4::splat(t_max);
-        for (axis, (o, inv)) in origin.iter().zip(&self.inv_dir).enumerate() {
-            let (near, far) = if self.negative[axis] {
-                (node.max[axis], node.min[axis])
-            } else {
-                (node.min[axis], node.max[axis])
-            };
-            t_in = t_in.max((near - *o) * *inv);
-            t_out = t_out.min((far - *o) * *inv);
+        for axis in 0..3 {
+            let near = usize::from(self.negative[axis]);
+            let (o, inv) = (origin[axis], self.inv_dir[axis]);
+            t_in = t_in.max((node.planes[axis][near] - o) * inv);
+            t_out = t_out.min((node.planes[axis][near ^ 1] - o) * inv);
         }
         (t_in, t_in.cmple(t_out))
     }
@@ -371,8 +422,9 @@ impl Walk {
         items: &impl LeafItems,
         stack: &mut [Visit],
     ) -> bool {
-        if self.next.count == 0 {
-            let node = &bvh.nodes[self.next.first as usize];
+        let (first, count) = (self.next.first(), self.next.count());
+        if count == 0 {
+            let node = &bvh.nodes[first as usize];
             let (entry, hits) = self.ray.enter(node, self.t_max);
             if hits.any() {
                 self.next = if BRANCHLESS {
@@ -386,7 +438,7 @@ impl Walk {
                 return false;
             }
         } else {
-            for item in self.next.first..self.next.first + self.next.count {
+            for item in first..first + count {
                 if let Some(hit) = items.nearest(item, &self.ray, self.t_max) {
                     self.best = Some(hit);
                     if ANY {
@@ -427,7 +479,11 @@ impl Walk {
         let mut take = || {
             let lane = hits.trailing_zeros() as usize % WIDTH;
             hits &= hits - 1;
-            (Visit::child(node, lane, entry[lane]), hits != 0)
+            let visit = Visit {
+                entry: entry[lane],
+                child: node.child[lane],
+            };
+            (visit, hits != 0)
         };
         let (mut next, mut more) = take();
         while more {
@@ -467,12 +523,15 @@ impl Walk {
             .try_into()
             .expect("the stack holds WIDTH entries past any reachable top");
         let mut count = 0;
-        for (k, &t) in entry.to_array().iter().enumerate() {
-            pushed[count % WIDTH] = Visit::child(node, k, t);
+        for (k, (&entry, &child)) in entry.to_array().iter().zip(&node.child).enumerate() {
+            pushed[count % WIDTH] = Visit { entry, child };
             count += (others >> k) as usize & 1;
         }
         *top += count;
-        Visit::child(node, lane, nearest)
+        Visit {
+            entry: nearest,
+            child: node.child[lane],
+        }
     }
 }
 
@@ -501,8 +560,8 @@ mod tests {
             (t <= t_max).then_some((t, k))
         }
 
-        fn prefetch(&self, first: u32, count: u32) {
-            prefetch::lines(&self.boxes[first as usize..(first + count) as usize]);
+        fn address(&self, item: u32) -> *const u8 {
+            self.boxes.as_ptr().wrapping_add(item as usize).cast()
         }
     }
 
@@ -603,7 +662,9 @@ mod tests {
                     .push(cast::<false>(self.wide, self.boxes, o, Vec3A::X));
                 None
             }
-            fn prefetch(&self, _: u32, _: u32) {}
+            fn address(&self, _: u32) -> *const u8 {
+                std::ptr::null()
+            }
         }
         let (wide, boxes) = cubes(500);
         let o = Vec3A::new(-1.0, 0.5, 0.5);
