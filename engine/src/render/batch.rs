@@ -6,7 +6,7 @@ use glam::{Vec3, Vec4};
 
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
 use super::raster::{
-    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
+    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenBox, ScreenVertex, Triangle, signed_area,
 };
 use super::small_triangle::SmallTriangle;
 
@@ -261,7 +261,8 @@ impl ScreenBatch {
         let (sa, sb, sc) = (&screen[a], &screen[b], &screen[c]);
         // Most sub-pixel triangles have no pixel centre in their box: drop them
         // first (the box does not depend on the winding).
-        let span = PixelSpan::of([sa, sb, sc], vp.width, vp.height);
+        let bounds = ScreenBox::of([sa, sb, sc]);
+        let span = bounds.span(vp.width, vp.height);
         if span.is_empty() {
             return;
         }
@@ -276,7 +277,7 @@ impl ScreenBatch {
             return;
         };
         let v = vertices(screen, order);
-        let Some(small) = SmallTriangle::of(v, span) else {
+        let Some(small) = SmallTriangle::of(v, &bounds, span) else {
             for k in order {
                 colors.shade(screen, k);
             }

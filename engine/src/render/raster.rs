@@ -73,23 +73,41 @@ fn last_centre(v: i32) -> i32 {
     (v - HALF as i32) >> SUBPIXEL_BITS
 }
 
-impl PixelSpan {
-    /// The span of pixel centres inside the bounding box of `v`, clipped to a
-    /// `width` x `height` screen.
+/// The fixed-point bounding box of a triangle's vertices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct ScreenBox {
+    pub min_x: i32,
+    pub max_x: i32,
+    pub min_y: i32,
+    pub max_y: i32,
+}
+
+impl ScreenBox {
+    /// The bounding box of `v` (in any order).
     #[inline(always)]
-    pub fn of(v: [&ScreenVertex; 3], width: i32, height: i32) -> PixelSpan {
-        let min_x = v[0].x.min(v[1].x).min(v[2].x);
-        let max_x = v[0].x.max(v[1].x).max(v[2].x);
-        let min_y = v[0].y.min(v[1].y).min(v[2].y);
-        let max_y = v[0].y.max(v[1].y).max(v[2].y);
-        PixelSpan {
-            x0: first_centre(min_x).max(0),
-            x1: last_centre(max_x).min(width - 1),
-            y0: first_centre(min_y).max(0),
-            y1: last_centre(max_y).min(height - 1),
+    pub fn of(v: [&ScreenVertex; 3]) -> ScreenBox {
+        ScreenBox {
+            min_x: v[0].x.min(v[1].x).min(v[2].x),
+            max_x: v[0].x.max(v[1].x).max(v[2].x),
+            min_y: v[0].y.min(v[1].y).min(v[2].y),
+            max_y: v[0].y.max(v[1].y).max(v[2].y),
         }
     }
 
+    /// The span of pixel centres inside the box, clipped to a `width` x
+    /// `height` screen.
+    #[inline(always)]
+    pub fn span(&self, width: i32, height: i32) -> PixelSpan {
+        PixelSpan {
+            x0: first_centre(self.min_x).max(0),
+            x1: last_centre(self.max_x).min(width - 1),
+            y0: first_centre(self.min_y).max(0),
+            y1: last_centre(self.max_y).min(height - 1),
+        }
+    }
+}
+
+impl PixelSpan {
     /// True when no pixel centre is covered.
     #[inline]
     pub fn is_empty(&self) -> bool {
@@ -536,7 +554,7 @@ mod tests {
         big_only: bool,
         edges: &mut Vec<Edges>,
     ) -> Option<Triangle> {
-        match SmallTriangle::of(v, span).filter(|_| !big_only) {
+        match SmallTriangle::of(v, &ScreenBox::of(v), span).filter(|_| !big_only) {
             Some(small) => {
                 let mask = small.coverage(span);
                 (mask != 0).then(|| Triangle::masked(small.planes(v, area), span, mask))
@@ -565,7 +583,7 @@ mod tests {
                     }
                     let v = [&t[0], &t[1], &t[2]];
                     let mut edges = Vec::new();
-                    let span = PixelSpan::of(v, 64, 64);
+                    let span = ScreenBox::of(v).span(64, 64);
                     if area == 0 || span.is_empty() {
                         continue;
                     }
@@ -724,14 +742,15 @@ mod tests {
             } else {
                 [a, b, c]
             };
-            let span = PixelSpan::of(v, w, h);
+            let span = ScreenBox::of(v).span(w, h);
             if area == 0 || span.is_empty() {
                 continue;
             }
             // Reference: the general edge walk for every triangle.
             let tri = set_up(v, area, span, true, &mut edges).expect("big triangles are kept");
             tri.draw(&edges, &mut band);
-            let small_covers = SmallTriangle::of(v, span).map(|s| s.coverage(span) != 0);
+            let small_covers =
+                SmallTriangle::of(v, &ScreenBox::of(v), span).map(|s| s.coverage(span) != 0);
             if small_covers != Some(false) {
                 filled += 1;
             }

@@ -9,7 +9,9 @@
 
 use glam::{BVec4A, Vec4, Vec4Swizzles};
 
-use super::raster::{HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenVertex};
+use super::raster::{
+    HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenBox, ScreenVertex,
+};
 
 /// Boxes of at most this many pixel centres test them one by one.
 const CENTRE_BY_CENTRE_MAX: u32 = 4;
@@ -28,17 +30,16 @@ pub(crate) struct SmallTriangle {
 }
 
 impl SmallTriangle {
-    /// The edge functions of the triangle `v` (clockwise on screen) over its
-    /// non-empty pixel box `span`, or `None` when the box or the triangle is too
-    /// big for exact `f32` edges (then the general set-up applies).
+    /// The edge functions of the triangle `v` (clockwise on screen, its
+    /// vertices' bounding box `bounds`) over its non-empty pixel box `span`, or
+    /// `None` when the box or the triangle is too big for exact `f32` edges
+    /// (then the general set-up applies).
     #[inline(always)]
-    pub fn of(v: [&ScreenVertex; 3], span: PixelSpan) -> Option<SmallTriangle> {
-        if span.x1 - span.x0 >= MASK_SIDE || span.y1 - span.y0 >= MASK_SIDE {
-            return None;
-        }
-        let extent = |a: i32, b: i32, c: i32| a.max(b).max(c) - a.min(b).min(c);
-        if extent(v[0].x, v[1].x, v[2].x) >= MASK_EXTENT
-            || extent(v[0].y, v[1].y, v[2].y) >= MASK_EXTENT
+    pub fn of(v: [&ScreenVertex; 3], bounds: &ScreenBox, span: PixelSpan) -> Option<SmallTriangle> {
+        if span.x1 - span.x0 >= MASK_SIDE
+            || span.y1 - span.y0 >= MASK_SIDE
+            || bounds.max_x - bounds.min_x >= MASK_EXTENT
+            || bounds.max_y - bounds.min_y >= MASK_EXTENT
         {
             return None;
         }
@@ -175,11 +176,12 @@ mod tests {
                 area if area < 0 => ([&a, &c, &b], -area),
                 area => ([&a, &b, &c], area),
             };
-            let span = PixelSpan::of(v, 48, 48);
+            let bounds = ScreenBox::of(v);
+            let span = bounds.span(48, 48);
             if span.is_empty() {
                 continue;
             }
-            let Some(small) = SmallTriangle::of(v, span) else {
+            let Some(small) = SmallTriangle::of(v, &bounds, span) else {
                 continue;
             };
             let (columns, rows) = (
