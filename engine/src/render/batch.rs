@@ -5,7 +5,10 @@
 use glam::{Vec3, Vec4};
 
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
-use super::raster::{Band, Dot, Edges, ONE, PixelSpan, ScreenVertex, Shape, Triangle, signed_area};
+use super::raster::{
+    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenBox, ScreenVertex, Triangle, signed_area,
+};
+use super::small_triangle::SmallTriangle;
 
 /// Which triangles to drop by their facing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -27,7 +30,9 @@ pub(crate) struct TriangleGroup<'a> {
 
 /// Rows per band: the unit of parallel rasterization. Fixed, so that the
 /// result does not depend on the number of threads.
-pub(crate) const BAND_ROWS: i32 = 32;
+pub(crate) const BAND_ROWS: i32 = 1 << BAND_SHIFT;
+/// `log2(BAND_ROWS)`: a non-negative row's band is `row >> BAND_SHIFT`.
+const BAND_SHIFT: u32 = 5;
 
 /// Bit of a [`ScreenBatch`] entry that marks a [`Dot`] (else a [`Triangle`]).
 const DOT_ENTRY: u32 = 1 << 31;
@@ -243,7 +248,7 @@ impl ScreenBatch {
 
     /// Culls, orients, sets up and keeps one triangle if it covers a pixel
     /// centre, shading its vertices only then.
-    #[inline]
+    #[inline(always)]
     fn push(
         &mut self,
         screen: &mut [ScreenVertex],
@@ -256,7 +261,8 @@ impl ScreenBatch {
         let (sa, sb, sc) = (&screen[a], &screen[b], &screen[c]);
         // Most sub-pixel triangles have no pixel centre in their box: drop them
         // first (the box does not depend on the winding).
-        let span = PixelSpan::of([sa, sb, sc], vp.width, vp.height);
+        let bounds = ScreenBox::of([sa, sb, sc]);
+        let span = bounds.span(vp.width, vp.height);
         if span.is_empty() {
             return;
         }
@@ -270,40 +276,48 @@ impl ScreenBatch {
         } else {
             return;
         };
-        if span.x0 == span.x1 && span.y0 == span.y1 {
-            // One pixel centre in the box (most small triangles): test it and
-            // keep the pixel.
-            let pixel = (span.x0, span.y0);
-            let Some(e) = Dot::covers(order.map(|k| &screen[k]), pixel) else {
-                return;
-            };
+        let v = vertices(screen, order);
+        let Some(small) = SmallTriangle::of(v, &bounds, span) else {
             for k in order {
                 colors.shade(screen, k);
             }
-            self.entries.push(self.dots.len() as u32 | DOT_ENTRY);
-            self.rows.push((pixel.1, pixel.1));
-            self.dots
-                .push(Dot::new(order.map(|k| &screen[k]), area, pixel, e));
-            return;
-        }
-        let Some(shape) = Shape::of(order.map(|k| &screen[k]), span) else {
+            let v = vertices(screen, order);
+            let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
+            self.push_triangle(tri, span);
             return;
         };
+        let mask = small.coverage(span);
+        if mask == 0 {
+            return;
+        }
         for k in order {
             colors.shade(screen, k);
         }
-        let v = order.map(|k| &screen[k]);
-        if shape.is_dot() {
-            let dot = shape.dot(v, area);
+        let planes = small.planes(vertices(screen, order), area);
+        if mask.is_power_of_two() {
+            let dot = Dot::in_box(&planes, span, mask);
             self.entries.push(self.dots.len() as u32 | DOT_ENTRY);
             self.rows.push((dot.row(), dot.row()));
             self.dots.push(dot);
         } else {
-            self.entries.push(self.tris.len() as u32);
-            self.rows.push((span.y0, span.y1));
-            self.tris.push(shape.triangle(v, area, &mut self.edges));
+            self.push_triangle(Triangle::masked(planes, span, mask), span);
         }
     }
+
+    /// Keeps a set-up triangle whose box is `span`.
+    #[inline]
+    fn push_triangle(&mut self, tri: Triangle, span: PixelSpan) {
+        self.entries.push(self.tris.len() as u32);
+        self.rows.push((span.y0, span.y1));
+        self.tris.push(tri);
+    }
+}
+
+/// The screen vertices of `order` (an array literal: `array::map` with
+/// bounds-checked indexing becomes a call per triangle).
+#[inline(always)]
+fn vertices(screen: &[ScreenVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
+    [&screen[order[0]], &screen[order[1]], &screen[order[2]]]
 }
 
 /// Items binned by the bands of rows they touch: a counting sort that keeps
@@ -334,12 +348,13 @@ impl BandBins {
         if first > last {
             return BandBins::default();
         }
-        let first_band = first / BAND_ROWS;
-        let bands = (last / BAND_ROWS - first_band + 1) as usize;
+        let first_band = first >> BAND_SHIFT;
+        let bands = ((last >> BAND_SHIFT) - first_band + 1) as usize;
+        // Rows are non-negative: shifts, not signed divisions.
         let band_range = |(y0, y1): (i32, i32)| {
             (
-                (y0 / BAND_ROWS - first_band) as usize,
-                (y1 / BAND_ROWS - first_band) as usize,
+                ((y0 >> BAND_SHIFT) - first_band) as usize,
+                ((y1 >> BAND_SHIFT) - first_band) as usize,
             )
         };
         let mut starts = vec![0u32; bands + 1];

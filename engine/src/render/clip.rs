@@ -42,28 +42,20 @@ pub(crate) const OUT_FRUSTUM: u8 = OUT_LEFT | OUT_RIGHT | OUT_BOTTOM | OUT_TOP |
 /// The outcode of a clip-space position.
 #[inline]
 pub(crate) fn outcode(p: Vec4) -> u8 {
-    let mut code = 0;
-    if p.x < -p.w {
-        code |= OUT_LEFT;
-    }
-    if p.x > p.w {
-        code |= OUT_RIGHT;
-    }
-    if p.y < -p.w {
-        code |= OUT_BOTTOM;
-    }
-    if p.y > p.w {
-        code |= OUT_TOP;
-    }
+    // x < -w is -x > w (negation is exact): the four side planes are one
+    // vector compare whose lanes are OUT_LEFT, OUT_RIGHT, OUT_BOTTOM, OUT_TOP.
+    let sides = Vec4::new(-p.x, p.x, -p.y, p.y)
+        .cmpgt(Vec4::splat(p.w))
+        .bitmask() as u8;
     // NaN positions count as behind, so they are rejected or clipped away.
-    if p.z < 0.0 || p.z.is_nan() {
-        code |= OUT_NEAR;
-    }
+    let near = if p.z >= 0.0 { 0 } else { OUT_NEAR };
     let g = GUARD_BAND * p.w;
-    if !(p.x.abs() <= g && p.y.abs() <= g) {
-        code |= OUT_GUARD;
-    }
-    code
+    let guard = if p.x.abs() <= g && p.y.abs() <= g {
+        0
+    } else {
+        OUT_GUARD
+    };
+    sides | near | guard
 }
 
 /// The clip planes used when clipping: near (`z >= 0`) then the four guard-band planes.
@@ -116,6 +108,66 @@ mod tests {
             pos: Vec4::new(x, y, z, w),
             color: Vec3::new(z, 0.0, 0.0),
         }
+    }
+
+    /// The outcode, one plane at a time.
+    fn outcode_by_plane(p: Vec4) -> u8 {
+        let mut code = 0;
+        if p.x < -p.w {
+            code |= OUT_LEFT;
+        }
+        if p.x > p.w {
+            code |= OUT_RIGHT;
+        }
+        if p.y < -p.w {
+            code |= OUT_BOTTOM;
+        }
+        if p.y > p.w {
+            code |= OUT_TOP;
+        }
+        if p.z < 0.0 || p.z.is_nan() {
+            code |= OUT_NEAR;
+        }
+        let g = GUARD_BAND * p.w;
+        if !(p.x.abs() <= g && p.y.abs() <= g) {
+            code |= OUT_GUARD;
+        }
+        code
+    }
+
+    #[test]
+    fn outcodes_match_the_plane_by_plane_tests() {
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            8.0,
+            -8.0,
+            9.0,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        let mut rng = crate::rng::SplitMix64::new(0x3c6e_f372_fe94_f82b);
+        let mut seen = 0u64;
+        for k in 0..20_000 {
+            let p = if k < 9 * 9 * 9 * 3 {
+                let s = |i: usize| special[i % 9];
+                Vec4::new(s(k), s(k / 9), s(k / 81), [1.0, 0.5, -1.0][k / 729])
+            } else {
+                Vec4::new(
+                    rng.next_f32(),
+                    rng.next_f32(),
+                    rng.next_f32(),
+                    rng.next_f32(),
+                ) * 24.0
+                    - Vec4::new(12.0, 12.0, 4.0, 4.0)
+            };
+            let code = outcode(p);
+            assert_eq!(code, outcode_by_plane(p), "{p}");
+            seen |= 1 << code;
+        }
+        assert!(seen.count_ones() > 20, "many plane combinations: {seen:b}");
     }
 
     #[test]

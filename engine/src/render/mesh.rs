@@ -113,7 +113,6 @@ impl<'a> MeshInstance<'a> {
                 // reach the screen.
                 let color = |k: usize| {
                     let v = first + k;
-                    let p = world(v);
                     let display = match self.vertex_colors.and_then(|c| c.get(v)) {
                         Some(&baked) => baked,
                         None => {
@@ -123,7 +122,11 @@ impl<'a> MeshInstance<'a> {
                             encode_display(lighting.radiance(self.color, n, sky, 1.0))
                         }
                     };
-                    lighting.apply_fog(display, (p - camera.eye).length())
+                    // Without fog the distance is not needed.
+                    if lighting.fog_density == 0.0 {
+                        return display;
+                    }
+                    lighting.apply_fog(display, (world(v) - camera.eye).length())
                 };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();

@@ -34,6 +34,7 @@ mod grass;
 mod mesh;
 mod raster;
 mod shading;
+mod small_triangle;
 mod terrain;
 mod terrain_colors;
 mod terrain_light;

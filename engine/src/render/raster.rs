@@ -4,7 +4,9 @@
 //! A triangle is set up once, in the (parallel) geometry stage, into a
 //! [`Triangle`]: its pixel box, the planes of its attributes, and either the bit
 //! mask of the pixel centres it covers (small boxes, the common case for terrain
-//! cells) or its edge functions (larger boxes), so that the bands only fill.
+//! cells, set up by [`super::small_triangle`]) or its edge functions (larger
+//! boxes, [`BigTriangle`]), so that the bands only fill. A triangle covering a
+//! single pixel centre becomes a [`Dot`].
 
 use glam::{Vec3, Vec4};
 
@@ -12,16 +14,17 @@ use glam::{Vec3, Vec4};
 pub(crate) const SUBPIXEL_BITS: u32 = 8;
 /// One pixel in fixed point.
 pub(crate) const ONE: i64 = 1 << SUBPIXEL_BITS;
-const HALF: i64 = ONE / 2;
+/// Half a pixel in fixed point.
+pub(crate) const HALF: i64 = ONE / 2;
 
 /// Pixel boxes at most this many pixels wide and tall store their coverage as a
 /// 64-bit mask (bit `8 * row + column`).
-const MASK_SIDE: i32 = 8;
+pub(crate) const MASK_SIDE: i32 = 8;
 
 /// ... when their vertices also span less than this (fixed point) per axis:
 /// then an edge value at any pixel centre inside their bounding box, at most
 /// `2 * MASK_EXTENT^2 + 1` in magnitude, is exact in `f32`.
-const MASK_EXTENT: i32 = 11 << SUBPIXEL_BITS;
+pub(crate) const MASK_EXTENT: i32 = 11 << SUBPIXEL_BITS;
 const _: () =
     assert!(2 * (MASK_EXTENT as i64) * (MASK_EXTENT as i64) + 1 < 1 << f32::MANTISSA_DIGITS);
 
@@ -70,23 +73,41 @@ fn last_centre(v: i32) -> i32 {
     (v - HALF as i32) >> SUBPIXEL_BITS
 }
 
-impl PixelSpan {
-    /// The span of pixel centres inside the bounding box of `v`, clipped to a
-    /// `width` x `height` screen.
+/// The fixed-point bounding box of a triangle's vertices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct ScreenBox {
+    pub min_x: i32,
+    pub max_x: i32,
+    pub min_y: i32,
+    pub max_y: i32,
+}
+
+impl ScreenBox {
+    /// The bounding box of `v` (in any order).
     #[inline(always)]
-    pub fn of(v: [&ScreenVertex; 3], width: i32, height: i32) -> PixelSpan {
-        let min_x = v[0].x.min(v[1].x).min(v[2].x);
-        let max_x = v[0].x.max(v[1].x).max(v[2].x);
-        let min_y = v[0].y.min(v[1].y).min(v[2].y);
-        let max_y = v[0].y.max(v[1].y).max(v[2].y);
-        PixelSpan {
-            x0: first_centre(min_x).max(0),
-            x1: last_centre(max_x).min(width - 1),
-            y0: first_centre(min_y).max(0),
-            y1: last_centre(max_y).min(height - 1),
+    pub fn of(v: [&ScreenVertex; 3]) -> ScreenBox {
+        ScreenBox {
+            min_x: v[0].x.min(v[1].x).min(v[2].x),
+            max_x: v[0].x.max(v[1].x).max(v[2].x),
+            min_y: v[0].y.min(v[1].y).min(v[2].y),
+            max_y: v[0].y.max(v[1].y).max(v[2].y),
         }
     }
 
+    /// The span of pixel centres inside the box, clipped to a `width` x
+    /// `height` screen.
+    #[inline(always)]
+    pub fn span(&self, width: i32, height: i32) -> PixelSpan {
+        PixelSpan {
+            x0: first_centre(self.min_x).max(0),
+            x1: last_centre(self.max_x).min(width - 1),
+            y0: first_centre(self.min_y).max(0),
+            y1: last_centre(self.max_y).min(height - 1),
+        }
+    }
+}
+
+impl PixelSpan {
     /// True when no pixel centre is covered.
     #[inline]
     pub fn is_empty(&self) -> bool {
@@ -173,17 +194,52 @@ fn edge_value(dx: i64, dy: i64, a: &ScreenVertex, px: i64, py: i64) -> i64 {
     dx * (py - a.y as i64) - dy * (px - a.x as i64) + bias
 }
 
-/// The attributes of vertex 0 of a triangle (positive [`signed_area`] `area`)
-/// and the attribute change for given values of edges 1 and 2 (the weights of
-/// vertices 1 and 2, times the area).
-#[inline]
-fn attribute_weights(v: [&ScreenVertex; 3], area: i64) -> (Vec4, impl Fn(i64, i64) -> Vec4) {
-    let inv_area = 1.0 / area as f32;
-    let a0 = v[0].attributes();
-    let (d1, d2) = (v[1].attributes() - a0, v[2].attributes() - a0);
-    // The top-left bias of at most 1 unit is negligible in the weights.
-    let weights = move |e1: i64, e2: i64| d1 * (e1 as f32 * inv_area) + d2 * (e2 as f32 * inv_area);
-    (a0, weights)
+/// The planes of a triangle's attributes (`1/w`, colour / w) over the pixel
+/// centres.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Planes {
+    /// Attributes at the centre of the box's first pixel.
+    base: Vec4,
+    /// Attribute change per pixel to the right.
+    step_x: Vec4,
+    /// Attribute change per pixel down.
+    step_y: Vec4,
+}
+
+impl Planes {
+    /// The planes of triangle `v` (positive [`signed_area`] `area`) from the
+    /// values of its edges 1 and 2 (the weights of vertices 1 and 2, times the
+    /// area) in lanes 1 and 2 of `start` (at the box's first centre, top-left
+    /// bias included: at most 1 unit, negligible in the weights), `step_x`
+    /// (per pixel right) and `step_y` (per pixel down).
+    #[inline(always)]
+    pub fn from_edge_weights(
+        v: [&ScreenVertex; 3],
+        area: i64,
+        start: Vec4,
+        step_x: Vec4,
+        step_y: Vec4,
+    ) -> Planes {
+        let inv_area = 1.0 / area as f32;
+        let a0 = v[0].attributes();
+        let (d1, d2) = (v[1].attributes() - a0, v[2].attributes() - a0);
+        let weights = |e: Vec4| {
+            let w = e * inv_area;
+            d1 * w.y + d2 * w.z
+        };
+        Planes {
+            base: a0 + weights(start),
+            step_x: weights(step_x),
+            step_y: weights(step_y),
+        }
+    }
+
+    /// The attributes `column` pixels right of and `row` pixels below the box's
+    /// first centre (the same sums as filling that row's run from its first pixel).
+    #[inline]
+    fn at(&self, column: i32, row: i32) -> Vec4 {
+        self.base + self.step_y * row as f32 + self.step_x * column as f32
+    }
 }
 
 /// The three edge functions of a triangle whose box is too big for a mask.
@@ -203,46 +259,40 @@ enum Coverage {
 /// attributes (`1/w`, colour / w) over the pixel centres.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Triangle {
-    /// Attributes at the centre of the box's first pixel.
-    base: Vec4,
-    /// Attribute change per pixel to the right.
-    step_x: Vec4,
-    /// Attribute change per pixel down.
-    step_y: Vec4,
+    planes: Planes,
     /// The covered pixel box (clipped to the screen).
     span: PixelSpan,
     coverage: Coverage,
 }
 
-/// A triangle's coverage, found before its attributes (so that vertices of
-/// triangles that cover no pixel centre need no shading).
+impl Triangle {
+    /// A triangle covering the centres of `mask` (bit `8 * row + column`,
+    /// relative to the corner of `span`, a box at most [`MASK_SIDE`] pixels per side).
+    #[inline]
+    pub fn masked(planes: Planes, span: PixelSpan, mask: u64) -> Triangle {
+        Triangle {
+            planes,
+            span,
+            coverage: Coverage::Mask(mask),
+        }
+    }
+}
+
+/// A triangle too big for a [`super::small_triangle::SmallTriangle`]: its
+/// edge functions, walked row by row when filling.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Shape {
+pub(crate) struct BigTriangle {
     /// Edge functions at the box's first pixel centre; edge `k` is opposite vertex `k`.
     edges: [Edge; 3],
     /// The covered pixel box (clipped to the screen).
     span: PixelSpan,
-    kind: ShapeKind,
 }
 
-#[derive(Debug, Clone, Copy)]
-enum ShapeKind {
-    /// Exactly one pixel centre is covered, this many columns and rows from
-    /// the box's first.
-    Dot(i32, i32),
-    /// Bit `8 * row + column` per covered centre of a small box.
-    Mask(u64),
-    /// Too big for a mask: the edges are walked when filling.
-    Big,
-}
-
-impl Shape {
-    /// The coverage of a triangle (clockwise on screen) whose non-empty screen
-    /// box is `span`, or `None` when it covers no pixel centre.
-    // Always inlined into the batch's set-up loop: as a call, returning the
-    // 100-byte `Option<Shape>` costs a copy per triangle (~5% of the mesh set-up).
-    #[inline(always)]
-    pub fn of(v: [&ScreenVertex; 3], span: PixelSpan) -> Option<Shape> {
+impl BigTriangle {
+    /// The edge functions of a triangle (clockwise on screen) whose non-empty
+    /// screen box is `span`.
+    #[inline]
+    pub fn of(v: [&ScreenVertex; 3], span: PixelSpan) -> BigTriangle {
         let px = span.x0 as i64 * ONE + HALF;
         let py = span.y0 as i64 * ONE + HALF;
         let edges = [
@@ -250,89 +300,29 @@ impl Shape {
             Edge::new(v[2], v[0], px, py),
             Edge::new(v[0], v[1], px, py),
         ];
-        let kind = if span.x0 == span.x1 && span.y0 == span.y1 {
-            // One centre (most sub-pixel triangles): test it directly.
-            if (edges[0].start | edges[1].start | edges[2].start) < 0 {
-                return None;
-            }
-            ShapeKind::Dot(0, 0)
-        } else {
-            let extent = |f: fn(&ScreenVertex) -> i32| {
-                let (a, b, c) = (f(v[0]), f(v[1]), f(v[2]));
-                a.max(b).max(c) - a.min(b).min(c)
-            };
-            let small = span.x1 - span.x0 < MASK_SIDE
-                && span.y1 - span.y0 < MASK_SIDE
-                && extent(|v| v.x) < MASK_EXTENT
-                && extent(|v| v.y) < MASK_EXTENT;
-            if small {
-                match coverage_mask(&edges, span) {
-                    0 => return None,
-                    mask if mask.is_power_of_two() => {
-                        let bit = mask.trailing_zeros() as i32;
-                        ShapeKind::Dot(bit % 8, bit / 8)
-                    }
-                    mask => ShapeKind::Mask(mask),
-                }
-            } else {
-                ShapeKind::Big
-            }
-        };
-        Some(Shape { edges, span, kind })
+        BigTriangle { edges, span }
     }
 
-    /// True when the triangle covers a single pixel centre: it becomes a [`Dot`].
-    #[inline]
-    pub fn is_dot(&self) -> bool {
-        matches!(self.kind, ShapeKind::Dot(..))
-    }
-
-    /// The attribute planes over the pixel centres: value at the box's first
-    /// centre, change per pixel right, change per pixel down.
-    #[inline]
-    fn planes(&self, v: [&ScreenVertex; 3], area: i64) -> (Vec4, impl Fn(i64, i64) -> Vec4) {
-        let (a0, weights) = attribute_weights(v, area);
-        let e = &self.edges;
-        (a0 + weights(e[1].start, e[2].start), weights)
-    }
-
-    /// The one covered pixel of a dot-shaped triangle (positive [`signed_area`]
-    /// `area`) with its depth and final colour.
-    #[inline]
-    pub fn dot(&self, v: [&ScreenVertex; 3], area: i64) -> Dot {
-        let (column, row) = match self.kind {
-            ShapeKind::Dot(column, row) => (column, row),
-            _ => (0, 0),
-        };
-        let (base, weights) = self.planes(v, area);
-        let e = &self.edges;
-        // The same sums as filling the triangle's run at that centre.
-        let a = base
-            + weights(e[1].step_y, e[2].step_y) * row as f32
-            + weights(e[1].step_x, e[2].step_x) * column as f32;
-        Dot::at((self.span.x0 + column, self.span.y0 + row), a)
-    }
-
-    /// The triangle set up for filling (positive [`signed_area`] `area`); big
-    /// ones push their edge functions to `edges`.
+    /// The triangle set up for filling (positive [`signed_area`] `area`); its
+    /// edge functions are pushed to `edges`.
     #[inline]
     pub fn triangle(&self, v: [&ScreenVertex; 3], area: i64, edges: &mut Vec<Edges>) -> Triangle {
-        let (base, weights) = self.planes(v, area);
-        let e = &self.edges;
-        let coverage = match self.kind {
-            ShapeKind::Dot(column, row) => Coverage::Mask(1 << (8 * row + column)),
-            ShapeKind::Mask(mask) => Coverage::Mask(mask),
-            ShapeKind::Big => {
-                edges.push(Edges(self.edges));
-                Coverage::Edges(edges.len() as u32 - 1)
-            }
+        let lanes = |f: fn(&Edge) -> i64| {
+            let e = &self.edges;
+            Vec4::new(0.0, f(&e[1]) as f32, f(&e[2]) as f32, 0.0)
         };
+        let planes = Planes::from_edge_weights(
+            v,
+            area,
+            lanes(|e| e.start),
+            lanes(|e| e.step_x),
+            lanes(|e| e.step_y),
+        );
+        edges.push(Edges(self.edges));
         Triangle {
-            base,
-            step_x: weights(e[1].step_x, e[2].step_x),
-            step_y: weights(e[1].step_y, e[2].step_y),
+            planes,
             span: self.span,
-            coverage,
+            coverage: Coverage::Edges(edges.len() as u32 - 1),
         }
     }
 }
@@ -352,25 +342,13 @@ pub(crate) struct Dot {
 }
 
 impl Dot {
-    /// The values of edges 1 and 2 (see [`Shape`]) at the centre of `pixel`
-    /// when the triangle (clockwise on screen) covers that centre.
+    /// The dot of a triangle with attribute planes `planes` over box `span`
+    /// whose coverage `mask` (see [`Triangle::masked`]) has a single bit.
     #[inline]
-    pub fn covers(v: [&ScreenVertex; 3], pixel: (i32, i32)) -> Option<[i64; 2]> {
-        let px = pixel.0 as i64 * ONE + HALF;
-        let py = pixel.1 as i64 * ONE + HALF;
-        let value = |a: &ScreenVertex, b: &ScreenVertex| {
-            edge_value(b.x as i64 - a.x as i64, b.y as i64 - a.y as i64, a, px, py)
-        };
-        let e = [value(v[1], v[2]), value(v[2], v[0]), value(v[0], v[1])];
-        ((e[0] | e[1] | e[2]) >= 0).then_some([e[1], e[2]])
-    }
-
-    /// The dot of a triangle (positive [`signed_area`] `area`) covering the
-    /// centre of `pixel`, where edges 1 and 2 have the values `e`.
-    #[inline]
-    pub fn new(v: [&ScreenVertex; 3], area: i64, pixel: (i32, i32), e: [i64; 2]) -> Dot {
-        let (a0, weights) = attribute_weights(v, area);
-        Dot::at(pixel, a0 + weights(e[0], e[1]))
+    pub fn in_box(planes: &Planes, span: PixelSpan, mask: u64) -> Dot {
+        let bit = mask.trailing_zeros() as i32;
+        let (column, row) = (bit % 8, bit / 8);
+        Dot::at((span.x0 + column, span.y0 + row), planes.at(column, row))
     }
 
     /// The dot at `pixel` with attributes `a` (`1/w`, colour / w).
@@ -422,8 +400,8 @@ impl Triangle {
             y,
             x0: span.x0 + lo,
             x1: span.x0 + hi,
-            start: self.base + self.step_y * (y - span.y0) as f32 + self.step_x * lo as f32,
-            step: self.step_x,
+            start: self.planes.at(lo, y - span.y0),
+            step: self.planes.step_x,
         };
         match self.coverage {
             Coverage::Mask(mask) => {
@@ -519,43 +497,6 @@ impl Run {
     }
 }
 
-/// The covered pixel centres of a box at most [`MASK_SIDE`] pixels per side, for
-/// a triangle whose vertices span less than [`MASK_EXTENT`] per axis: bit
-/// `8 * row + column` per centre where all three edge values are `>= 0`.
-///
-/// Edge values are integers; inside the vertices' bounding box they stay below
-/// `2^24` in magnitude (see [`MASK_EXTENT`]), so `f32` holds them exactly and
-/// each row tests its eight centres with a few 4-wide vector operations (lanes
-/// past the box may be inexact; they are masked off).
-#[inline]
-fn coverage_mask(e: &[Edge; 3], span: PixelSpan) -> u64 {
-    const LEFT: Vec4 = Vec4::new(0.0, 1.0, 2.0, 3.0);
-    const RIGHT: Vec4 = Vec4::new(4.0, 5.0, 6.0, 7.0);
-    let ramps = e.map(|e| (LEFT * e.step_x as f32, RIGHT * e.step_x as f32));
-    let step_y = e.map(|e| e.step_y as f32);
-    let mut row = e.map(|e| e.start as f32);
-    let columns = (1u32 << (span.x1 - span.x0 + 1)) - 1;
-    // Boxes up to four pixels wide need only the left half of each row.
-    let wide = span.x1 - span.x0 >= 4;
-    let mut mask = 0u64;
-    for r in 0..=(span.y1 - span.y0) as u32 {
-        let values = |half: fn(&(Vec4, Vec4)) -> Vec4| {
-            (half(&ramps[0]) + row[0])
-                .min(half(&ramps[1]) + row[1])
-                .min(half(&ramps[2]) + row[2])
-        };
-        let mut bits = values(|r| r.0).cmpge(Vec4::ZERO).bitmask();
-        if wide {
-            bits |= values(|r| r.1).cmpge(Vec4::ZERO).bitmask() << 4;
-        }
-        mask |= u64::from(bits & columns) << (8 * r);
-        for (value, step) in row.iter_mut().zip(step_y) {
-            *value += step;
-        }
-    }
-    mask
-}
-
 /// Bounding boxes at least this many pixels wide solve each row's covered run.
 const NARROW_MIN_WIDTH: i32 = 6;
 
@@ -590,6 +531,7 @@ mod tests {
     use crate::render::Camera;
     use crate::render::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport};
     use crate::render::clip::ClipVertex;
+    use crate::render::small_triangle::SmallTriangle;
     use crate::rng::SplitMix64;
 
     fn sv(x: f32, y: f32) -> ScreenVertex {
@@ -601,8 +543,28 @@ mod tests {
         }
     }
 
+    /// A clockwise triangle with positive `area` set up as the batches do
+    /// (small ones through [`SmallTriangle`], as a masked triangle even when
+    /// they cover one centre), or always through [`BigTriangle`] with
+    /// `big_only`; `None` when a small one covers no centre.
+    fn set_up(
+        v: [&ScreenVertex; 3],
+        area: i64,
+        span: PixelSpan,
+        big_only: bool,
+        edges: &mut Vec<Edges>,
+    ) -> Option<Triangle> {
+        match SmallTriangle::of(v, &ScreenBox::of(v), span).filter(|_| !big_only) {
+            Some(small) => {
+                let mask = small.coverage(span);
+                (mask != 0).then(|| Triangle::masked(small.planes(v, area), span, mask))
+            }
+            None => Some(BigTriangle::of(v, span).triangle(v, area, edges)),
+        }
+    }
+
     /// Coverage counts of a triangulated grid of points over a 64 x 64 screen.
-    fn coverage(points: &[Vec2], n: usize, rng: &mut SplitMix64) -> Vec<u32> {
+    fn coverage(points: &[Vec2], n: usize, rng: &mut SplitMix64, big_only: bool) -> Vec<u32> {
         let mut count = vec![0u32; 64 * 64];
         let at = |c: usize, r: usize| sv(points[r * n + c].x, points[r * n + c].y);
         for r in 0..n - 1 {
@@ -621,10 +583,13 @@ mod tests {
                     }
                     let v = [&t[0], &t[1], &t[2]];
                     let mut edges = Vec::new();
-                    let Some(shape) = Shape::of(v, PixelSpan::of(v, 64, 64)) else {
+                    let span = ScreenBox::of(v).span(64, 64);
+                    if area == 0 || span.is_empty() {
+                        continue;
+                    }
+                    let Some(tri) = set_up(v, area, span, big_only, &mut edges) else {
                         continue;
                     };
-                    let tri = shape.triangle(v, area, &mut edges);
                     tri.for_each_run(&edges, 0..64, |run| {
                         for x in run.x0..=run.x1 {
                             count[(run.y * 64 + x) as usize] += 1;
@@ -659,15 +624,19 @@ mod tests {
                     base + Vec2::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5) * j
                 })
                 .collect();
-            let count = coverage(&points, n, &mut rng);
-            for y in 0..64usize {
-                for x in 0..64usize {
-                    let c = count[y * 64 + x];
-                    assert!(c <= 1, "pixel ({x}, {y}) drawn {c} times (jitter {jitter})");
-                    // Centres strictly inside the outer square [4.5, 60.5]: exactly once.
-                    let inside = (5..=59).contains(&x) && (5..=59).contains(&y);
-                    if inside {
-                        assert_eq!(c, 1, "pixel ({x}, {y}) missed (jitter {jitter})");
+            // The batches' set-up (small triangles in lanes), then the general
+            // edge walk for every triangle.
+            for big_only in [false, true] {
+                let count = coverage(&points, n, &mut rng, big_only);
+                for y in 0..64usize {
+                    for x in 0..64usize {
+                        let c = count[y * 64 + x];
+                        assert!(c <= 1, "pixel ({x}, {y}) drawn {c} times (jitter {jitter})");
+                        // Centres strictly inside the outer square [4.5, 60.5]: exactly once.
+                        let inside = (5..=59).contains(&x) && (5..=59).contains(&y);
+                        if inside {
+                            assert_eq!(c, 1, "pixel ({x}, {y}) missed (jitter {jitter})");
+                        }
                     }
                 }
             }
@@ -773,12 +742,16 @@ mod tests {
             } else {
                 [a, b, c]
             };
-            let span = PixelSpan::of(v, w, h);
+            let span = ScreenBox::of(v).span(w, h);
             if area == 0 || span.is_empty() {
                 continue;
             }
-            if let Some(shape) = Shape::of(v, span) {
-                shape.triangle(v, area, &mut edges).draw(&edges, &mut band);
+            // Reference: the general edge walk for every triangle.
+            let tri = set_up(v, area, span, true, &mut edges).expect("big triangles are kept");
+            tri.draw(&edges, &mut band);
+            let small_covers =
+                SmallTriangle::of(v, &ScreenBox::of(v), span).map(|s| s.coverage(span) != 0);
+            if small_covers != Some(false) {
                 filled += 1;
             }
         }

@@ -1,0 +1,208 @@
+//! Set-up of small triangles (the common case for dense meshes: boxes of a few
+//! pixels) with their three edge functions in the lanes of one `f32` vector.
+//!
+//! Inside a small triangle's box every edge value at a pixel centre is an
+//! integer below `2^24` in magnitude (see [`MASK_EXTENT`]), so `f32` lanes hold
+//! the edge functions exactly: the coverage, the top-left rule and the
+//! attribute planes are the same as the general `i64` set-up's, in a few
+//! vector operations instead of three scalar edges.
+
+use glam::{BVec4A, Vec4, Vec4Swizzles};
+
+use super::raster::{
+    HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenBox, ScreenVertex,
+};
+
+/// Boxes of at most this many pixel centres test them one by one.
+const CENTRE_BY_CENTRE_MAX: u32 = 4;
+
+/// The three edge functions of a small triangle (clockwise on screen), edge `k`
+/// (opposite vertex `k`) in lane `k`; lane 3 is unused.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SmallTriangle {
+    /// Edge values at the box's first pixel centre, top-left bias included:
+    /// a centre is covered when all three are `>= 0`.
+    start: Vec4,
+    /// Change per pixel to the right.
+    step_x: Vec4,
+    /// Change per pixel down.
+    step_y: Vec4,
+}
+
+impl SmallTriangle {
+    /// The edge functions of the triangle `v` (clockwise on screen, its
+    /// vertices' bounding box `bounds`) over its non-empty pixel box `span`, or
+    /// `None` when the box or the triangle is too big for exact `f32` edges
+    /// (then the general set-up applies).
+    #[inline(always)]
+    pub fn of(v: [&ScreenVertex; 3], bounds: &ScreenBox, span: PixelSpan) -> Option<SmallTriangle> {
+        if span.x1 - span.x0 >= MASK_SIDE
+            || span.y1 - span.y0 >= MASK_SIDE
+            || bounds.max_x - bounds.min_x >= MASK_EXTENT
+            || bounds.max_y - bounds.min_y >= MASK_EXTENT
+        {
+            return None;
+        }
+        // Vertices relative to the first centre, which lies inside the
+        // vertices' box: offsets below MASK_EXTENT, exact in `f32`.
+        let px = span.x0 * ONE as i32 + HALF as i32;
+        let py = span.y0 * ONE as i32 + HALF as i32;
+        // Lane k holds the edge's first vertex, k + 1 (mod 3).
+        let x = Vec4::new(
+            (v[1].x - px) as f32,
+            (v[2].x - px) as f32,
+            (v[0].x - px) as f32,
+            0.0,
+        );
+        let y = Vec4::new(
+            (v[1].y - py) as f32,
+            (v[2].y - py) as f32,
+            (v[0].y - py) as f32,
+            0.0,
+        );
+        let dx = x.yzxw() - x;
+        let dy = y.yzxw() - y;
+        // Pixels exactly on an edge belong to it only when it is a top edge
+        // (horizontal, going right) or a left edge (going up).
+        let top_left: BVec4A = dy.cmplt(Vec4::ZERO) | (dy.cmpeq(Vec4::ZERO) & dx.cmpgt(Vec4::ZERO));
+        let bias = Vec4::select(top_left, Vec4::ZERO, Vec4::NEG_ONE);
+        let one = ONE as f32;
+        Some(SmallTriangle {
+            // E(p) = dx (py - ay) - dy (px - ax) at p = the first centre.
+            start: dy * x - dx * y + bias,
+            // Subtracted from zero, not negated, so a zero step is +0 as in integers.
+            step_x: Vec4::ZERO - dy * one,
+            step_y: dx * one,
+        })
+    }
+
+    /// Bit `8 * row + column` (relative to the box corner) per pixel centre of
+    /// `span` (the box given to [`SmallTriangle::of`]) that the triangle covers.
+    #[inline(always)]
+    pub fn coverage(&self, span: PixelSpan) -> u64 {
+        let (columns, rows) = (
+            (span.x1 - span.x0 + 1) as u32,
+            (span.y1 - span.y0 + 1) as u32,
+        );
+        if columns * rows <= CENTRE_BY_CENTRE_MAX {
+            self.coverage_by_centre(columns, rows)
+        } else {
+            self.coverage_by_row(columns, rows)
+        }
+    }
+
+    /// [`SmallTriangle::coverage`] testing one centre at a time, its three edge
+    /// values in one vector: cheapest for boxes of a few centres.
+    #[inline(always)]
+    fn coverage_by_centre(&self, columns: u32, rows: u32) -> u64 {
+        let mut mask = 0u64;
+        let mut row = self.start;
+        for r in 0..rows {
+            let mut e = row;
+            for c in 0..columns {
+                let inside = e.cmpge(Vec4::ZERO).bitmask() & 7 == 7;
+                mask |= u64::from(inside) << (8 * r + c);
+                e += self.step_x;
+            }
+            row += self.step_y;
+        }
+        mask
+    }
+
+    /// [`SmallTriangle::coverage`] testing a row of up to eight centres at a
+    /// time, one edge's values per vector (lanes past the box are masked off).
+    #[inline(always)]
+    fn coverage_by_row(&self, columns: u32, rows: u32) -> u64 {
+        const LEFT: Vec4 = Vec4::new(0.0, 1.0, 2.0, 3.0);
+        const RIGHT: Vec4 = Vec4::new(4.0, 5.0, 6.0, 7.0);
+        let lane = |v: Vec4| [Vec4::splat(v.x), Vec4::splat(v.y), Vec4::splat(v.z)];
+        let (step_x, step_y) = (lane(self.step_x), lane(self.step_y));
+        let mut row = lane(self.start);
+        let left = step_x.map(|s| s * LEFT);
+        let right = step_x.map(|s| s * RIGHT);
+        let values = |half: &[Vec4; 3], row: &[Vec4; 3]| {
+            (half[0] + row[0])
+                .min(half[1] + row[1])
+                .min(half[2] + row[2])
+        };
+        let wide = columns > 4;
+        let in_box = (1u32 << columns) - 1;
+        let mut mask = 0u64;
+        for r in 0..rows {
+            let mut bits = values(&left, &row).cmpge(Vec4::ZERO).bitmask();
+            if wide {
+                bits |= values(&right, &row).cmpge(Vec4::ZERO).bitmask() << 4;
+            }
+            mask |= u64::from(bits & in_box) << (8 * r);
+            for (value, step) in row.iter_mut().zip(step_y) {
+                *value += step;
+            }
+        }
+        mask
+    }
+
+    /// The attribute planes of the triangle `v` (the vertices given to
+    /// [`SmallTriangle::of`], with positive doubled area `area`).
+    #[inline(always)]
+    pub fn planes(&self, v: [&ScreenVertex; 3], area: i64) -> Planes {
+        Planes::from_edge_weights(v, area, self.start, self.step_x, self.step_y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::render::raster::{BigTriangle, signed_area};
+    use crate::rng::SplitMix64;
+
+    #[test]
+    fn both_coverage_tests_agree_with_the_general_edge_walk() {
+        let mut rng = SplitMix64::new(0x6a09_e667_f3bc_c908);
+        let mut tested = [0usize; 2];
+        for _ in 0..20_000 {
+            let centre = (rng.next_f32() * 40.0, rng.next_f32() * 40.0);
+            let size = 0.2 + 9.0 * rng.next_f32() * rng.next_f32();
+            let mut vertex = || ScreenVertex {
+                x: ((centre.0 + (rng.next_f32() - 0.5) * size) * ONE as f32) as i32,
+                y: ((centre.1 + (rng.next_f32() - 0.5) * size) * ONE as f32) as i32,
+                inv_w: 1.0,
+                color_w: Vec3::ZERO,
+            };
+            let (a, b, c) = (vertex(), vertex(), vertex());
+            let (v, area) = match signed_area(&a, &b, &c) {
+                0 => continue,
+                area if area < 0 => ([&a, &c, &b], -area),
+                area => ([&a, &b, &c], area),
+            };
+            let bounds = ScreenBox::of(v);
+            let span = bounds.span(48, 48);
+            if span.is_empty() {
+                continue;
+            }
+            let Some(small) = SmallTriangle::of(v, &bounds, span) else {
+                continue;
+            };
+            let (columns, rows) = (
+                (span.x1 - span.x0 + 1) as u32,
+                (span.y1 - span.y0 + 1) as u32,
+            );
+            let by_centre = small.coverage_by_centre(columns, rows);
+            assert_eq!(by_centre, small.coverage_by_row(columns, rows));
+            // The general set-up: i64 edges, walked row by row.
+            let mut edges = Vec::new();
+            let mut walked = 0u64;
+            BigTriangle::of(v, span)
+                .triangle(v, area, &mut edges)
+                .for_each_run(&edges, 0..48, |run| {
+                    for x in run.x0..=run.x1 {
+                        walked |= 1 << (8 * (run.y - span.y0) + x - span.x0);
+                    }
+                });
+            assert_eq!(by_centre, walked, "{span:?}");
+            tested[usize::from(columns * rows > CENTRE_BY_CENTRE_MAX)] += 1;
+        }
+        assert!(tested.iter().all(|&n| n > 1000), "{tested:?}");
+    }
+}
