@@ -33,6 +33,10 @@ const WIDTH: usize = 4;
 /// workload).
 pub(crate) const BATCH_LANES: usize = 4;
 
+/// Entries at the bottom of each traversal stack ([`Visit::FLOOR`]), and how
+/// many entries a pop looks at together.
+const FLOOR: usize = 4;
+
 /// Bits of a [`Visit::child`] reference that hold a leaf's item count.
 const COUNT_BITS: u32 = 4;
 
@@ -78,6 +82,14 @@ struct Visit {
 }
 
 impl Visit {
+    /// The entries below every stack: never taken (their entry, NaN, is
+    /// beyond any distance), so a pop may look at the top [`FLOOR`]
+    /// entries without checking the stack's depth.
+    const FLOOR: Visit = Visit {
+        entry: f32::NAN,
+        child: 0,
+    };
+
     /// The child reference of a node (`count == 0`) or of a leaf's item range.
     fn reference(first: u32, count: u32) -> u32 {
         assert!(
@@ -104,7 +116,7 @@ impl Visit {
 /// as the traversal sees them.
 pub(crate) trait LeafItems {
     /// The nearest hit of `ray` on item `item` within `t_max`, as `(t, id)`
-    /// with an id of the implementor's choosing.
+    /// with an id of the implementor's choosing (below `u32::MAX`).
     fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)>;
 
     /// Where item `item` lies in memory, for prefetching: its first
@@ -195,11 +207,11 @@ impl WideBvh {
         index as u32
     }
 
-    /// Stack entries one walk may need: each level leaves at most
-    /// `WIDTH - 1` siblings on the stack, and a node writes all `WIDTH`
-    /// lanes past the top.
+    /// Stack entries one walk may need: the [`FLOOR`], then at most
+    /// `WIDTH - 1` siblings per level, and a node writes all `WIDTH` lanes
+    /// past the top.
     fn stack_size(&self) -> usize {
-        (WIDTH - 1) * self.depth + WIDTH
+        FLOOR + (WIDTH - 1) * self.depth + WIDTH
     }
 
     /// The closest (or, with `ANY`, the first found) leaf item hit by the ray
@@ -224,10 +236,11 @@ impl WideBvh {
         if stack.len() < self.stack_size() {
             stack.resize(self.stack_size(), Visit::default());
         }
+        stack[..FLOOR].fill(Visit::FLOOR);
         let mut walk = Walk::new(origin, dir, max_t);
         while !walk.step::<ANY, false, false>(self, items, &mut stack) {}
         STACK.set(stack);
-        walk.best
+        walk.best()
     }
 
     /// [`WideBvh::traverse`] for each of `rays`, [`BATCH_LANES`] at a time
@@ -257,6 +270,7 @@ impl WideBvh {
         items: &impl LeafItems,
         mut found: impl FnMut(usize, Option<(f32, u32)>),
     ) {
+        const { assert!(LANES % 4 == 0, "lanes are stepped four at a time") };
         if rays.is_empty() {
             return;
         }
@@ -269,52 +283,52 @@ impl WideBvh {
         if stack.len() < LANES * size {
             stack.resize(LANES * size, Visit::default());
         }
-        let start = |k: usize| {
-            let ray = &rays[k];
-            Walk::new(ray.origin().into(), ray.dir().into(), max_t)
+        for chunk in stack.chunks_exact_mut(size) {
+            chunk[..FLOOR].fill(Visit::FLOOR);
+        }
+        let mut batch = Batch {
+            bvh: self,
+            items,
+            rays,
+            max_t,
+            next_ray: LANES.min(rays.len()),
+            busy: LANES.min(rays.len()),
+            found,
         };
         // Lane `l` walks ray `ray_of[l]` (`usize::MAX` once the rays run out).
         let mut ray_of: [usize; LANES] =
             std::array::from_fn(|l| if l < rays.len() { l } else { usize::MAX });
         let mut walks: [Walk; LANES] =
-            std::array::from_fn(|l| start(if l < rays.len() { l } else { 0 }));
-        let mut stacks: [&mut [Visit]; LANES] = {
+            std::array::from_fn(|l| batch.start(if l < rays.len() { l } else { 0 }));
+        let stacks: [&mut [Visit]; LANES] = {
             let mut chunks = stack.chunks_exact_mut(size);
             std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
         };
-        let mut next_ray = LANES.min(rays.len());
-        // While rays remain to be started, every lane is busy.
-        'full: while next_ray < rays.len() {
-            for ((walk, stack), ray) in walks.iter_mut().zip(stacks.iter_mut()).zip(&mut ray_of) {
-                if walk.step::<ANY, PREFETCH, true>(self, items, stack) {
-                    found(*ray, walk.best);
-                    *walk = start(next_ray);
-                    *ray = next_ray;
-                    next_ray += 1;
-                    if next_ray == rays.len() {
-                        continue 'full;
-                    }
-                }
+        // While rays remain to be started at the start of a round, every lane
+        // is busy (a lane goes idle only at its own step, once none remain),
+        // so the lanes are stepped without checking, written out four at a
+        // time: each lane's state then sits at a fixed place and its
+        // branches have their own history.
+        while batch.next_ray < rays.len() {
+            for base in (0..LANES).step_by(4) {
+                let mut lane = |l: usize| {
+                    batch.advance::<ANY, PREFETCH>(&mut walks[l], stacks[l], &mut ray_of[l])
+                };
+                lane(base);
+                lane(base + 1);
+                lane(base + 2);
+                lane(base + 3);
             }
         }
         // Then the lanes finish one by one.
-        let mut busy = LANES.min(rays.len());
-        while busy > 0 {
+        while batch.busy > 0 {
             for lane in 0..LANES {
-                if ray_of[lane] == usize::MAX {
-                    continue;
-                }
-                let walk = &mut walks[lane];
-                if walk.step::<ANY, PREFETCH, true>(self, items, stacks[lane]) {
-                    found(ray_of[lane], walk.best);
-                    if next_ray < rays.len() {
-                        *walk = start(next_ray);
-                        ray_of[lane] = next_ray;
-                        next_ray += 1;
-                    } else {
-                        ray_of[lane] = usize::MAX;
-                        busy -= 1;
-                    }
+                if ray_of[lane] != usize::MAX {
+                    batch.advance::<ANY, PREFETCH>(
+                        &mut walks[lane],
+                        stacks[lane],
+                        &mut ray_of[lane],
+                    );
                 }
             }
         }
@@ -334,6 +348,50 @@ impl WideBvh {
         } else {
             leaf
         });
+    }
+}
+
+/// The shared state of [`WideBvh::interleave`]: what every lane reads, the
+/// next ray to start, how many lanes are still walking, and where answers go.
+struct Batch<'a, I, F> {
+    bvh: &'a WideBvh,
+    items: &'a I,
+    rays: &'a [Ray],
+    max_t: f32,
+    next_ray: usize,
+    busy: usize,
+    found: F,
+}
+
+impl<I: LeafItems, F: FnMut(usize, Option<(f32, u32)>)> Batch<'_, I, F> {
+    /// A walk of ray `k` from the root.
+    #[inline(always)]
+    fn start(&self, k: usize) -> Walk {
+        let ray = &self.rays[k];
+        Walk::new(ray.origin().into(), ray.dir().into(), self.max_t)
+    }
+
+    /// Steps the walk of ray `*ray` once; when it ends, reports its answer
+    /// and starts the next ray in its place, or marks the lane idle
+    /// (`usize::MAX`) when none remain.
+    #[inline(always)]
+    fn advance<const ANY: bool, const PREFETCH: bool>(
+        &mut self,
+        walk: &mut Walk,
+        stack: &mut [Visit],
+        ray: &mut usize,
+    ) {
+        if walk.step::<ANY, PREFETCH, true>(self.bvh, self.items, stack) {
+            (self.found)(*ray, walk.best());
+            if self.next_ray < self.rays.len() {
+                *walk = self.start(self.next_ray);
+                *ray = self.next_ray;
+                self.next_ray += 1;
+            } else {
+                *ray = usize::MAX;
+                self.busy -= 1;
+            }
+        }
     }
 }
 
@@ -394,7 +452,8 @@ struct Walk {
     next: Visit,
     top: usize,
     t_max: f32,
-    best: Option<(f32, u32)>,
+    /// The item hit at `t_max` (`u32::MAX` while none is).
+    best_item: u32,
 }
 
 impl Walk {
@@ -403,16 +462,23 @@ impl Walk {
         Walk {
             ray: WideRay::new(origin, dir),
             next: Visit::default(),
-            top: 0,
+            top: FLOOR,
             t_max: max_t,
-            best: None,
+            best_item: u32::MAX,
         }
+    }
+
+    /// The answer so far: the best hit as `(t, id)`.
+    #[inline(always)]
+    fn best(&self) -> Option<(f32, u32)> {
+        (self.best_item != u32::MAX).then_some((self.t_max, self.best_item))
     }
 
     /// Reads the next node (stacking the farther hit children, with
     /// [`Walk::push_branchless`] or else [`Walk::push_sorting`]) or leaf,
     /// then chooses what to read after it (and with `PREFETCH` hints it to
-    /// the CPU). Returns true when the walk is over; `best` is then its answer.
+    /// the CPU). Returns true when the walk is over; [`Walk::best`] is then its
+    /// answer.
     /// `stack` must hold [`WideBvh::stack_size`] entries and be the same at
     /// every step.
     #[inline(always)]
@@ -439,27 +505,67 @@ impl Walk {
             }
         } else {
             for item in first..first + count {
-                if let Some(hit) = items.nearest(item, &self.ray, self.t_max) {
-                    self.best = Some(hit);
-                    if ANY {
-                        return true;
-                    }
-                    self.t_max = hit.0;
+                let hit = items.nearest(item, &self.ray, self.t_max);
+                if ANY && hit.is_some() {
+                    (self.t_max, self.best_item) = hit.unwrap_or_default();
+                    return true;
                 }
+                // Kept by selection, not by a branch on the hit: whether a
+                // leaf is hit is unpredictable.
+                (self.t_max, self.best_item) = hit.unwrap_or((self.t_max, self.best_item));
             }
         }
-        // Pop the nearest stacked child that still starts before the best hit.
-        while self.top > 0 {
+        if BRANCHLESS {
+            self.pop_window(stack)
+        } else {
+            self.pop_one_by_one(stack)
+        }
+        .is_none_or(|next| {
+            self.next = next;
+            if PREFETCH {
+                bvh.prefetch(next, items);
+            }
+            false
+        })
+    }
+
+    /// Pops the nearest stacked child that still starts before the best hit
+    /// (`None` when none is left), one entry after another: cheapest when
+    /// the culling branch predicts well, as for one ray after another.
+    #[inline(always)]
+    fn pop_one_by_one(&mut self, stack: &[Visit]) -> Option<Visit> {
+        while self.top > FLOOR {
             self.top -= 1;
             if stack[self.top].entry <= self.t_max {
-                self.next = stack[self.top];
-                if PREFETCH {
-                    bvh.prefetch(self.next, items);
-                }
-                return false;
+                return Some(stack[self.top]);
             }
         }
-        true
+        None
+    }
+
+    /// [`Walk::pop_one_by_one`] looking at the top [`FLOOR`] entries at once,
+    /// so that a culled entry costs no branch of its own (faster when walks
+    /// are interleaved, as whether an entry is culled is then unpredictable).
+    /// The floor's entries are never taken.
+    #[inline(always)]
+    fn pop_window(&mut self, stack: &[Visit]) -> Option<Visit> {
+        loop {
+            let window: &[Visit; FLOOR] = stack[self.top - FLOOR..self.top]
+                .try_into()
+                .expect("the top is at or above the floor");
+            let entries = Vec4::from_array(window.map(|v| v.entry));
+            let open = entries.cmple(Vec4::splat(self.t_max)).bitmask();
+            if open != 0 {
+                let k = (u32::BITS - 1 - open.leading_zeros()) as usize % FLOOR;
+                self.top -= FLOOR - k;
+                return Some(window[k]);
+            }
+            if self.top <= 2 * FLOOR {
+                self.top = FLOOR;
+                return None;
+            }
+            self.top -= FLOOR;
+        }
     }
 
     /// Stacks the hit children of `node` but the nearest, which it returns,
