@@ -17,6 +17,7 @@
 //! exactly that distance they may report different ones.
 
 use std::cell::Cell;
+use std::hint::select_unpredictable;
 
 use glam::{BVec4A, Vec3A, Vec4};
 use obvhs::bvh2::Bvh2;
@@ -116,8 +117,10 @@ impl Visit {
 /// as the traversal sees them.
 pub(crate) trait LeafItems {
     /// The nearest hit of `ray` on item `item` within `t_max`, as `(t, id)`
-    /// with an id of the implementor's choosing (below `u32::MAX`).
-    fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)>;
+    /// with an id of the implementor's choosing (below `u32::MAX`); `t` is
+    /// NaN when the item is missed (the id is then any value), so that the
+    /// traversal keeps its best hit by selection rather than by a branch.
+    fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> (f32, u32);
 
     /// Where item `item` lies in memory, for prefetching: its first
     /// [`prefetch::SPAN`] bytes are hinted (the pointer is never
@@ -237,10 +240,19 @@ impl WideBvh {
             stack.resize(self.stack_size(), Visit::default());
         }
         stack[..FLOOR].fill(Visit::FLOOR);
-        let mut walk = Walk::new(origin, dir, max_t);
-        while !walk.step::<ANY, false, false>(self, items, &mut stack) {}
+        let walk = Walk::new(origin, dir, max_t);
+        let best = match octant(dir) {
+            0 => walk.run::<ANY, 0>(self, items, &mut stack),
+            1 => walk.run::<ANY, 1>(self, items, &mut stack),
+            2 => walk.run::<ANY, 2>(self, items, &mut stack),
+            3 => walk.run::<ANY, 3>(self, items, &mut stack),
+            4 => walk.run::<ANY, 4>(self, items, &mut stack),
+            5 => walk.run::<ANY, 5>(self, items, &mut stack),
+            6 => walk.run::<ANY, 6>(self, items, &mut stack),
+            _ => walk.run::<ANY, 7>(self, items, &mut stack),
+        };
         STACK.set(stack);
-        walk.best()
+        best
     }
 
     /// [`WideBvh::traverse`] for each of `rays`, [`BATCH_LANES`] at a time
@@ -262,7 +274,10 @@ impl WideBvh {
         }
     }
 
-    /// [`WideBvh::traverse_many`] with `LANES` walks in flight, prefetching or not.
+    /// [`WideBvh::traverse_many`] with `LANES` walks in flight, prefetching or
+    /// not. The rays are grouped by direction octant first (a counting sort
+    /// of their indices), so that each group's walks know at compile time
+    /// through which plane of each axis a ray enters a box.
     fn interleave<const ANY: bool, const PREFETCH: bool, const LANES: usize>(
         &self,
         rays: &[Ray],
@@ -270,69 +285,46 @@ impl WideBvh {
         items: &impl LeafItems,
         mut found: impl FnMut(usize, Option<(f32, u32)>),
     ) {
-        const { assert!(LANES % 4 == 0, "lanes are stepped four at a time") };
-        if rays.is_empty() {
-            return;
-        }
         if self.nodes.is_empty() {
             (0..rays.len()).for_each(|k| found(k, None));
             return;
         }
-        let size = self.stack_size();
-        let mut stack = STACK.take();
-        if stack.len() < LANES * size {
-            stack.resize(LANES * size, Visit::default());
+        let octants: Vec<u8> = rays.iter().map(|r| octant(r.dir().into())).collect();
+        let mut ends = [0; OCTANTS + 1];
+        for &o in &octants {
+            ends[usize::from(o) + 1] += 1;
         }
-        for chunk in stack.chunks_exact_mut(size) {
-            chunk[..FLOOR].fill(Visit::FLOOR);
+        for o in 0..OCTANTS {
+            ends[o + 1] += ends[o];
         }
-        let mut batch = Batch {
-            bvh: self,
-            items,
-            rays,
-            max_t,
-            next_ray: LANES.min(rays.len()),
-            busy: LANES.min(rays.len()),
-            found,
-        };
-        // Lane `l` walks ray `ray_of[l]` (`usize::MAX` once the rays run out).
-        let mut ray_of: [usize; LANES] =
-            std::array::from_fn(|l| if l < rays.len() { l } else { usize::MAX });
-        let mut walks: [Walk; LANES] =
-            std::array::from_fn(|l| batch.start(if l < rays.len() { l } else { 0 }));
-        let stacks: [&mut [Visit]; LANES] = {
-            let mut chunks = stack.chunks_exact_mut(size);
-            std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
-        };
-        // While rays remain to be started at the start of a round, every lane
-        // is busy (a lane goes idle only at its own step, once none remain),
-        // so the lanes are stepped without checking, written out four at a
-        // time: each lane's state then sits at a fixed place and its
-        // branches have their own history.
-        while batch.next_ray < rays.len() {
-            for base in (0..LANES).step_by(4) {
-                let mut lane = |l: usize| {
-                    batch.advance::<ANY, PREFETCH>(&mut walks[l], stacks[l], &mut ray_of[l])
-                };
-                lane(base);
-                lane(base + 1);
-                lane(base + 2);
-                lane(base + 3);
+        let mut order = vec![0; rays.len()];
+        let mut fill = ends;
+        for (k, &o) in octants.iter().enumerate() {
+            order[fill[usize::from(o)]] = k;
+            fill[usize::from(o)] += 1;
+        }
+        for o in 0..OCTANTS {
+            let mut batch = Batch {
+                bvh: self,
+                items,
+                rays,
+                order: &order[ends[o]..ends[o + 1]],
+                max_t,
+                next: 0,
+                busy: 0,
+                found: &mut found,
+            };
+            match o {
+                0 => batch.run::<ANY, PREFETCH, LANES, 0>(),
+                1 => batch.run::<ANY, PREFETCH, LANES, 1>(),
+                2 => batch.run::<ANY, PREFETCH, LANES, 2>(),
+                3 => batch.run::<ANY, PREFETCH, LANES, 3>(),
+                4 => batch.run::<ANY, PREFETCH, LANES, 4>(),
+                5 => batch.run::<ANY, PREFETCH, LANES, 5>(),
+                6 => batch.run::<ANY, PREFETCH, LANES, 6>(),
+                _ => batch.run::<ANY, PREFETCH, LANES, 7>(),
             }
         }
-        // Then the lanes finish one by one.
-        while batch.busy > 0 {
-            for lane in 0..LANES {
-                if ray_of[lane] != usize::MAX {
-                    batch.advance::<ANY, PREFETCH>(
-                        &mut walks[lane],
-                        stacks[lane],
-                        &mut ray_of[lane],
-                    );
-                }
-            }
-        }
-        STACK.set(stack);
     }
 
     /// Hints that `visit`'s node or first leaf item will be read soon (see
@@ -351,19 +343,79 @@ impl WideBvh {
     }
 }
 
-/// The shared state of [`WideBvh::interleave`]: what every lane reads, the
-/// next ray to start, how many lanes are still walking, and where answers go.
+/// The shared state of [`WideBvh::interleave`] for one group of rays: what
+/// every lane reads, the group's rays (indices into `rays`), the next of them
+/// to start, how many lanes are still walking, and where answers go.
 struct Batch<'a, I, F> {
     bvh: &'a WideBvh,
     items: &'a I,
     rays: &'a [Ray],
+    order: &'a [usize],
     max_t: f32,
-    next_ray: usize,
+    next: usize,
     busy: usize,
     found: F,
 }
 
 impl<I: LeafItems, F: FnMut(usize, Option<(f32, u32)>)> Batch<'_, I, F> {
+    /// Walks every ray of the group (all in direction octant `OCTANT`),
+    /// `LANES` at a time interleaved step by step.
+    #[inline(always)]
+    fn run<const ANY: bool, const PREFETCH: bool, const LANES: usize, const OCTANT: u8>(&mut self) {
+        const { assert!(LANES.is_multiple_of(4), "lanes are stepped four at a time") };
+        if self.order.is_empty() {
+            return;
+        }
+        let size = self.bvh.stack_size();
+        let mut stack = STACK.take();
+        if stack.len() < LANES * size {
+            stack.resize(LANES * size, Visit::default());
+        }
+        for chunk in stack.chunks_exact_mut(size) {
+            chunk[..FLOOR].fill(Visit::FLOOR);
+        }
+        let count = self.order.len();
+        (self.next, self.busy) = (LANES.min(count), LANES.min(count));
+        // Lane `l` walks ray `ray_of[l]` (`usize::MAX` once the rays run out).
+        let mut ray_of: [usize; LANES] =
+            std::array::from_fn(|l| if l < count { self.order[l] } else { usize::MAX });
+        let mut walks: [Walk; LANES] =
+            std::array::from_fn(|l| self.start(self.order[if l < count { l } else { 0 }]));
+        let stacks: [&mut [Visit]; LANES] = {
+            let mut chunks = stack.chunks_exact_mut(size);
+            std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
+        };
+        // While rays remain to be started at the start of a round, every lane
+        // is busy (a lane goes idle only at its own step, once none remain),
+        // so the lanes are stepped without checking, written out four at a
+        // time: each lane's state then sits at a fixed place and its
+        // branches have their own history.
+        while self.next < count {
+            for base in (0..LANES).step_by(4) {
+                let mut lane = |l: usize| {
+                    self.advance::<ANY, PREFETCH, OCTANT>(&mut walks[l], stacks[l], &mut ray_of[l])
+                };
+                lane(base);
+                lane(base + 1);
+                lane(base + 2);
+                lane(base + 3);
+            }
+        }
+        // Then the lanes finish one by one.
+        while self.busy > 0 {
+            for lane in 0..LANES {
+                if ray_of[lane] != usize::MAX {
+                    self.advance::<ANY, PREFETCH, OCTANT>(
+                        &mut walks[lane],
+                        stacks[lane],
+                        &mut ray_of[lane],
+                    );
+                }
+            }
+        }
+        STACK.set(stack);
+    }
+
     /// A walk of ray `k` from the root.
     #[inline(always)]
     fn start(&self, k: usize) -> Walk {
@@ -372,27 +424,37 @@ impl<I: LeafItems, F: FnMut(usize, Option<(f32, u32)>)> Batch<'_, I, F> {
     }
 
     /// Steps the walk of ray `*ray` once; when it ends, reports its answer
-    /// and starts the next ray in its place, or marks the lane idle
+    /// and starts the group's next ray in its place, or marks the lane idle
     /// (`usize::MAX`) when none remain.
     #[inline(always)]
-    fn advance<const ANY: bool, const PREFETCH: bool>(
+    fn advance<const ANY: bool, const PREFETCH: bool, const OCTANT: u8>(
         &mut self,
         walk: &mut Walk,
         stack: &mut [Visit],
         ray: &mut usize,
     ) {
-        if walk.step::<ANY, PREFETCH, true>(self.bvh, self.items, stack) {
+        if walk.step::<ANY, PREFETCH, true, OCTANT>(self.bvh, self.items, stack) {
             (self.found)(*ray, walk.best());
-            if self.next_ray < self.rays.len() {
-                *walk = self.start(self.next_ray);
-                *ray = self.next_ray;
-                self.next_ray += 1;
+            if self.next < self.order.len() {
+                *ray = self.order[self.next];
+                *walk = self.start(*ray);
+                self.next += 1;
             } else {
                 *ray = usize::MAX;
                 self.busy -= 1;
             }
         }
     }
+}
+
+/// Direction octants: bit `axis` set when the direction's component on that
+/// axis is negative (sign bit set, as for `-0.0`).
+const OCTANTS: usize = 8;
+
+/// The octant of `dir` (see [`OCTANTS`]).
+#[inline]
+fn octant(dir: Vec3A) -> u8 {
+    dir.is_negative_bitmask() as u8
 }
 
 /// A ray prepared for 4-lane tests: its origin, direction and inverse
@@ -403,9 +465,6 @@ pub(crate) struct WideRay {
     /// The direction, each component in all four lanes.
     pub(crate) dir: Xyz<Vec4>,
     inv_dir: [Vec4; 3],
-    /// Per axis, whether the ray runs towards negative coordinates: it then
-    /// enters a box through its maximum plane ([`Node::planes`] index 1).
-    negative: [bool; 3],
 }
 
 impl WideRay {
@@ -419,24 +478,21 @@ impl WideRay {
             origin: Xyz::from(origin),
             dir: Xyz::from(dir),
             inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
-            negative: [
-                dir.x.is_sign_negative(),
-                dir.y.is_sign_negative(),
-                dir.z.is_sign_negative(),
-            ],
         }
     }
 
-    /// Entry distances of the ray into the four child boxes of `node`, and
-    /// which of them it meets within `0..=t_max`.
+    /// Entry distances of the ray, whose direction lies in octant `OCTANT`,
+    /// into the four child boxes of `node`, and which of them it meets within
+    /// `0..=t_max`. A ray running towards negative coordinates on an axis
+    /// enters a box through its maximum plane ([`Node::planes`] index 1).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // one index picks the axis in four arrays
-    fn enter(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
+    fn enter<const OCTANT: u8>(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
         let origin = [self.origin.x, self.origin.y, self.origin.z];
         let mut t_in = Vec4::ZERO;
         let mut t_out = Vec4::splat(t_max);
         for axis in 0..3 {
-            let near = usize::from(self.negative[axis]);
+            let near = usize::from(OCTANT >> axis & 1);
             let (o, inv) = (origin[axis], self.inv_dir[axis]);
             t_in = t_in.max((node.planes[axis][near] - o) * inv);
             t_out = t_out.min((node.planes[axis][near ^ 1] - o) * inv);
@@ -468,6 +524,18 @@ impl Walk {
         }
     }
 
+    /// Steps the walk to its end, one ray alone, and returns its answer.
+    #[inline(always)]
+    fn run<const ANY: bool, const OCTANT: u8>(
+        mut self,
+        bvh: &WideBvh,
+        items: &impl LeafItems,
+        stack: &mut [Visit],
+    ) -> Option<(f32, u32)> {
+        while !self.step::<ANY, false, false, OCTANT>(bvh, items, stack) {}
+        self.best()
+    }
+
     /// The answer so far: the best hit as `(t, id)`.
     #[inline(always)]
     fn best(&self) -> Option<(f32, u32)> {
@@ -482,7 +550,7 @@ impl Walk {
     /// `stack` must hold [`WideBvh::stack_size`] entries and be the same at
     /// every step.
     #[inline(always)]
-    fn step<const ANY: bool, const PREFETCH: bool, const BRANCHLESS: bool>(
+    fn step<const ANY: bool, const PREFETCH: bool, const BRANCHLESS: bool, const OCTANT: u8>(
         &mut self,
         bvh: &WideBvh,
         items: &impl LeafItems,
@@ -491,7 +559,7 @@ impl Walk {
         let (first, count) = (self.next.first(), self.next.count());
         if count == 0 {
             let node = &bvh.nodes[first as usize];
-            let (entry, hits) = self.ray.enter(node, self.t_max);
+            let (entry, hits) = self.ray.enter::<OCTANT>(node, self.t_max);
             if hits.any() {
                 self.next = if BRANCHLESS {
                     Walk::push_branchless(node, entry, hits, stack, &mut self.top)
@@ -505,14 +573,22 @@ impl Walk {
             }
         } else {
             for item in first..first + count {
-                let hit = items.nearest(item, &self.ray, self.t_max);
-                if ANY && hit.is_some() {
-                    (self.t_max, self.best_item) = hit.unwrap_or_default();
+                let (t, id) = items.nearest(item, &self.ray, self.t_max);
+                // Every hit lies within `t_max`; a miss is NaN.
+                let hit = t <= self.t_max;
+                if ANY && hit {
+                    (self.t_max, self.best_item) = (t, id);
                     return true;
                 }
-                // Kept by selection, not by a branch on the hit: whether a
-                // leaf is hit is unpredictable.
-                (self.t_max, self.best_item) = hit.unwrap_or((self.t_max, self.best_item));
+                // Interleaved, kept by selection rather than by a branch:
+                // whether a leaf is hit is then unpredictable.
+                (self.t_max, self.best_item) = if BRANCHLESS {
+                    select_unpredictable(hit, (t, id), (self.t_max, self.best_item))
+                } else if hit {
+                    (t, id)
+                } else {
+                    (self.t_max, self.best_item)
+                };
             }
         }
         if BRANCHLESS {
@@ -658,12 +734,12 @@ mod tests {
     }
 
     impl LeafItems for Boxes {
-        fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)> {
+        fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> (f32, u32) {
             let lane0 = |v: &Xyz<Vec4>| Vec3A::new(v.x.x, v.y.x, v.z.x);
             let r = obvhs::ray::Ray::new(lane0(&ray.origin), lane0(&ray.dir), 0.0, f32::INFINITY);
             let k = self.bvh2.primitive_indices[item as usize];
             let t = self.boxes[k as usize].intersect_ray(&r);
-            (t <= t_max).then_some((t, k))
+            if t <= t_max { (t, k) } else { (f32::NAN, 0) }
         }
 
         fn address(&self, item: u32) -> *const u8 {
@@ -717,8 +793,17 @@ mod tests {
         let (wide, boxes) = cubes(300);
         let rays: Vec<Ray> = (0..100)
             .map(|k| {
-                let o = glam::Vec3::new(-5.0 + k as f32 * 7.0, 3.0, 0.5 + (k % 3) as f32);
-                let d = glam::Vec3::new((k % 7) as f32 - 3.0, -1.0, -0.3 * (k % 4) as f32);
+                // Every direction octant, with zero components of both signs
+                // (`-0.3 * 0.0` is `-0.0`); the upward rays start below the cubes.
+                let up = k % 5 == 0;
+                let y = if up { -2.0 } else { 3.0 };
+                let o = glam::Vec3::new(-5.0 + k as f32 * 7.0, y, 0.5 + (k % 3) as f32);
+                let dy = if up { 1.0 } else { -1.0 };
+                let d = glam::Vec3::new(
+                    (k % 7) as f32 - 3.0,
+                    dy,
+                    -0.3 * (k % 4) as f32 + 0.2 * (k % 3) as f32,
+                );
                 Ray::new(o, d).unwrap()
             })
             .collect();
@@ -736,6 +821,9 @@ mod tests {
         };
         let (closest, first) = (single(false), single(true));
         assert!(closest.iter().filter(|h| h.is_some()).count() > 20);
+        let octants: std::collections::BTreeSet<u8> =
+            rays.iter().map(|r| octant(r.dir().into())).collect();
+        assert_eq!(octants.len(), 8, "rays in every octant");
         let mut got = vec![None; rays.len()];
         wide.interleave::<false, true, 8>(&rays, f32::INFINITY, &boxes, |k, h| got[k] = h);
         assert_eq!(got, closest);
@@ -761,12 +849,12 @@ mod tests {
             inner: std::cell::RefCell<Vec<Option<(f32, u32)>>>,
         }
         impl LeafItems for Nested<'_> {
-            fn nearest(&self, _: u32, _: &WideRay, _: f32) -> Option<(f32, u32)> {
+            fn nearest(&self, _: u32, _: &WideRay, _: f32) -> (f32, u32) {
                 let o = Vec3A::new(-1.0, 0.5, 0.5);
                 self.inner
                     .borrow_mut()
                     .push(cast::<false>(self.wide, self.boxes, o, Vec3A::X));
-                None
+                (f32::NAN, 0)
             }
             fn address(&self, _: u32) -> *const u8 {
                 std::ptr::null()
