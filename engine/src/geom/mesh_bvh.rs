@@ -78,9 +78,9 @@ impl Packets {
 
 impl LeafItems for Packets {
     #[inline(always)]
-    fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)> {
-        let (t, lane) = self.packets[item as usize].nearest(&ray.origin, &ray.dir, t_max)?;
-        Some((t, item * PACKET as u32 + lane as u32))
+    fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> (f32, u32) {
+        let (t, lane) = self.packets[item as usize].closest(&ray.origin, &ray.dir, t_max);
+        (t, item * PACKET as u32 + lane as u32)
     }
 
     #[inline(always)]

@@ -169,14 +169,24 @@ impl TriPacket {
     /// The nearest of the four triangles hit by the ray within `max_t`, as
     /// `(t, lane)` (the lowest lane among equally near ones). The ray's origin
     /// and direction come splatted over the lanes. Each lane gives exactly
-    /// [`ray_triangle_edges`]'s answer for its triangle.
-    #[inline(always)]
+    /// [`ray_triangle_edges`]'s answer for its triangle. (The traversal uses
+    /// [`TriPacket::closest`]; this is its answer as an option, for tests.)
+    #[cfg(test)]
     pub(crate) fn nearest(
         &self,
         origin: &Xyz<Vec4>,
         dir: &Xyz<Vec4>,
         max_t: f32,
     ) -> Option<(f32, usize)> {
+        let (t, lane) = self.closest(origin, dir, max_t);
+        (!t.is_nan()).then_some((t, lane))
+    }
+
+    /// The nearest hit lane, like `TriPacket::nearest`, without a branch: `t` is NaN when no lane is hit
+    /// (and `lane` is then [`PACKET`]), so that a caller keeping the better
+    /// of two answers can select rather than branch on an unpredictable hit.
+    #[inline(always)]
+    pub(crate) fn closest(&self, origin: &Xyz<Vec4>, dir: &Xyz<Vec4>, max_t: f32) -> (f32, usize) {
         let p = dir.cross(self.e2);
         let det = self.e1.dot(p);
         let size = det.abs();
@@ -198,12 +208,17 @@ impl TriPacket {
         // The nearest hit lane (the lowest among equally near ones).
         let hit_t = Vec4::select(hit, t, Vec4::INFINITY);
         let nearest = hit_t.min_element();
-        let lanes = hit & hit_t.cmpeq(Vec4::splat(nearest));
-        lanes
-            .any()
-            .then(|| (nearest, lanes.bitmask().trailing_zeros() as usize))
+        let lanes = (hit & hit_t.cmpeq(Vec4::splat(nearest))).bitmask();
+        let lane = (lanes | 1 << PACKET).trailing_zeros();
+        // No hit: `nearest` is infinite, and setting its quiet-NaN bit (the
+        // lane is PACKET exactly then) makes it NaN.
+        let missed = (lane >> PACKET.trailing_zeros()) * QUIET_NAN_BIT;
+        (f32::from_bits(nearest.to_bits() | missed), lane as usize)
     }
 }
+
+/// The bit that makes an infinite `f32` a quiet NaN.
+const QUIET_NAN_BIT: u32 = 1 << 22;
 
 #[cfg(test)]
 mod tests {

@@ -17,6 +17,7 @@
 //! exactly that distance they may report different ones.
 
 use std::cell::Cell;
+use std::hint::select_unpredictable;
 
 use glam::{BVec4A, Vec3A, Vec4};
 use obvhs::bvh2::Bvh2;
@@ -32,6 +33,10 @@ const WIDTH: usize = 4;
 /// 2, 4, 6, 8, 12 and 16, 4 was the fastest or within noise of it on every
 /// workload).
 pub(crate) const BATCH_LANES: usize = 4;
+
+/// Entries at the bottom of each traversal stack ([`Visit::FLOOR`]), and how
+/// many entries a pop looks at together.
+const FLOOR: usize = 4;
 
 /// Bits of a [`Visit::child`] reference that hold a leaf's item count.
 const COUNT_BITS: u32 = 4;
@@ -78,6 +83,14 @@ struct Visit {
 }
 
 impl Visit {
+    /// The entries below every stack: never taken (their entry, NaN, is
+    /// beyond any distance), so a pop may look at the top [`FLOOR`]
+    /// entries without checking the stack's depth.
+    const FLOOR: Visit = Visit {
+        entry: f32::NAN,
+        child: 0,
+    };
+
     /// The child reference of a node (`count == 0`) or of a leaf's item range.
     fn reference(first: u32, count: u32) -> u32 {
         assert!(
@@ -104,8 +117,10 @@ impl Visit {
 /// as the traversal sees them.
 pub(crate) trait LeafItems {
     /// The nearest hit of `ray` on item `item` within `t_max`, as `(t, id)`
-    /// with an id of the implementor's choosing.
-    fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)>;
+    /// with an id of the implementor's choosing (below `u32::MAX`); `t` is
+    /// NaN when the item is missed (the id is then any value), so that the
+    /// traversal keeps its best hit by selection rather than by a branch.
+    fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> (f32, u32);
 
     /// Where item `item` lies in memory, for prefetching: its first
     /// [`prefetch::SPAN`] bytes are hinted (the pointer is never
@@ -195,11 +210,11 @@ impl WideBvh {
         index as u32
     }
 
-    /// Stack entries one walk may need: each level leaves at most
-    /// `WIDTH - 1` siblings on the stack, and a node writes all `WIDTH`
-    /// lanes past the top.
+    /// Stack entries one walk may need: the [`FLOOR`], then at most
+    /// `WIDTH - 1` siblings per level, and a node writes all `WIDTH` lanes
+    /// past the top.
     fn stack_size(&self) -> usize {
-        (WIDTH - 1) * self.depth + WIDTH
+        FLOOR + (WIDTH - 1) * self.depth + WIDTH
     }
 
     /// The closest (or, with `ANY`, the first found) leaf item hit by the ray
@@ -224,10 +239,20 @@ impl WideBvh {
         if stack.len() < self.stack_size() {
             stack.resize(self.stack_size(), Visit::default());
         }
-        let mut walk = Walk::new(origin, dir, max_t);
-        while !walk.step::<ANY, false, false>(self, items, &mut stack) {}
+        stack[..FLOOR].fill(Visit::FLOOR);
+        let walk = Walk::new(origin, dir, max_t);
+        let best = match octant(dir) {
+            0 => walk.run::<ANY, 0>(self, items, &mut stack),
+            1 => walk.run::<ANY, 1>(self, items, &mut stack),
+            2 => walk.run::<ANY, 2>(self, items, &mut stack),
+            3 => walk.run::<ANY, 3>(self, items, &mut stack),
+            4 => walk.run::<ANY, 4>(self, items, &mut stack),
+            5 => walk.run::<ANY, 5>(self, items, &mut stack),
+            6 => walk.run::<ANY, 6>(self, items, &mut stack),
+            _ => walk.run::<ANY, 7>(self, items, &mut stack),
+        };
         STACK.set(stack);
-        walk.best
+        best
     }
 
     /// [`WideBvh::traverse`] for each of `rays`, [`BATCH_LANES`] at a time
@@ -249,7 +274,10 @@ impl WideBvh {
         }
     }
 
-    /// [`WideBvh::traverse_many`] with `LANES` walks in flight, prefetching or not.
+    /// [`WideBvh::traverse_many`] with `LANES` walks in flight, prefetching or
+    /// not. The rays are grouped by direction octant first (a counting sort
+    /// of their indices), so that each group's walks know at compile time
+    /// through which plane of each axis a ray enters a box.
     fn interleave<const ANY: bool, const PREFETCH: bool, const LANES: usize>(
         &self,
         rays: &[Ray],
@@ -257,68 +285,46 @@ impl WideBvh {
         items: &impl LeafItems,
         mut found: impl FnMut(usize, Option<(f32, u32)>),
     ) {
-        if rays.is_empty() {
-            return;
-        }
         if self.nodes.is_empty() {
             (0..rays.len()).for_each(|k| found(k, None));
             return;
         }
-        let size = self.stack_size();
-        let mut stack = STACK.take();
-        if stack.len() < LANES * size {
-            stack.resize(LANES * size, Visit::default());
+        let octants: Vec<u8> = rays.iter().map(|r| octant(r.dir().into())).collect();
+        let mut ends = [0; OCTANTS + 1];
+        for &o in &octants {
+            ends[usize::from(o) + 1] += 1;
         }
-        let start = |k: usize| {
-            let ray = &rays[k];
-            Walk::new(ray.origin().into(), ray.dir().into(), max_t)
-        };
-        // Lane `l` walks ray `ray_of[l]` (`usize::MAX` once the rays run out).
-        let mut ray_of: [usize; LANES] =
-            std::array::from_fn(|l| if l < rays.len() { l } else { usize::MAX });
-        let mut walks: [Walk; LANES] =
-            std::array::from_fn(|l| start(if l < rays.len() { l } else { 0 }));
-        let mut stacks: [&mut [Visit]; LANES] = {
-            let mut chunks = stack.chunks_exact_mut(size);
-            std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
-        };
-        let mut next_ray = LANES.min(rays.len());
-        // While rays remain to be started, every lane is busy.
-        'full: while next_ray < rays.len() {
-            for ((walk, stack), ray) in walks.iter_mut().zip(stacks.iter_mut()).zip(&mut ray_of) {
-                if walk.step::<ANY, PREFETCH, true>(self, items, stack) {
-                    found(*ray, walk.best);
-                    *walk = start(next_ray);
-                    *ray = next_ray;
-                    next_ray += 1;
-                    if next_ray == rays.len() {
-                        continue 'full;
-                    }
-                }
+        for o in 0..OCTANTS {
+            ends[o + 1] += ends[o];
+        }
+        let mut order = vec![0; rays.len()];
+        let mut fill = ends;
+        for (k, &o) in octants.iter().enumerate() {
+            order[fill[usize::from(o)]] = k;
+            fill[usize::from(o)] += 1;
+        }
+        for o in 0..OCTANTS {
+            let mut batch = Batch {
+                bvh: self,
+                items,
+                rays,
+                order: &order[ends[o]..ends[o + 1]],
+                max_t,
+                next: 0,
+                busy: 0,
+                found: &mut found,
+            };
+            match o {
+                0 => batch.run::<ANY, PREFETCH, LANES, 0>(),
+                1 => batch.run::<ANY, PREFETCH, LANES, 1>(),
+                2 => batch.run::<ANY, PREFETCH, LANES, 2>(),
+                3 => batch.run::<ANY, PREFETCH, LANES, 3>(),
+                4 => batch.run::<ANY, PREFETCH, LANES, 4>(),
+                5 => batch.run::<ANY, PREFETCH, LANES, 5>(),
+                6 => batch.run::<ANY, PREFETCH, LANES, 6>(),
+                _ => batch.run::<ANY, PREFETCH, LANES, 7>(),
             }
         }
-        // Then the lanes finish one by one.
-        let mut busy = LANES.min(rays.len());
-        while busy > 0 {
-            for lane in 0..LANES {
-                if ray_of[lane] == usize::MAX {
-                    continue;
-                }
-                let walk = &mut walks[lane];
-                if walk.step::<ANY, PREFETCH, true>(self, items, stacks[lane]) {
-                    found(ray_of[lane], walk.best);
-                    if next_ray < rays.len() {
-                        *walk = start(next_ray);
-                        ray_of[lane] = next_ray;
-                        next_ray += 1;
-                    } else {
-                        ray_of[lane] = usize::MAX;
-                        busy -= 1;
-                    }
-                }
-            }
-        }
-        STACK.set(stack);
     }
 
     /// Hints that `visit`'s node or first leaf item will be read soon (see
@@ -337,6 +343,120 @@ impl WideBvh {
     }
 }
 
+/// The shared state of [`WideBvh::interleave`] for one group of rays: what
+/// every lane reads, the group's rays (indices into `rays`), the next of them
+/// to start, how many lanes are still walking, and where answers go.
+struct Batch<'a, I, F> {
+    bvh: &'a WideBvh,
+    items: &'a I,
+    rays: &'a [Ray],
+    order: &'a [usize],
+    max_t: f32,
+    next: usize,
+    busy: usize,
+    found: F,
+}
+
+impl<I: LeafItems, F: FnMut(usize, Option<(f32, u32)>)> Batch<'_, I, F> {
+    /// Walks every ray of the group (all in direction octant `OCTANT`),
+    /// `LANES` at a time interleaved step by step.
+    #[inline(always)]
+    fn run<const ANY: bool, const PREFETCH: bool, const LANES: usize, const OCTANT: u8>(&mut self) {
+        const { assert!(LANES.is_multiple_of(4), "lanes are stepped four at a time") };
+        if self.order.is_empty() {
+            return;
+        }
+        let size = self.bvh.stack_size();
+        let mut stack = STACK.take();
+        if stack.len() < LANES * size {
+            stack.resize(LANES * size, Visit::default());
+        }
+        for chunk in stack.chunks_exact_mut(size) {
+            chunk[..FLOOR].fill(Visit::FLOOR);
+        }
+        let count = self.order.len();
+        (self.next, self.busy) = (LANES.min(count), LANES.min(count));
+        // Lane `l` walks ray `ray_of[l]` (`usize::MAX` once the rays run out).
+        let mut ray_of: [usize; LANES] =
+            std::array::from_fn(|l| if l < count { self.order[l] } else { usize::MAX });
+        let mut walks: [Walk; LANES] =
+            std::array::from_fn(|l| self.start(self.order[if l < count { l } else { 0 }]));
+        let stacks: [&mut [Visit]; LANES] = {
+            let mut chunks = stack.chunks_exact_mut(size);
+            std::array::from_fn(|_| chunks.next().expect("the stack holds LANES chunks"))
+        };
+        // While rays remain to be started at the start of a round, every lane
+        // is busy (a lane goes idle only at its own step, once none remain),
+        // so the lanes are stepped without checking, written out four at a
+        // time: each lane's state then sits at a fixed place and its
+        // branches have their own history.
+        while self.next < count {
+            for base in (0..LANES).step_by(4) {
+                let mut lane = |l: usize| {
+                    self.advance::<ANY, PREFETCH, OCTANT>(&mut walks[l], stacks[l], &mut ray_of[l])
+                };
+                lane(base);
+                lane(base + 1);
+                lane(base + 2);
+                lane(base + 3);
+            }
+        }
+        // Then the lanes finish one by one.
+        while self.busy > 0 {
+            for lane in 0..LANES {
+                if ray_of[lane] != usize::MAX {
+                    self.advance::<ANY, PREFETCH, OCTANT>(
+                        &mut walks[lane],
+                        stacks[lane],
+                        &mut ray_of[lane],
+                    );
+                }
+            }
+        }
+        STACK.set(stack);
+    }
+
+    /// A walk of ray `k` from the root.
+    #[inline(always)]
+    fn start(&self, k: usize) -> Walk {
+        let ray = &self.rays[k];
+        Walk::new(ray.origin().into(), ray.dir().into(), self.max_t)
+    }
+
+    /// Steps the walk of ray `*ray` once; when it ends, reports its answer
+    /// and starts the group's next ray in its place, or marks the lane idle
+    /// (`usize::MAX`) when none remain.
+    #[inline(always)]
+    fn advance<const ANY: bool, const PREFETCH: bool, const OCTANT: u8>(
+        &mut self,
+        walk: &mut Walk,
+        stack: &mut [Visit],
+        ray: &mut usize,
+    ) {
+        if walk.step::<ANY, PREFETCH, true, OCTANT>(self.bvh, self.items, stack) {
+            (self.found)(*ray, walk.best());
+            if self.next < self.order.len() {
+                *ray = self.order[self.next];
+                *walk = self.start(*ray);
+                self.next += 1;
+            } else {
+                *ray = usize::MAX;
+                self.busy -= 1;
+            }
+        }
+    }
+}
+
+/// Direction octants: bit `axis` set when the direction's component on that
+/// axis is negative (sign bit set, as for `-0.0`).
+const OCTANTS: usize = 8;
+
+/// The octant of `dir` (see [`OCTANTS`]).
+#[inline]
+fn octant(dir: Vec3A) -> u8 {
+    dir.is_negative_bitmask() as u8
+}
+
 /// A ray prepared for 4-lane tests: its origin, direction and inverse
 /// direction splatted over the lanes.
 pub(crate) struct WideRay {
@@ -345,9 +465,6 @@ pub(crate) struct WideRay {
     /// The direction, each component in all four lanes.
     pub(crate) dir: Xyz<Vec4>,
     inv_dir: [Vec4; 3],
-    /// Per axis, whether the ray runs towards negative coordinates: it then
-    /// enters a box through its maximum plane ([`Node::planes`] index 1).
-    negative: [bool; 3],
 }
 
 impl WideRay {
@@ -361,24 +478,21 @@ impl WideRay {
             origin: Xyz::from(origin),
             dir: Xyz::from(dir),
             inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
-            negative: [
-                dir.x.is_sign_negative(),
-                dir.y.is_sign_negative(),
-                dir.z.is_sign_negative(),
-            ],
         }
     }
 
-    /// Entry distances of the ray into the four child boxes of `node`, and
-    /// which of them it meets within `0..=t_max`.
+    /// Entry distances of the ray, whose direction lies in octant `OCTANT`,
+    /// into the four child boxes of `node`, and which of them it meets within
+    /// `0..=t_max`. A ray running towards negative coordinates on an axis
+    /// enters a box through its maximum plane ([`Node::planes`] index 1).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // one index picks the axis in four arrays
-    fn enter(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
+    fn enter<const OCTANT: u8>(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
         let origin = [self.origin.x, self.origin.y, self.origin.z];
         let mut t_in = Vec4::ZERO;
         let mut t_out = Vec4::splat(t_max);
         for axis in 0..3 {
-            let near = usize::from(self.negative[axis]);
+            let near = usize::from(OCTANT >> axis & 1);
             let (o, inv) = (origin[axis], self.inv_dir[axis]);
             t_in = t_in.max((node.planes[axis][near] - o) * inv);
             t_out = t_out.min((node.planes[axis][near ^ 1] - o) * inv);
@@ -394,7 +508,8 @@ struct Walk {
     next: Visit,
     top: usize,
     t_max: f32,
-    best: Option<(f32, u32)>,
+    /// The item hit at `t_max` (`u32::MAX` while none is).
+    best_item: u32,
 }
 
 impl Walk {
@@ -403,20 +518,39 @@ impl Walk {
         Walk {
             ray: WideRay::new(origin, dir),
             next: Visit::default(),
-            top: 0,
+            top: FLOOR,
             t_max: max_t,
-            best: None,
+            best_item: u32::MAX,
         }
+    }
+
+    /// Steps the walk to its end, one ray alone, and returns its answer.
+    #[inline(always)]
+    fn run<const ANY: bool, const OCTANT: u8>(
+        mut self,
+        bvh: &WideBvh,
+        items: &impl LeafItems,
+        stack: &mut [Visit],
+    ) -> Option<(f32, u32)> {
+        while !self.step::<ANY, false, false, OCTANT>(bvh, items, stack) {}
+        self.best()
+    }
+
+    /// The answer so far: the best hit as `(t, id)`.
+    #[inline(always)]
+    fn best(&self) -> Option<(f32, u32)> {
+        (self.best_item != u32::MAX).then_some((self.t_max, self.best_item))
     }
 
     /// Reads the next node (stacking the farther hit children, with
     /// [`Walk::push_branchless`] or else [`Walk::push_sorting`]) or leaf,
     /// then chooses what to read after it (and with `PREFETCH` hints it to
-    /// the CPU). Returns true when the walk is over; `best` is then its answer.
+    /// the CPU). Returns true when the walk is over; [`Walk::best`] is then its
+    /// answer.
     /// `stack` must hold [`WideBvh::stack_size`] entries and be the same at
     /// every step.
     #[inline(always)]
-    fn step<const ANY: bool, const PREFETCH: bool, const BRANCHLESS: bool>(
+    fn step<const ANY: bool, const PREFETCH: bool, const BRANCHLESS: bool, const OCTANT: u8>(
         &mut self,
         bvh: &WideBvh,
         items: &impl LeafItems,
@@ -425,7 +559,7 @@ impl Walk {
         let (first, count) = (self.next.first(), self.next.count());
         if count == 0 {
             let node = &bvh.nodes[first as usize];
-            let (entry, hits) = self.ray.enter(node, self.t_max);
+            let (entry, hits) = self.ray.enter::<OCTANT>(node, self.t_max);
             if hits.any() {
                 self.next = if BRANCHLESS {
                     Walk::push_branchless(node, entry, hits, stack, &mut self.top)
@@ -439,27 +573,75 @@ impl Walk {
             }
         } else {
             for item in first..first + count {
-                if let Some(hit) = items.nearest(item, &self.ray, self.t_max) {
-                    self.best = Some(hit);
-                    if ANY {
-                        return true;
-                    }
-                    self.t_max = hit.0;
+                let (t, id) = items.nearest(item, &self.ray, self.t_max);
+                // Every hit lies within `t_max`; a miss is NaN.
+                let hit = t <= self.t_max;
+                if ANY && hit {
+                    (self.t_max, self.best_item) = (t, id);
+                    return true;
                 }
+                // Interleaved, kept by selection rather than by a branch:
+                // whether a leaf is hit is then unpredictable.
+                (self.t_max, self.best_item) = if BRANCHLESS {
+                    select_unpredictable(hit, (t, id), (self.t_max, self.best_item))
+                } else if hit {
+                    (t, id)
+                } else {
+                    (self.t_max, self.best_item)
+                };
             }
         }
-        // Pop the nearest stacked child that still starts before the best hit.
-        while self.top > 0 {
+        if BRANCHLESS {
+            self.pop_window(stack)
+        } else {
+            self.pop_one_by_one(stack)
+        }
+        .is_none_or(|next| {
+            self.next = next;
+            if PREFETCH {
+                bvh.prefetch(next, items);
+            }
+            false
+        })
+    }
+
+    /// Pops the nearest stacked child that still starts before the best hit
+    /// (`None` when none is left), one entry after another: cheapest when
+    /// the culling branch predicts well, as for one ray after another.
+    #[inline(always)]
+    fn pop_one_by_one(&mut self, stack: &[Visit]) -> Option<Visit> {
+        while self.top > FLOOR {
             self.top -= 1;
             if stack[self.top].entry <= self.t_max {
-                self.next = stack[self.top];
-                if PREFETCH {
-                    bvh.prefetch(self.next, items);
-                }
-                return false;
+                return Some(stack[self.top]);
             }
         }
-        true
+        None
+    }
+
+    /// [`Walk::pop_one_by_one`] looking at the top [`FLOOR`] entries at once,
+    /// so that a culled entry costs no branch of its own (faster when walks
+    /// are interleaved, as whether an entry is culled is then unpredictable).
+    /// The floor's entries are never taken.
+    #[inline(always)]
+    fn pop_window(&mut self, stack: &[Visit]) -> Option<Visit> {
+        loop {
+            let window: &[Visit; FLOOR] = stack[self.top - FLOOR..self.top]
+                .try_into()
+                .expect("the top is at or above the floor");
+            let entries = Vec4::from_array(window.map(|v| v.entry));
+            let open = entries.cmple(Vec4::splat(self.t_max)).bitmask();
+            if open != 0 {
+                let k = (u32::BITS - 1 - open.leading_zeros()) as usize % FLOOR;
+                self.top -= FLOOR - k;
+                return Some(window[k]);
+            }
+            if self.top <= 2 * FLOOR {
+                self.top = FLOOR;
+                return None;
+            }
+            self.top -= FLOOR;
+        }
     }
 
     /// Stacks the hit children of `node` but the nearest, which it returns,
@@ -552,12 +734,12 @@ mod tests {
     }
 
     impl LeafItems for Boxes {
-        fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> Option<(f32, u32)> {
+        fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> (f32, u32) {
             let lane0 = |v: &Xyz<Vec4>| Vec3A::new(v.x.x, v.y.x, v.z.x);
             let r = obvhs::ray::Ray::new(lane0(&ray.origin), lane0(&ray.dir), 0.0, f32::INFINITY);
             let k = self.bvh2.primitive_indices[item as usize];
             let t = self.boxes[k as usize].intersect_ray(&r);
-            (t <= t_max).then_some((t, k))
+            if t <= t_max { (t, k) } else { (f32::NAN, 0) }
         }
 
         fn address(&self, item: u32) -> *const u8 {
@@ -611,8 +793,17 @@ mod tests {
         let (wide, boxes) = cubes(300);
         let rays: Vec<Ray> = (0..100)
             .map(|k| {
-                let o = glam::Vec3::new(-5.0 + k as f32 * 7.0, 3.0, 0.5 + (k % 3) as f32);
-                let d = glam::Vec3::new((k % 7) as f32 - 3.0, -1.0, -0.3 * (k % 4) as f32);
+                // Every direction octant, with zero components of both signs
+                // (`-0.3 * 0.0` is `-0.0`); the upward rays start below the cubes.
+                let up = k % 5 == 0;
+                let y = if up { -2.0 } else { 3.0 };
+                let o = glam::Vec3::new(-5.0 + k as f32 * 7.0, y, 0.5 + (k % 3) as f32);
+                let dy = if up { 1.0 } else { -1.0 };
+                let d = glam::Vec3::new(
+                    (k % 7) as f32 - 3.0,
+                    dy,
+                    -0.3 * (k % 4) as f32 + 0.2 * (k % 3) as f32,
+                );
                 Ray::new(o, d).unwrap()
             })
             .collect();
@@ -630,6 +821,9 @@ mod tests {
         };
         let (closest, first) = (single(false), single(true));
         assert!(closest.iter().filter(|h| h.is_some()).count() > 20);
+        let octants: std::collections::BTreeSet<u8> =
+            rays.iter().map(|r| octant(r.dir().into())).collect();
+        assert_eq!(octants.len(), 8, "rays in every octant");
         let mut got = vec![None; rays.len()];
         wide.interleave::<false, true, 8>(&rays, f32::INFINITY, &boxes, |k, h| got[k] = h);
         assert_eq!(got, closest);
@@ -655,12 +849,12 @@ mod tests {
             inner: std::cell::RefCell<Vec<Option<(f32, u32)>>>,
         }
         impl LeafItems for Nested<'_> {
-            fn nearest(&self, _: u32, _: &WideRay, _: f32) -> Option<(f32, u32)> {
+            fn nearest(&self, _: u32, _: &WideRay, _: f32) -> (f32, u32) {
                 let o = Vec3A::new(-1.0, 0.5, 0.5);
                 self.inner
                     .borrow_mut()
                     .push(cast::<false>(self.wide, self.boxes, o, Vec3A::X));
-                None
+                (f32::NAN, 0)
             }
             fn address(&self, _: u32) -> *const u8 {
                 std::ptr::null()
