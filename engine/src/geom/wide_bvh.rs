@@ -41,11 +41,56 @@ const FLOOR: usize = 4;
 /// Bits of a [`Visit::child`] reference that hold a leaf's item count.
 const COUNT_BITS: u32 = 4;
 
+/// Evaluates `$body` with the const `$name: u8` set to the octant `$octant`
+/// (0 to 7; anything else counts as 7), so that code generic over the octant
+/// is chosen once per call instead of testing signs at every box.
+macro_rules! for_octant {
+    ($octant:expr, $name:ident => $body:expr) => {
+        match $octant {
+            0 => {
+                const $name: u8 = 0;
+                $body
+            }
+            1 => {
+                const $name: u8 = 1;
+                $body
+            }
+            2 => {
+                const $name: u8 = 2;
+                $body
+            }
+            3 => {
+                const $name: u8 = 3;
+                $body
+            }
+            4 => {
+                const $name: u8 = 4;
+                $body
+            }
+            5 => {
+                const $name: u8 = 5;
+                $body
+            }
+            6 => {
+                const $name: u8 = 6;
+                $body
+            }
+            _ => {
+                const $name: u8 = 7;
+                $body
+            }
+        }
+    };
+}
+
 thread_local! {
     /// Each thread's traversal stack, reused so that a cast neither allocates
     /// nor clears one. Taken out while in use: a nested cast (from inside a
     /// primitive test) finds it empty and simply grows its own.
     static STACK: Cell<Vec<Visit>> = const { Cell::new(Vec::new()) };
+    /// Each thread's ray order of [`WideBvh::traverse_many`] (rays grouped
+    /// by octant), reused the same way.
+    static ORDER: Cell<Vec<usize>> = const { Cell::new(Vec::new()) };
 }
 
 /// A node: the boxes of up to four children (lane `k` is child `k`), two
@@ -241,16 +286,7 @@ impl WideBvh {
         }
         stack[..FLOOR].fill(Visit::FLOOR);
         let walk = Walk::new(origin, dir, max_t);
-        let best = match octant(dir) {
-            0 => walk.run::<ANY, 0>(self, items, &mut stack),
-            1 => walk.run::<ANY, 1>(self, items, &mut stack),
-            2 => walk.run::<ANY, 2>(self, items, &mut stack),
-            3 => walk.run::<ANY, 3>(self, items, &mut stack),
-            4 => walk.run::<ANY, 4>(self, items, &mut stack),
-            5 => walk.run::<ANY, 5>(self, items, &mut stack),
-            6 => walk.run::<ANY, 6>(self, items, &mut stack),
-            _ => walk.run::<ANY, 7>(self, items, &mut stack),
-        };
+        let best = for_octant!(octant(dir), O => walk.run::<ANY, O>(self, items, &mut stack));
         STACK.set(stack);
         best
     }
@@ -289,19 +325,22 @@ impl WideBvh {
             (0..rays.len()).for_each(|k| found(k, None));
             return;
         }
-        let octants: Vec<u8> = rays.iter().map(|r| octant(r.dir().into())).collect();
+        let octant_of = |k: usize| usize::from(octant(rays[k].dir().into()));
         let mut ends = [0; OCTANTS + 1];
-        for &o in &octants {
-            ends[usize::from(o) + 1] += 1;
+        for k in 0..rays.len() {
+            ends[octant_of(k) + 1] += 1;
         }
         for o in 0..OCTANTS {
             ends[o + 1] += ends[o];
         }
-        let mut order = vec![0; rays.len()];
+        // Reused from call to call (taken, so that a nested batch gets its own).
+        let mut order = ORDER.take();
+        order.resize(rays.len(), 0);
         let mut fill = ends;
-        for (k, &o) in octants.iter().enumerate() {
-            order[fill[usize::from(o)]] = k;
-            fill[usize::from(o)] += 1;
+        for k in 0..rays.len() {
+            let o = octant_of(k);
+            order[fill[o]] = k;
+            fill[o] += 1;
         }
         for o in 0..OCTANTS {
             let mut batch = Batch {
@@ -314,17 +353,9 @@ impl WideBvh {
                 busy: 0,
                 found: &mut found,
             };
-            match o {
-                0 => batch.run::<ANY, PREFETCH, LANES, 0>(),
-                1 => batch.run::<ANY, PREFETCH, LANES, 1>(),
-                2 => batch.run::<ANY, PREFETCH, LANES, 2>(),
-                3 => batch.run::<ANY, PREFETCH, LANES, 3>(),
-                4 => batch.run::<ANY, PREFETCH, LANES, 4>(),
-                5 => batch.run::<ANY, PREFETCH, LANES, 5>(),
-                6 => batch.run::<ANY, PREFETCH, LANES, 6>(),
-                _ => batch.run::<ANY, PREFETCH, LANES, 7>(),
-            }
+            for_octant!(o, O => batch.run::<ANY, PREFETCH, LANES, O>());
         }
+        ORDER.set(order);
     }
 
     /// Hints that `visit`'s node or first leaf item will be read soon (see

@@ -328,37 +328,28 @@ impl BitOr for Mask {
     }
 }
 
-impl Add for F8 {
-    type Output = F8;
-    #[inline(always)]
-    fn add(self, other: F8) -> F8 {
-        self.zip(other, quad::add)
-    }
+/// Implements the lane-wise binary operator `$trait::$method` of [`F8`] with
+/// the 4-lane operation `$quad` on each half.
+macro_rules! lane_wise {
+    ($($trait:ident :: $method:ident => $quad:path),+ $(,)?) => {
+        $(
+            impl $trait for F8 {
+                type Output = F8;
+                #[inline(always)]
+                fn $method(self, other: F8) -> F8 {
+                    self.zip(other, $quad)
+                }
+            }
+        )+
+    };
 }
 
-impl Sub for F8 {
-    type Output = F8;
-    #[inline(always)]
-    fn sub(self, other: F8) -> F8 {
-        self.zip(other, quad::sub)
-    }
-}
-
-impl Mul for F8 {
-    type Output = F8;
-    #[inline(always)]
-    fn mul(self, other: F8) -> F8 {
-        self.zip(other, quad::mul)
-    }
-}
-
-impl Div for F8 {
-    type Output = F8;
-    #[inline(always)]
-    fn div(self, other: F8) -> F8 {
-        self.zip(other, quad::div)
-    }
-}
+lane_wise!(
+    Add::add => quad::add,
+    Sub::sub => quad::sub,
+    Mul::mul => quad::mul,
+    Div::div => quad::div,
+);
 
 impl Neg for F8 {
     type Output = F8;
