@@ -46,37 +46,16 @@ const COUNT_BITS: u32 = 4;
 /// is chosen once per call instead of testing signs at every box.
 macro_rules! for_octant {
     ($octant:expr, $name:ident => $body:expr) => {
+        for_octant!(@arms $octant, $name, $body, [0 1 2 3 4 5 6], 7)
+    };
+    (@arms $octant:expr, $name:ident, $body:expr, [$($k:literal)*], $last:literal) => {
         match $octant {
-            0 => {
-                const $name: u8 = 0;
+            $($k => {
+                const $name: u8 = $k;
                 $body
-            }
-            1 => {
-                const $name: u8 = 1;
-                $body
-            }
-            2 => {
-                const $name: u8 = 2;
-                $body
-            }
-            3 => {
-                const $name: u8 = 3;
-                $body
-            }
-            4 => {
-                const $name: u8 = 4;
-                $body
-            }
-            5 => {
-                const $name: u8 = 5;
-                $body
-            }
-            6 => {
-                const $name: u8 = 6;
-                $body
-            }
+            })*
             _ => {
-                const $name: u8 = 7;
+                const $name: u8 = $last;
                 $body
             }
         }
