@@ -102,8 +102,8 @@ impl<'a> MeshInstance<'a> {
             .into_par_iter()
             .filter_map(|(range, model)| {
                 let tris = mesh.triangles.get(range)?;
-                let first = tris.iter().flatten().copied().min()? as usize;
-                let last = tris.iter().flatten().copied().max()? as usize;
+                let (first, last) = index_range(tris)?;
+                let (first, last) = (first as usize, last as usize);
                 if last >= mesh.positions.len() {
                     return None;
                 }
@@ -145,6 +145,20 @@ impl<'a> MeshInstance<'a> {
     }
 }
 
+/// The smallest and largest vertex index of `triangles` (`None` when empty),
+/// in one pass that compilers vectorise: the indices are compared as `i32`
+/// with the top bit flipped, which orders them as `u32` (SSE2 compares signed
+/// 32-bit lanes only).
+#[inline(never)]
+fn index_range(triangles: &[[u32; 3]]) -> Option<(u32, u32)> {
+    const FLIP: u32 = 1 << 31;
+    let indices = triangles.as_flattened();
+    let signed = indices.iter().map(|&v| (v ^ FLIP) as i32);
+    let (lo, hi) = signed.fold((i32::MAX, i32::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let unsigned = |v: i32| v as u32 ^ FLIP;
+    (!indices.is_empty()).then(|| (unsigned(lo), unsigned(hi)))
+}
+
 #[cfg(test)]
 mod tests {
     use glam::{Mat4, Vec3};
@@ -178,6 +192,28 @@ mod tests {
             .unwrap()
             .look_at(Vec3::new(0.0, 0.9, -0.9), Vec3::ZERO, Vec3::Y);
         (mesh, camera)
+    }
+
+    #[test]
+    fn index_range_is_the_smallest_and_largest_index() {
+        use super::index_range;
+        use crate::rng::SplitMix64;
+        assert_eq!(index_range(&[]), None);
+        let mut rng = SplitMix64::new(7);
+        for len in [1usize, 2, 3, 5, 8, 9, 40] {
+            for spread in [10u32, 1 << 20, u32::MAX] {
+                let tris: Vec<[u32; 3]> = (0..len)
+                    .map(|_| [(); 3].map(|_| (rng.next_u64() as u32) % spread.max(1)))
+                    .collect();
+                let flat = tris.iter().flatten().copied();
+                let expected = (flat.clone().min().unwrap(), flat.max().unwrap());
+                assert_eq!(index_range(&tris), Some(expected), "{tris:?}");
+            }
+        }
+        assert_eq!(
+            index_range(&[[u32::MAX, 0, 1 << 31], [(1 << 31) - 1, 5, 6]]),
+            Some((0, u32::MAX))
+        );
     }
 
     #[test]
