@@ -44,15 +44,43 @@ pub(crate) struct ScreenBatch {
     tris: Vec<Triangle>,
     /// Triangles covering one pixel centre, kept as that pixel.
     dots: Vec<Dot>,
-    /// Every kept triangle in submission order: an index into `tris`, or into
-    /// `dots` with [`DOT_ENTRY`] set.
-    entries: Vec<u32>,
-    /// First and last pixel row of each entry.
-    rows: Vec<(i32, i32)>,
     /// Edge functions of the triangles too big for a coverage mask.
     edges: Vec<Edges>,
-    /// Entries of each band, in submission order.
-    bins: BandBins,
+    /// The kept triangles of each band, in submission order.
+    bands: BandEntries,
+}
+
+/// The entries of each band of rows (band `k`: rows `k * BAND_ROWS ..`), each
+/// an index into a batch's `tris`, or into its `dots` with [`DOT_ENTRY`] set,
+/// in submission order. Filled as triangles are kept: no binning pass after.
+#[derive(Debug, Default)]
+struct BandEntries(Vec<Vec<u32>>);
+
+impl BandEntries {
+    /// No entries in the bands of a screen `height` pixels tall.
+    fn new(height: i32) -> BandEntries {
+        let bands = (height.max(0) + BAND_ROWS - 1) >> BAND_SHIFT;
+        BandEntries(vec![Vec::new(); bands as usize])
+    }
+
+    /// Appends `entry` to the bands of pixel rows `y0..=y1` (`0 <= y0 <= y1 <
+    /// height`).
+    #[inline(always)]
+    fn push(&mut self, entry: u32, (y0, y1): (i32, i32)) {
+        let (first, last) = ((y0 >> BAND_SHIFT) as usize, (y1 >> BAND_SHIFT) as usize);
+        for band in &mut self.0[first..=last] {
+            band.push(entry);
+        }
+    }
+
+    /// The entries of band `band`, in submission order.
+    #[inline]
+    fn band(&self, band: i32) -> &[u32] {
+        usize::try_from(band)
+            .ok()
+            .and_then(|k| self.0.get(k))
+            .map_or(&[], Vec::as_slice)
+    }
 }
 
 /// The viewport a batch is built for.
@@ -187,9 +215,8 @@ impl ScreenBatch {
         let mut batch = ScreenBatch {
             tris: Vec::with_capacity(submitted),
             dots: Vec::with_capacity(submitted),
-            entries: Vec::with_capacity(submitted),
-            rows: Vec::with_capacity(submitted),
-            ..ScreenBatch::default()
+            edges: Vec::new(),
+            bands: BandEntries::new(vp.height),
         };
         let mut polygon = Vec::with_capacity(9);
         for group in groups {
@@ -217,8 +244,6 @@ impl ScreenBatch {
                 }
             }
         }
-        let entries = batch.entries.iter().copied();
-        batch.bins = BandBins::new(entries.zip(batch.rows.iter().copied()));
         batch
     }
 
@@ -230,14 +255,14 @@ impl ScreenBatch {
 
     /// Number of set-up triangles (dots included).
     pub fn len(&self) -> usize {
-        self.entries.len()
+        self.tris.len() + self.dots.len()
     }
 
     /// Fills the band (band index `band`, of [`BAND_ROWS`] rows) with the
     /// triangles touching it, in submission order.
     #[inline]
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
-        for &t in self.bins.band(band) {
+        for &t in self.bands.band(band) {
             if t & DOT_ENTRY != 0 {
                 self.dots[(t & !DOT_ENTRY) as usize].draw(target);
             } else {
@@ -296,8 +321,8 @@ impl ScreenBatch {
         let planes = small.planes(vertices(screen, order), area);
         if mask.is_power_of_two() {
             let dot = Dot::in_box(&planes, span, mask);
-            self.entries.push(self.dots.len() as u32 | DOT_ENTRY);
-            self.rows.push((dot.row(), dot.row()));
+            self.bands
+                .push(self.dots.len() as u32 | DOT_ENTRY, (dot.row(), dot.row()));
             self.dots.push(dot);
         } else {
             self.push_triangle(Triangle::masked(planes, span, mask), span);
@@ -307,8 +332,7 @@ impl ScreenBatch {
     /// Keeps a set-up triangle whose box is `span`.
     #[inline]
     fn push_triangle(&mut self, tri: Triangle, span: PixelSpan) {
-        self.entries.push(self.tris.len() as u32);
-        self.rows.push((span.y0, span.y1));
+        self.bands.push(self.tris.len() as u32, (span.y0, span.y1));
         self.tris.push(tri);
     }
 }
@@ -322,7 +346,8 @@ fn vertices(screen: &[ScreenVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
 
 /// Items binned by the bands of rows they touch: a counting sort that keeps
 /// each band's items in the order given (so depth ties resolve the same way
-/// whatever the thread count). Shared by the screen batches and the grass layer.
+/// whatever the thread count). Used by the grass layer, whose pieces are sorted
+/// before they are binned.
 #[derive(Debug, Default)]
 pub(crate) struct BandBins {
     /// First band any item touches.
