@@ -5,6 +5,7 @@
 use glam::{Vec3, Vec4};
 
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
+use super::project::project_positions;
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenBox, ScreenVertex, Triangle, signed_area,
 };
@@ -93,7 +94,7 @@ pub(crate) struct Viewport {
 impl Viewport {
     /// The screen vertex of clip position `pos`, its colour not yet set.
     #[inline]
-    fn project_position(&self, pos: Vec4) -> ScreenVertex {
+    pub(crate) fn project_position(&self, pos: Vec4) -> ScreenVertex {
         self.project(&ClipVertex {
             pos,
             color: Vec3::ZERO,
@@ -191,8 +192,7 @@ impl ScreenBatch {
         vp: Viewport,
     ) -> ScreenBatch {
         let clip: Vec<Vec4> = (0..count).map(position).collect();
-        let screen = clip.iter().map(|&p| vp.project_position(p)).collect();
-        let codes = clip.iter().map(|&p| outcode(p)).collect();
+        let (screen, codes) = project_positions(&clip, vp);
         let colors = LazyColors {
             clip,
             color,

@@ -32,6 +32,7 @@ mod follow;
 mod frame;
 mod grass;
 mod mesh;
+mod project;
 mod raster;
 mod shading;
 mod small_triangle;
