@@ -4,8 +4,9 @@
 
 use glam::{Vec3, Vec4};
 
-use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
-use super::project::project_positions;
+use super::centre_box::{screen_limits, triangle_span};
+use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
+use super::project::{ProjectedVertex, project_positions};
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenBox, ScreenVertex, Triangle, signed_area,
 };
@@ -124,8 +125,8 @@ impl Viewport {
 /// Where the vertices of a batch get their colour: all up front
 /// ([`EagerColors`]) or only when a triangle using them is kept ([`LazyColors`]).
 trait VertexColors {
-    /// Makes sure `screen[k].color_w` is set.
-    fn shade(&mut self, screen: &mut [ScreenVertex], k: usize);
+    /// Makes sure `vertices[k].screen.color_w` is set.
+    fn shade(&mut self, vertices: &mut [ProjectedVertex], k: usize);
     /// The clip vertex `k` (position and colour), for clipping.
     fn clip_vertex(&self, k: usize) -> ClipVertex;
 }
@@ -135,7 +136,7 @@ struct EagerColors<'a>(&'a [ClipVertex]);
 
 impl VertexColors for EagerColors<'_> {
     #[inline]
-    fn shade(&mut self, _: &mut [ScreenVertex], _: usize) {}
+    fn shade(&mut self, _: &mut [ProjectedVertex], _: usize) {}
 
     fn clip_vertex(&self, k: usize) -> ClipVertex {
         self.0[k]
@@ -153,11 +154,11 @@ struct LazyColors<C> {
 
 impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
     #[inline]
-    fn shade(&mut self, screen: &mut [ScreenVertex], k: usize) {
+    fn shade(&mut self, vertices: &mut [ProjectedVertex], k: usize) {
         match self.shaded.get_mut(k) {
             Some(done) if !*done => {
                 *done = true;
-                let v = &mut screen[k];
+                let v = &mut vertices[k].screen;
                 v.color_w = (self.color)(k) * v.inv_w;
             }
             _ => {}
@@ -175,9 +176,12 @@ impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
 impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
-        let screen = verts.iter().map(|v| vp.project(v)).collect();
-        let codes = verts.iter().map(|v| outcode(v.pos)).collect();
-        ScreenBatch::build_from(screen, codes, EagerColors(verts), groups, vp)
+        let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
+        let mut projected = project_positions(&clip, vp);
+        for (p, v) in projected.iter_mut().zip(verts) {
+            p.screen.color_w = v.color * p.screen.inv_w;
+        }
+        ScreenBatch::build_from(projected, EagerColors(verts), groups, vp)
     }
 
     /// Projects `count` vertices (clip position of vertex `k`: `position(k)`)
@@ -192,20 +196,18 @@ impl ScreenBatch {
         vp: Viewport,
     ) -> ScreenBatch {
         let clip: Vec<Vec4> = (0..count).map(position).collect();
-        let (screen, codes) = project_positions(&clip, vp);
+        let projected = project_positions(&clip, vp);
         let colors = LazyColors {
             clip,
             color,
             shaded: vec![false; count],
         };
-        ScreenBatch::build_from(screen, codes, colors, groups, vp)
+        ScreenBatch::build_from(projected, colors, groups, vp)
     }
 
-    /// Sets up every triangle of `groups` over projected vertices `screen` with
-    /// their clip outcodes `codes`.
+    /// Sets up every triangle of `groups` over the `projected` vertices.
     fn build_from(
-        mut screen: Vec<ScreenVertex>,
-        codes: Vec<u8>,
+        mut projected: Vec<ProjectedVertex>,
         mut colors: impl VertexColors,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
@@ -219,15 +221,16 @@ impl ScreenBatch {
             bands: BandEntries::new(vp.height),
         };
         let mut polygon = Vec::with_capacity(9);
+        let limits = screen_limits(vp.width, vp.height);
         for group in groups {
             for &tri in group.triangles {
                 let [a, b, c] = tri.map(|k| k as usize);
-                let (ca, cb, cc) = (codes[a], codes[b], codes[c]);
+                let (ca, cb, cc) = (projected[a].code, projected[b].code, projected[c].code);
                 if ca & cb & cc & OUT_FRUSTUM != 0 {
                     continue;
                 }
                 if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.push(&mut screen, &mut colors, tri, group.cull, vp);
+                    batch.push(&mut projected, &mut colors, tri, group.cull, limits);
                     continue;
                 }
                 clip_triangle([a, b, c].map(|k| colors.clip_vertex(k)), &mut polygon);
@@ -236,11 +239,15 @@ impl ScreenBatch {
                 }
                 // Clipped polygons append their (already shaded) vertices,
                 // dropped with the batch's.
-                let base = screen.len() as u32;
-                screen.extend(polygon.iter().map(|v| vp.project(v)));
+                let base = projected.len() as u32;
+                // Not clipped again: no outcode needed.
+                let vertices = polygon
+                    .iter()
+                    .map(|v| ProjectedVertex::new(vp.project(v), 0));
+                projected.extend(vertices);
                 for k in 1..polygon.len() as u32 - 1 {
                     let tri = [base, base + k, base + k + 1];
-                    batch.push(&mut screen, &mut colors, tri, group.cull, vp);
+                    batch.push(&mut projected, &mut colors, tri, group.cull, limits);
                 }
             }
         }
@@ -276,21 +283,21 @@ impl ScreenBatch {
     #[inline(always)]
     fn push(
         &mut self,
-        screen: &mut [ScreenVertex],
+        projected: &mut [ProjectedVertex],
         colors: &mut impl VertexColors,
         tri: [u32; 3],
         cull: CullMode,
-        vp: Viewport,
+        limits: Vec4,
     ) {
         let [a, b, c] = tri.map(|k| k as usize);
-        let (sa, sb, sc) = (&screen[a], &screen[b], &screen[c]);
         // Most sub-pixel triangles have no pixel centre in their box: drop them
         // first (the box does not depend on the winding).
-        let bounds = ScreenBox::of([sa, sb, sc]);
-        let span = bounds.span(vp.width, vp.height);
-        if span.is_empty() {
+        let (pa, pb, pc) = (&projected[a], &projected[b], &projected[c]);
+        let Some(span) = triangle_span(pa.centre_box, pb.centre_box, pc.centre_box, limits) else {
             return;
-        }
+        };
+        let (sa, sb, sc) = (&pa.screen, &pb.screen, &pc.screen);
+        let bounds = ScreenBox::of([sa, sb, sc]);
         let area = signed_area(sa, sb, sc);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen.
@@ -301,12 +308,12 @@ impl ScreenBatch {
         } else {
             return;
         };
-        let v = vertices(screen, order);
+        let v = vertices(projected, order);
         let Some(small) = SmallTriangle::of(v, &bounds, span) else {
             for k in order {
-                colors.shade(screen, k);
+                colors.shade(projected, k);
             }
-            let v = vertices(screen, order);
+            let v = vertices(projected, order);
             let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
             self.push_triangle(tri, span);
             return;
@@ -316,9 +323,9 @@ impl ScreenBatch {
             return;
         }
         for k in order {
-            colors.shade(screen, k);
+            colors.shade(projected, k);
         }
-        let planes = small.planes(vertices(screen, order), area);
+        let planes = small.planes(vertices(projected, order), area);
         if mask.is_power_of_two() {
             let dot = Dot::in_box(&planes, span, mask);
             self.bands
@@ -340,8 +347,9 @@ impl ScreenBatch {
 /// The screen vertices of `order` (an array literal: `array::map` with
 /// bounds-checked indexing becomes a call per triangle).
 #[inline(always)]
-fn vertices(screen: &[ScreenVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
-    [&screen[order[0]], &screen[order[1]], &screen[order[2]]]
+fn vertices(projected: &[ProjectedVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
+    let screen = |k: usize| &projected[k].screen;
+    [screen(order[0]), screen(order[1]), screen(order[2])]
 }
 
 /// Items binned by the bands of rows they touch: a counting sort that keeps

@@ -26,6 +26,7 @@
 mod batch;
 mod blade_span;
 mod camera;
+mod centre_box;
 mod clip;
 mod error;
 mod follow;

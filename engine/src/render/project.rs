@@ -11,6 +11,7 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use super::batch::Viewport;
+use super::centre_box::{MAGIC, WHOLE_MAX, centre_box, whole_numbers};
 use super::clip::{
     GUARD_BAND, OUT_BOTTOM, OUT_GUARD, OUT_LEFT, OUT_NEAR, OUT_RIGHT, OUT_TOP, outcode,
 };
@@ -20,36 +21,62 @@ use super::raster::{ONE, ScreenVertex};
 const LANES: usize = 4;
 
 /// Fixed-point values below this magnitude (16,384 pixels) convert exactly
-/// through the lanes (see [`truncate`]); a group with a larger, infinite or
-/// NaN value goes through the scalar path.
-const EXACT_FIXED: f32 = (1 << 22) as f32;
+/// through the lanes (see [`whole_numbers`]); a group with a larger, infinite
+/// or NaN value goes through the scalar path.
+const EXACT_FIXED: f32 = WHOLE_MAX;
 
-/// `1.5 * 2^23`: whole numbers `t` with `|t| < 2^22` added to it give a float
-/// whose bits are `MAGIC.to_bits() + t`.
-const MAGIC: f32 = 12_582_912.0;
-
-/// The screen vertices (colour not set: `color_w` is zero) and clip outcodes
-/// of `count` vertices whose clip positions are `clip[k]`.
-pub(crate) fn project_positions(clip: &[Vec4], vp: Viewport) -> (Vec<ScreenVertex>, Vec<u8>) {
-    let mut screen = Vec::with_capacity(clip.len());
-    let mut codes = Vec::with_capacity(clip.len());
-    let groups = clip.chunks_exact(LANES);
-    let rest = groups.remainder();
-    for group in groups {
-        let (four, four_codes) = project_four([group[0], group[1], group[2], group[3]], vp);
-        screen.extend_from_slice(&four);
-        codes.extend_from_slice(&four_codes);
-    }
-    for &p in rest {
-        screen.push(vp.project_position(p));
-        codes.push(outcode(p));
-    }
-    (screen, codes)
+/// A vertex after projection, with what the triangle loop asks of it first.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ProjectedVertex {
+    /// Pixel-centre box ([`centre_box`]).
+    pub centre_box: Vec4,
+    /// Fixed-point position, `1/w` and colour / w.
+    pub screen: ScreenVertex,
+    /// Clip outcode ([`outcode`]).
+    pub code: u8,
 }
 
-/// Screen vertices and outcodes of four clip positions, one per lane.
+impl ProjectedVertex {
+    /// The projected vertex of screen vertex `screen`, whose clip outcode is
+    /// `code`.
+    #[inline]
+    pub fn new(screen: ScreenVertex, code: u8) -> ProjectedVertex {
+        ProjectedVertex {
+            centre_box: centre_box(&screen),
+            screen,
+            code,
+        }
+    }
+
+    /// The scalar projection of clip position `p`, colour not set.
+    fn scalar(p: Vec4, vp: Viewport) -> ProjectedVertex {
+        ProjectedVertex::new(vp.project_position(p), outcode(p))
+    }
+}
+
+/// Spare room for the vertices of clipped polygons, in groups of [`LANES`].
+const SPARE_GROUPS: usize = 4;
+
+/// The projected vertices (colour not set: `color_w` is zero) whose clip
+/// positions are `clip`, in order.
+pub(crate) fn project_positions(clip: &[Vec4], vp: Viewport) -> Vec<ProjectedVertex> {
+    let mut groups = Vec::with_capacity(clip.len().div_ceil(LANES) + SPARE_GROUPS);
+    // One write per group (a trusted length: no capacity check per vertex);
+    // the last group is padded with its last position and truncated after.
+    groups.extend(clip.chunks(LANES).map(|group| {
+        let four: [Vec4; LANES] = std::array::from_fn(|k| group[k.min(group.len() - 1)]);
+        project_four(four, vp).unwrap_or_else(|| four.map(|p| ProjectedVertex::scalar(p, vp)))
+    }));
+    let mut vertices = groups.into_flattened();
+    vertices.truncate(clip.len());
+    vertices
+}
+
+/// Screen vertices, outcodes and centre boxes of four clip positions, one per
+/// lane, or `None` when a fixed-point coordinate is too large (or NaN) for the
+/// exact lane conversion.
 #[inline(always)]
-fn project_four(clip: [Vec4; LANES], vp: Viewport) -> ([ScreenVertex; LANES], [u8; LANES]) {
+fn project_four(clip: [Vec4; LANES], vp: Viewport) -> Option<[ProjectedVertex; LANES]> {
     // Rows of the transpose: all x, all y, all z, all w.
     let lanes = Mat4::from_cols(clip[0], clip[1], clip[2], clip[3]).transpose();
     let (x, y, z, w) = (lanes.x_axis, lanes.y_axis, lanes.z_axis, lanes.w_axis);
@@ -60,37 +87,47 @@ fn project_four(clip: [Vec4; LANES], vp: Viewport) -> ([ScreenVertex; LANES], [u
     let scale = ONE as f32;
     let fx = sx * scale + 0.5;
     let fy = sy * scale + 0.5;
-    let codes = outcodes(x, y, z, w);
-    // `abs() < EXACT_FIXED` is false for NaN: such groups go scalar too.
+    // `abs() < EXACT_FIXED` is false for NaN: such groups go scalar.
     let exact = fx.abs().cmplt(Vec4::splat(EXACT_FIXED)) & fy.abs().cmplt(Vec4::splat(EXACT_FIXED));
     if !exact.all() {
-        return (clip.map(|p| vp.project_position(p)), codes);
+        return None;
     }
-    let (ix, iy) = (truncate(fx), truncate(fy));
+    // `as i32` rounds towards zero; in this range it does not saturate.
+    let (tx, ty) = (fx.trunc(), fy.trunc());
+    let (ix, iy) = (whole_numbers(tx), whole_numbers(ty));
     let inv_w = inv_w.to_array();
-    let screen = std::array::from_fn(|k| ScreenVertex {
-        x: ix[k],
-        y: iy[k],
-        inv_w: inv_w[k],
-        color_w: Vec3::ZERO,
-    });
-    (screen, codes)
+    let codes = outcodes(x, y, z, w);
+    let boxes = centre_boxes(tx, ty);
+    Some(std::array::from_fn(|k| ProjectedVertex {
+        centre_box: boxes[k],
+        screen: ScreenVertex {
+            x: ix[k],
+            y: iy[k],
+            inv_w: inv_w[k],
+            color_w: Vec3::ZERO,
+        },
+        code: codes[k],
+    }))
 }
 
-/// `v as i32` per lane for lanes of magnitude below [`EXACT_FIXED`]: rounded
-/// towards zero in the vector, then read from the bits of the whole number
-/// plus [`MAGIC`] (the vector form of the cast, which has no saturation to do
-/// in this range).
+/// The centre boxes ([`super::centre_box`]) of four vertices whose
+/// fixed-point coordinates are the whole numbers in the lanes of `x` and `y`
+/// (of magnitude below `2^22`).
+///
+/// `first_centre(v) = (v + 127) >> 8` and `last_centre(v) = (v - 128) >> 8`
+/// are `floor(n / 256)` of a whole number `n`, which equals `n / 256 - 127.5 /
+/// 256` rounded to the nearest whole number (never a tie: the fraction of
+/// `n / 256` is a multiple of `1 / 256`); adding and subtracting [`MAGIC`]
+/// rounds so. Every step is exact in `f32` in this range.
 #[inline(always)]
-fn truncate(v: Vec4) -> [i32; LANES] {
-    whole_numbers(v.trunc())
-}
-
-/// The whole numbers `v` (each of magnitude below `2^22`) as integers.
-#[inline(always)]
-fn whole_numbers(v: Vec4) -> [i32; LANES] {
-    let bits = (v + MAGIC).to_array().map(f32::to_bits);
-    bits.map(|b| b.wrapping_sub(MAGIC.to_bits()) as i32)
+fn centre_boxes(x: Vec4, y: Vec4) -> [Vec4; LANES] {
+    const INV_ONE: f32 = 1.0 / ONE as f32;
+    // (n - 127.5) / 256 + MAGIC, with n = v + 127 or v - 128.
+    let first = |v: Vec4| (v - 0.5) * INV_ONE + MAGIC;
+    let last = |v: Vec4| (v - 255.5) * INV_ONE + MAGIC;
+    let (fx, lx, fy, ly) = (first(x), last(x), first(y), last(y));
+    let rows = Mat4::from_cols(fx - MAGIC, MAGIC - lx, fy - MAGIC, MAGIC - ly).transpose();
+    rows.to_cols_array_2d().map(Vec4::from_array)
 }
 
 /// [`outcode`] of four clip positions given by their coordinates in lanes: the
@@ -142,7 +179,7 @@ mod tests {
                     _ => rng.range(-3.0, 3.0),
                 };
                 let p = Vec4::new(c(), c(), c(), c());
-                if k % 5 == 0 {
+                if k.is_multiple_of(5) {
                     // x, y on exact half fixed-point steps of a 64 x 48 screen
                     // (w = 1): (sx * 256 + 0.5) is a whole number plus 0.5 or 0.
                     let step = |n: u64, size: f32| (n as f32 / 512.0) / size * 2.0 - 1.0;
@@ -165,14 +202,16 @@ mod tests {
         // Lengths that leave every remainder.
         for count in [0, 1, 3, 4, 7, 20_000, 20_003] {
             let clip = awkward_positions(&mut rng, count);
-            let (screen, codes) = project_positions(&clip, vp);
-            assert_eq!(screen.len(), count);
-            for (k, &p) in clip.iter().enumerate() {
+            let out = project_positions(&clip, vp);
+            assert_eq!(out.len(), count);
+            for (got, &p) in out.iter().zip(&clip) {
                 let expected = vp.project_position(p);
-                let got = screen[k];
-                assert_eq!((got.x, got.y), (expected.x, expected.y), "{p:?}");
-                assert_eq!(got.inv_w.to_bits(), expected.inv_w.to_bits(), "{p:?}");
-                assert_eq!(codes[k], outcode(p), "{p:?}");
+                let screen = got.screen;
+                assert_eq!((screen.x, screen.y), (expected.x, expected.y), "{p:?}");
+                assert_eq!(screen.inv_w.to_bits(), expected.inv_w.to_bits(), "{p:?}");
+                assert_eq!(got.code, outcode(p), "{p:?}");
+                let (a, b) = (got.centre_box, centre_box(&expected));
+                assert_eq!(a.cmpeq(b).bitmask(), 0b1111, "{p:?}: {a:?} vs {b:?}");
             }
         }
     }

@@ -62,14 +62,14 @@ pub(crate) struct PixelSpan {
 /// First pixel index whose centre is at or after fixed coordinate `v` (vertices
 /// inside the guard band keep these sums far from `i32` overflow).
 #[inline]
-fn first_centre(v: i32) -> i32 {
+pub(crate) fn first_centre(v: i32) -> i32 {
     // Arithmetic shifts floor, also for negative values.
     (v - HALF as i32 + ONE as i32 - 1) >> SUBPIXEL_BITS
 }
 
 /// Last pixel index whose centre is at or before fixed coordinate `v`.
 #[inline]
-fn last_centre(v: i32) -> i32 {
+pub(crate) fn last_centre(v: i32) -> i32 {
     (v - HALF as i32) >> SUBPIXEL_BITS
 }
 
@@ -95,8 +95,10 @@ impl ScreenBox {
     }
 
     /// The span of pixel centres inside the box, clipped to a `width` x
-    /// `height` screen.
-    #[inline(always)]
+    /// `height` screen (the renderer takes it from the vertices' centre
+    /// boxes, [`super::centre_box`]; this is the reference they are tested
+    /// against).
+    #[cfg(test)]
     pub fn span(&self, width: i32, height: i32) -> PixelSpan {
         PixelSpan {
             x0: first_centre(self.min_x).max(0),
@@ -109,7 +111,7 @@ impl ScreenBox {
 
 impl PixelSpan {
     /// True when no pixel centre is covered.
-    #[inline]
+    #[cfg(test)]
     pub fn is_empty(&self) -> bool {
         self.x0 > self.x1 || self.y0 > self.y1
     }
