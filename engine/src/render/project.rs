@@ -37,6 +37,18 @@ pub(crate) struct ProjectedVertex {
 }
 
 impl ProjectedVertex {
+    /// A placeholder, overwritten before use.
+    const UNSET: ProjectedVertex = ProjectedVertex {
+        centre_box: Vec4::ZERO,
+        screen: ScreenVertex {
+            x: 0,
+            y: 0,
+            inv_w: 0.0,
+            color_w: Vec3::ZERO,
+        },
+        code: 0,
+    };
+
     /// The projected vertex of screen vertex `screen`, whose clip outcode is
     /// `code`.
     #[inline]
@@ -54,29 +66,38 @@ impl ProjectedVertex {
     }
 }
 
-/// Spare room for the vertices of clipped polygons, in groups of [`LANES`].
-const SPARE_GROUPS: usize = 4;
+/// Spare room for the vertices of a few clipped polygons.
+const SPARE: usize = 16;
 
 /// The projected vertices (colour not set: `color_w` is zero) whose clip
 /// positions are `clip`, in order.
 pub(crate) fn project_positions(clip: &[Vec4], vp: Viewport) -> Vec<ProjectedVertex> {
-    let mut groups = Vec::with_capacity(clip.len().div_ceil(LANES) + SPARE_GROUPS);
-    // One write per group (a trusted length: no capacity check per vertex);
-    // the last group is padded with its last position and truncated after.
-    groups.extend(clip.chunks(LANES).map(|group| {
-        let four: [Vec4; LANES] = std::array::from_fn(|k| group[k.min(group.len() - 1)]);
-        project_four(four, vp).unwrap_or_else(|| four.map(|p| ProjectedVertex::scalar(p, vp)))
-    }));
-    let mut vertices = groups.into_flattened();
-    vertices.truncate(clip.len());
+    let mut vertices = Vec::with_capacity(clip.len() + SPARE);
+    // Written in place below (records built elsewhere and copied in cost two
+    // block copies per group).
+    vertices.resize(clip.len(), ProjectedVertex::UNSET);
+    let mut out = vertices.chunks_exact_mut(LANES);
+    let mut groups = clip.chunks_exact(LANES);
+    for (out, group) in (&mut out).zip(&mut groups) {
+        let four = [group[0], group[1], group[2], group[3]];
+        if !project_four(four, vp, out) {
+            for (out, p) in out.iter_mut().zip(four) {
+                *out = ProjectedVertex::scalar(p, vp);
+            }
+        }
+    }
+    for (out, &p) in out.into_remainder().iter_mut().zip(groups.remainder()) {
+        *out = ProjectedVertex::scalar(p, vp);
+    }
     vertices
 }
 
-/// Screen vertices, outcodes and centre boxes of four clip positions, one per
-/// lane, or `None` when a fixed-point coordinate is too large (or NaN) for the
-/// exact lane conversion.
+/// Writes to `out` (four records) the screen vertices, outcodes and centre
+/// boxes of four clip positions, one per lane, and returns true; or returns
+/// false, writing nothing, when a fixed-point coordinate is too large (or NaN)
+/// for the exact lane conversion.
 #[inline(always)]
-fn project_four(clip: [Vec4; LANES], vp: Viewport) -> Option<[ProjectedVertex; LANES]> {
+fn project_four(clip: [Vec4; LANES], vp: Viewport, out: &mut [ProjectedVertex]) -> bool {
     // Rows of the transpose: all x, all y, all z, all w.
     let lanes = Mat4::from_cols(clip[0], clip[1], clip[2], clip[3]).transpose();
     let (x, y, z, w) = (lanes.x_axis, lanes.y_axis, lanes.z_axis, lanes.w_axis);
@@ -90,7 +111,7 @@ fn project_four(clip: [Vec4; LANES], vp: Viewport) -> Option<[ProjectedVertex; L
     // `abs() < EXACT_FIXED` is false for NaN: such groups go scalar.
     let exact = fx.abs().cmplt(Vec4::splat(EXACT_FIXED)) & fy.abs().cmplt(Vec4::splat(EXACT_FIXED));
     if !exact.all() {
-        return None;
+        return false;
     }
     // `as i32` rounds towards zero; in this range it does not saturate.
     let (tx, ty) = (fx.trunc(), fy.trunc());
@@ -98,16 +119,19 @@ fn project_four(clip: [Vec4; LANES], vp: Viewport) -> Option<[ProjectedVertex; L
     let inv_w = inv_w.to_array();
     let codes = outcodes(x, y, z, w);
     let boxes = centre_boxes(tx, ty);
-    Some(std::array::from_fn(|k| ProjectedVertex {
-        centre_box: boxes[k],
-        screen: ScreenVertex {
-            x: ix[k],
-            y: iy[k],
-            inv_w: inv_w[k],
-            color_w: Vec3::ZERO,
-        },
-        code: codes[k],
-    }))
+    for (k, out) in out.iter_mut().enumerate().take(LANES) {
+        *out = ProjectedVertex {
+            centre_box: boxes[k],
+            screen: ScreenVertex {
+                x: ix[k],
+                y: iy[k],
+                inv_w: inv_w[k],
+                color_w: Vec3::ZERO,
+            },
+            code: codes[k],
+        };
+    }
+    true
 }
 
 /// The centre boxes ([`super::centre_box`]) of four vertices whose
