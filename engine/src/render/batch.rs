@@ -8,7 +8,7 @@ use super::centre_box::{screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
 use super::project::{ProjectedVertex, project_positions};
 use super::raster::{
-    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenBox, ScreenVertex, Triangle, signed_area,
+    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
 };
 use super::small_triangle::SmallTriangle;
 
@@ -297,7 +297,6 @@ impl ScreenBatch {
             return;
         };
         let (sa, sb, sc) = (&pa.screen, &pb.screen, &pc.screen);
-        let bounds = ScreenBox::of([sa, sb, sc]);
         let area = signed_area(sa, sb, sc);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen.
@@ -309,7 +308,7 @@ impl ScreenBatch {
             return;
         };
         let v = vertices(projected, order);
-        let Some(small) = SmallTriangle::of(v, &bounds, span) else {
+        let Some(small) = SmallTriangle::of(v, span) else {
             for k in order {
                 colors.shade(projected, k);
             }

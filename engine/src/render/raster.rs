@@ -73,7 +73,10 @@ pub(crate) fn last_centre(v: i32) -> i32 {
     (v - HALF as i32) >> SUBPIXEL_BITS
 }
 
-/// The fixed-point bounding box of a triangle's vertices.
+/// The fixed-point bounding box of a triangle's vertices: the reference the
+/// renderer's pixel spans ([`super::centre_box`]) and small-triangle extent
+/// tests are checked against.
+#[cfg(test)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct ScreenBox {
     pub min_x: i32,
@@ -82,6 +85,7 @@ pub(crate) struct ScreenBox {
     pub max_y: i32,
 }
 
+#[cfg(test)]
 impl ScreenBox {
     /// The bounding box of `v` (in any order).
     #[inline(always)]
@@ -95,10 +99,7 @@ impl ScreenBox {
     }
 
     /// The span of pixel centres inside the box, clipped to a `width` x
-    /// `height` screen (the renderer takes it from the vertices' centre
-    /// boxes, [`super::centre_box`]; this is the reference they are tested
-    /// against).
-    #[cfg(test)]
+    /// `height` screen.
     pub fn span(&self, width: i32, height: i32) -> PixelSpan {
         PixelSpan {
             x0: first_centre(self.min_x).max(0),
@@ -556,7 +557,7 @@ mod tests {
         big_only: bool,
         edges: &mut Vec<Edges>,
     ) -> Option<Triangle> {
-        match SmallTriangle::of(v, &ScreenBox::of(v), span).filter(|_| !big_only) {
+        match SmallTriangle::of(v, span).filter(|_| !big_only) {
             Some(small) => {
                 let mask = small.coverage(span);
                 (mask != 0).then(|| Triangle::masked(small.planes(v, area), span, mask))
@@ -751,8 +752,7 @@ mod tests {
             // Reference: the general edge walk for every triangle.
             let tri = set_up(v, area, span, true, &mut edges).expect("big triangles are kept");
             tri.draw(&edges, &mut band);
-            let small_covers =
-                SmallTriangle::of(v, &ScreenBox::of(v), span).map(|s| s.coverage(span) != 0);
+            let small_covers = SmallTriangle::of(v, span).map(|s| s.coverage(span) != 0);
             if small_covers != Some(false) {
                 filled += 1;
             }
