@@ -6,7 +6,7 @@ use glam::{Vec3, Vec4};
 
 use super::centre_box::{screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
-use super::project::{ProjectedVertex, project_positions};
+use super::project::{ClipPositions, ClipSource, ProjectedVertex, project_vertices};
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
 };
@@ -144,15 +144,15 @@ impl VertexColors for EagerColors<'_> {
 }
 
 /// Colours computed on first use: `color(k)` (display RGB) of vertex `k`,
-/// whose clip position is `clip[k]`.
-struct LazyColors<C> {
-    clip: Vec<Vec4>,
+/// whose clip position `positions` gives.
+struct LazyColors<P, C> {
+    positions: P,
     color: C,
     /// Whether the vertex's colour / w is set (clipped polygons' vertices are).
     shaded: Vec<bool>,
 }
 
-impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
+impl<P: ClipSource, C: Fn(usize) -> Vec3> VertexColors for LazyColors<P, C> {
     #[inline]
     fn shade(&mut self, vertices: &mut [ProjectedVertex], k: usize) {
         match self.shaded.get_mut(k) {
@@ -167,7 +167,7 @@ impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
 
     fn clip_vertex(&self, k: usize) -> ClipVertex {
         ClipVertex {
-            pos: self.clip[k],
+            pos: self.positions.clip(k),
             color: (self.color)(k),
         }
     }
@@ -177,30 +177,28 @@ impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
         let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
-        let mut projected = project_positions(&clip, vp);
+        let mut projected = project_vertices(&ClipPositions(&clip), vp);
         for (p, v) in projected.iter_mut().zip(verts) {
             p.screen.color_w = v.color * p.screen.inv_w;
         }
         ScreenBatch::build_from(projected, EagerColors(verts), groups, vp)
     }
 
-    /// Projects `count` vertices (clip position of vertex `k`: `position(k)`)
-    /// and sets up every triangle of `groups`, calling `color(k)` (display RGB)
-    /// only for vertices of triangles that survive culling and cover a pixel
-    /// centre, once each (clipping, which is rare, may ask again).
-    pub fn build_lazy(
-        count: usize,
-        position: impl Fn(usize) -> Vec4,
+    /// Projects the vertices of `positions` and sets up every triangle of
+    /// `groups`, calling `color(k)` (display RGB) only for vertices of
+    /// triangles that survive culling and cover a pixel centre, once each
+    /// (clipping, which is rare, may ask again).
+    pub fn build_lazy<P: ClipSource>(
+        positions: P,
         color: impl Fn(usize) -> Vec3,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
-        let clip: Vec<Vec4> = (0..count).map(position).collect();
-        let projected = project_positions(&clip, vp);
+        let projected = project_vertices(&positions, vp);
         let colors = LazyColors {
-            clip,
+            shaded: vec![false; positions.len()],
+            positions,
             color,
-            shaded: vec![false; count],
         };
         ScreenBatch::build_from(projected, colors, groups, vp)
     }

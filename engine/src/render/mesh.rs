@@ -5,7 +5,8 @@ use glam::{Mat3, Mat4, Vec3};
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
+use super::project::TransformedPoints;
 use super::shading::{Lighting, encode_display};
 use crate::geom::TriMesh;
 
@@ -130,9 +131,13 @@ impl<'a> MeshInstance<'a> {
                 };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
+                let positions = TransformedPoints {
+                    points: &mesh.positions[first..=last],
+                    model,
+                    view_proj,
+                };
                 Some(ScreenBatch::build_lazy(
-                    last - first + 1,
-                    |k| to_clip(&view_proj, world(first + k)),
+                    positions,
                     color,
                     &[TriangleGroup {
                         triangles: &local,

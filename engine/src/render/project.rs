@@ -10,7 +10,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::batch::Viewport;
+use super::batch::{Viewport, to_clip};
 use super::centre_box::{MAGIC, WHOLE_MAX, centre_box, whole_numbers};
 use super::clip::{
     GUARD_BAND, OUT_BOTTOM, OUT_GUARD, OUT_LEFT, OUT_NEAR, OUT_RIGHT, OUT_TOP, outcode,
@@ -37,18 +37,6 @@ pub(crate) struct ProjectedVertex {
 }
 
 impl ProjectedVertex {
-    /// A placeholder, overwritten before use.
-    const UNSET: ProjectedVertex = ProjectedVertex {
-        centre_box: Vec4::ZERO,
-        screen: ScreenVertex {
-            x: 0,
-            y: 0,
-            inv_w: 0.0,
-            color_w: Vec3::ZERO,
-        },
-        code: 0,
-    };
-
     /// The projected vertex of screen vertex `screen`, whose clip outcode is
     /// `code`.
     #[inline]
@@ -69,38 +57,106 @@ impl ProjectedVertex {
 /// Spare room for the vertices of a few clipped polygons.
 const SPARE: usize = 16;
 
-/// The projected vertices (colour not set: `color_w` is zero) whose clip
-/// positions are `clip`, in order.
-pub(crate) fn project_positions(clip: &[Vec4], vp: Viewport) -> Vec<ProjectedVertex> {
-    let mut vertices = Vec::with_capacity(clip.len() + SPARE);
-    // Written in place below (records built elsewhere and copied in cost two
-    // block copies per group).
-    vertices.resize(clip.len(), ProjectedVertex::UNSET);
-    let mut out = vertices.chunks_exact_mut(LANES);
-    let mut groups = clip.chunks_exact(LANES);
-    for (out, group) in (&mut out).zip(&mut groups) {
-        let four = [group[0], group[1], group[2], group[3]];
-        if !project_four(four, vp, out) {
-            for (out, p) in out.iter_mut().zip(four) {
-                *out = ProjectedVertex::scalar(p, vp);
-            }
+/// Where the clip positions of a batch's vertices come from.
+pub(crate) trait ClipSource {
+    /// Number of vertices.
+    fn len(&self) -> usize;
+    /// The clip position of vertex `k`.
+    fn clip(&self, k: usize) -> Vec4;
+    /// The clip positions of vertices `4 * group .. 4 * group + 4` as lanes:
+    /// all x, all y, all z, all w (the same bits as [`ClipSource::clip`]).
+    fn lanes(&self, group: usize) -> [Vec4; LANES];
+}
+
+/// Clip positions given as they are.
+pub(crate) struct ClipPositions<'a>(pub &'a [Vec4]);
+
+impl ClipSource for ClipPositions<'_> {
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    #[inline]
+    fn clip(&self, k: usize) -> Vec4 {
+        self.0[k]
+    }
+
+    #[inline(always)]
+    fn lanes(&self, group: usize) -> [Vec4; LANES] {
+        let p = &self.0[LANES * group..LANES * group + LANES];
+        let rows = Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
+        [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis]
+    }
+}
+
+/// Model-space points placed by `model`, seen through `view_proj`: clip
+/// position `view_proj * (model * p)`, computed four points at a time with the
+/// same operations, in the same order, as glam's `transform_point3` and
+/// matrix-vector product.
+pub(crate) struct TransformedPoints<'a> {
+    /// Model-space positions.
+    pub points: &'a [Vec3],
+    /// Model-to-world transform (affine).
+    pub model: Mat4,
+    /// World-to-clip transform.
+    pub view_proj: Mat4,
+}
+
+impl ClipSource for TransformedPoints<'_> {
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    #[inline]
+    fn clip(&self, k: usize) -> Vec4 {
+        to_clip(&self.view_proj, self.model.transform_point3(self.points[k]))
+    }
+
+    #[inline(always)]
+    fn lanes(&self, group: usize) -> [Vec4; LANES] {
+        let p = &self.points[LANES * group..LANES * group + LANES];
+        let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
+        let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
+        let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
+        let m = &self.model;
+        // transform_point3: ((x_axis x + y_axis y) + z_axis z) + w_axis.
+        let world = [0, 1, 2].map(|r| {
+            x * m.x_axis[r] + y * m.y_axis[r] + z * m.z_axis[r] + Vec4::splat(m.w_axis[r])
+        });
+        let [wx, wy, wz] = world;
+        let v = &self.view_proj;
+        // Mat4 * Vec4 with w = 1: ((x_axis x + y_axis y) + z_axis z) + w_axis * 1.
+        [0, 1, 2, 3].map(|r| {
+            wx * v.x_axis[r] + wy * v.y_axis[r] + wz * v.z_axis[r] + Vec4::splat(v.w_axis[r])
+        })
+    }
+}
+
+/// The projected vertices (colour not set: `color_w` is zero) of the clip
+/// positions of `source`, in order.
+pub(crate) fn project_vertices(source: &impl ClipSource, vp: Viewport) -> Vec<ProjectedVertex> {
+    let count = source.len();
+    // Records are pushed one by one, built in place (arrays of four built
+    // elsewhere and copied in cost block copies; zeroing first costs a pass).
+    let mut vertices = Vec::with_capacity(count + SPARE);
+    for group in 0..count / LANES {
+        if !project_four(source.lanes(group), vp, &mut vertices) {
+            let scalar = |k| ProjectedVertex::scalar(source.clip(LANES * group + k), vp);
+            vertices.extend((0..LANES).map(scalar));
         }
     }
-    for (out, &p) in out.into_remainder().iter_mut().zip(groups.remainder()) {
-        *out = ProjectedVertex::scalar(p, vp);
-    }
+    let scalar = |k| ProjectedVertex::scalar(source.clip(k), vp);
+    vertices.extend((count - count % LANES..count).map(scalar));
     vertices
 }
 
-/// Writes to `out` (four records) the screen vertices, outcodes and centre
-/// boxes of four clip positions, one per lane, and returns true; or returns
-/// false, writing nothing, when a fixed-point coordinate is too large (or NaN)
+/// Appends to `out` the screen vertices, outcodes and centre boxes of four
+/// clip positions given as lanes (x, y, z, w), and returns true; or returns
+/// false, appending nothing, when a fixed-point coordinate is too large (or NaN)
 /// for the exact lane conversion.
 #[inline(always)]
-fn project_four(clip: [Vec4; LANES], vp: Viewport, out: &mut [ProjectedVertex]) -> bool {
-    // Rows of the transpose: all x, all y, all z, all w.
-    let lanes = Mat4::from_cols(clip[0], clip[1], clip[2], clip[3]).transpose();
-    let (x, y, z, w) = (lanes.x_axis, lanes.y_axis, lanes.z_axis, lanes.w_axis);
+fn project_four(lanes: [Vec4; LANES], vp: Viewport, out: &mut Vec<ProjectedVertex>) -> bool {
+    let [x, y, z, w] = lanes;
     // The same operations as `Viewport::project`, lane by lane.
     let inv_w = Vec4::ONE / w;
     let sx = (x * inv_w * 0.5 + 0.5) * vp.width as f32;
@@ -119,8 +175,8 @@ fn project_four(clip: [Vec4; LANES], vp: Viewport, out: &mut [ProjectedVertex]) 
     let inv_w = inv_w.to_array();
     let codes = outcodes(x, y, z, w);
     let boxes = centre_boxes(tx, ty);
-    for (k, out) in out.iter_mut().enumerate().take(LANES) {
-        *out = ProjectedVertex {
+    for k in 0..LANES {
+        out.push(ProjectedVertex {
             centre_box: boxes[k],
             screen: ScreenVertex {
                 x: ix[k],
@@ -129,7 +185,7 @@ fn project_four(clip: [Vec4; LANES], vp: Viewport, out: &mut [ProjectedVertex]) 
                 color_w: Vec3::ZERO,
             },
             code: codes[k],
-        };
+        });
     }
     true
 }
@@ -217,6 +273,42 @@ mod tests {
     }
 
     #[test]
+    fn transformed_point_lanes_are_the_scalar_clip_positions() {
+        let mut rng = SplitMix64::new(0xa409_3822_299f_31d0);
+        let camera = crate::render::Camera::perspective(0.9, 64, 48, 0.05, 50.0)
+            .unwrap()
+            .look_at(Vec3::new(1.0, 3.0, -8.0), Vec3::ZERO, Vec3::Y);
+        let mut v = || rng.range(-5.0, 5.0);
+        let points: Vec<Vec3> = (0..4 * 500).map(|_| Vec3::new(v(), v(), v())).collect();
+        let models = [
+            Mat4::IDENTITY,
+            Mat4::from_scale_rotation_translation(
+                Vec3::new(1.5, 0.7, 2.0),
+                glam::Quat::from_rotation_y(0.7) * glam::Quat::from_rotation_x(-0.3),
+                Vec3::new(0.3, -1.0, 2.5),
+            ),
+        ];
+        for model in models {
+            let source = TransformedPoints {
+                points: &points,
+                model,
+                view_proj: camera.view_proj(),
+            };
+            for group in 0..points.len() / LANES {
+                let lanes = source.lanes(group);
+                for k in 0..LANES {
+                    let clip = source.clip(LANES * group + k);
+                    let from_lanes = Vec4::from_array(lanes.map(|lane| lane[k]));
+                    assert_eq!(
+                        from_lanes.to_array().map(f32::to_bits),
+                        clip.to_array().map(f32::to_bits)
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn lanes_give_the_scalar_screen_vertices_and_outcodes() {
         let mut rng = SplitMix64::new(0x243f_6a88_85a3_08d3);
         let vp = Viewport {
@@ -226,7 +318,7 @@ mod tests {
         // Lengths that leave every remainder.
         for count in [0, 1, 3, 4, 7, 20_000, 20_003] {
             let clip = awkward_positions(&mut rng, count);
-            let out = project_positions(&clip, vp);
+            let out = project_vertices(&ClipPositions(&clip), vp);
             assert_eq!(out.len(), count);
             for (got, &p) in out.iter().zip(&clip) {
                 let expected = vp.project_position(p);

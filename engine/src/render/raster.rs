@@ -534,6 +534,7 @@ mod tests {
     use crate::render::Camera;
     use crate::render::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport};
     use crate::render::clip::ClipVertex;
+    use crate::render::project::ClipPositions;
     use crate::render::small_triangle::SmallTriangle;
     use crate::rng::SplitMix64;
 
@@ -776,9 +777,9 @@ mod tests {
             height: h,
         };
         let calls = std::cell::RefCell::new(vec![0u32; verts.len()]);
+        let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
         let lazy = ScreenBatch::build_lazy(
-            verts.len(),
-            |k| verts[k].pos,
+            ClipPositions(&clip),
             |k| {
                 calls.borrow_mut()[k] += 1;
                 verts[k].color
