@@ -108,8 +108,16 @@ impl<'a> MeshInstance<'a> {
                 if last >= mesh.positions.len() {
                     return None;
                 }
+                // An identity model (static meshes) is skipped in the lighting
+                // and the fog distance: multiplying by it changes at most the
+                // sign of a zero coordinate, which neither the normalisation,
+                // the lighting nor the distance tells apart.
+                let identity = model == Mat4::IDENTITY;
                 let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
-                let world = |v: usize| model.transform_point3(mesh.positions[v]);
+                let world = |v: usize| match identity {
+                    true => mesh.positions[v],
+                    false => model.transform_point3(mesh.positions[v]),
+                };
                 // Lit (or baked) and fogged, only for vertices of triangles that
                 // reach the screen.
                 let color = |k: usize| {
@@ -118,7 +126,8 @@ impl<'a> MeshInstance<'a> {
                         Some(&baked) => baked,
                         None => {
                             let n = mesh.normals.get(v).copied().unwrap_or(Vec3::Y);
-                            let n = (normal_matrix * n).normalize_or(Vec3::Y);
+                            let n = if identity { n } else { normal_matrix * n };
+                            let n = n.normalize_or(Vec3::Y);
                             let sky = 0.65 + 0.35 * n.y;
                             encode_display(lighting.radiance(self.color, n, sky, 1.0))
                         }
@@ -131,11 +140,8 @@ impl<'a> MeshInstance<'a> {
                 };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
-                let positions = TransformedPoints {
-                    points: &mesh.positions[first..=last],
-                    model,
-                    view_proj,
-                };
+                let positions =
+                    TransformedPoints::new(&mesh.positions[first..=last], model, view_proj);
                 Some(ScreenBatch::build_lazy(
                     positions,
                     color,

@@ -95,11 +95,34 @@ impl ClipSource for ClipPositions<'_> {
 /// matrix-vector product.
 pub(crate) struct TransformedPoints<'a> {
     /// Model-space positions.
-    pub points: &'a [Vec3],
+    points: &'a [Vec3],
     /// Model-to-world transform (affine).
-    pub model: Mat4,
+    model: Mat4,
     /// World-to-clip transform.
-    pub view_proj: Mat4,
+    view_proj: Mat4,
+    /// The rows of `model` and `view_proj` (their transposes' columns).
+    rows: [Mat4; 2],
+}
+
+impl<'a> TransformedPoints<'a> {
+    /// The points `points` placed by the affine `model`, seen through
+    /// `view_proj`.
+    pub fn new(points: &'a [Vec3], model: Mat4, view_proj: Mat4) -> TransformedPoints<'a> {
+        TransformedPoints {
+            points,
+            model,
+            view_proj,
+            rows: [model.transpose(), view_proj.transpose()],
+        }
+    }
+}
+
+/// Row `row` of a matrix applied to four points `(x, y, z, 1)` given as
+/// lanes: `((row.x x + row.y y) + row.z z) + row.w`, the sums of glam's
+/// matrix products in their order.
+#[inline(always)]
+fn row_times(row: Vec4, x: Vec4, y: Vec4, z: Vec4) -> Vec4 {
+    x * row.x + y * row.y + z * row.z + Vec4::splat(row.w)
 }
 
 impl ClipSource for TransformedPoints<'_> {
@@ -118,17 +141,20 @@ impl ClipSource for TransformedPoints<'_> {
         let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
         let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
         let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
-        let m = &self.model;
         // transform_point3: ((x_axis x + y_axis y) + z_axis z) + w_axis.
-        let world = [0, 1, 2].map(|r| {
-            x * m.x_axis[r] + y * m.y_axis[r] + z * m.z_axis[r] + Vec4::splat(m.w_axis[r])
-        });
-        let [wx, wy, wz] = world;
-        let v = &self.view_proj;
+        let [m, v] = &self.rows;
+        let [wx, wy, wz] = [
+            row_times(m.x_axis, x, y, z),
+            row_times(m.y_axis, x, y, z),
+            row_times(m.z_axis, x, y, z),
+        ];
         // Mat4 * Vec4 with w = 1: ((x_axis x + y_axis y) + z_axis z) + w_axis * 1.
-        [0, 1, 2, 3].map(|r| {
-            wx * v.x_axis[r] + wy * v.y_axis[r] + wz * v.z_axis[r] + Vec4::splat(v.w_axis[r])
-        })
+        [
+            row_times(v.x_axis, wx, wy, wz),
+            row_times(v.y_axis, wx, wy, wz),
+            row_times(v.z_axis, wx, wy, wz),
+            row_times(v.w_axis, wx, wy, wz),
+        ]
     }
 }
 
@@ -289,11 +315,7 @@ mod tests {
             ),
         ];
         for model in models {
-            let source = TransformedPoints {
-                points: &points,
-                model,
-                view_proj: camera.view_proj(),
-            };
+            let source = TransformedPoints::new(&points, model, camera.view_proj());
             for group in 0..points.len() / LANES {
                 let lanes = source.lanes(group);
                 for k in 0..LANES {
