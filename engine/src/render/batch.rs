@@ -6,7 +6,9 @@ use glam::{Vec3, Vec4};
 
 use super::centre_box::{screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
-use super::project::{ClipPositions, ClipSource, ProjectedVertex, project_vertices};
+use super::project::{
+    ClipPositions, ClipSource, ProjectedVertex, VertexShader, project_vertices, shade_vertices,
+};
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
 };
@@ -122,53 +124,33 @@ impl Viewport {
     }
 }
 
-/// Where the vertices of a batch get their colour: all up front
-/// ([`EagerColors`]) or only when a triangle using them is kept ([`LazyColors`]).
-trait VertexColors {
-    /// Makes sure `vertices[k].screen.color_w` is set.
-    fn shade(&mut self, vertices: &mut [ProjectedVertex], k: usize);
-    /// The clip vertex `k` (position and colour), for clipping.
+/// Where clipping finds the clip position and colour of a batch's vertex
+/// (the projected vertices keep neither).
+trait ClipVertices {
+    /// The clip vertex `k` (position and colour).
     fn clip_vertex(&self, k: usize) -> ClipVertex;
 }
 
 /// Colours already projected with the positions.
 struct EagerColors<'a>(&'a [ClipVertex]);
 
-impl VertexColors for EagerColors<'_> {
-    #[inline]
-    fn shade(&mut self, _: &mut [ProjectedVertex], _: usize) {}
-
+impl ClipVertices for EagerColors<'_> {
     fn clip_vertex(&self, k: usize) -> ClipVertex {
         self.0[k]
     }
 }
 
-/// Colours computed on first use: `color(k)` (display RGB) of vertex `k`,
-/// whose clip position `positions` gives.
-struct LazyColors<P, C> {
+/// Colours set before the triangles are set up, for all vertices.
+struct ShadedColors<P, S> {
     positions: P,
-    color: C,
-    /// Whether the vertex's colour / w is set (clipped polygons' vertices are).
-    shaded: Vec<bool>,
+    shader: S,
 }
 
-impl<P: ClipSource, C: Fn(usize) -> Vec3> VertexColors for LazyColors<P, C> {
-    #[inline]
-    fn shade(&mut self, vertices: &mut [ProjectedVertex], k: usize) {
-        match self.shaded.get_mut(k) {
-            Some(done) if !*done => {
-                *done = true;
-                let v = &mut vertices[k].screen;
-                v.color_w = (self.color)(k) * v.inv_w;
-            }
-            _ => {}
-        }
-    }
-
+impl<P: ClipSource, S: VertexShader> ClipVertices for ShadedColors<P, S> {
     fn clip_vertex(&self, k: usize) -> ClipVertex {
         ClipVertex {
             pos: self.positions.clip(k),
-            color: (self.color)(k),
+            color: self.shader.color(k),
         }
     }
 }
@@ -184,29 +166,24 @@ impl ScreenBatch {
         ScreenBatch::build_from(projected, EagerColors(verts), groups, vp)
     }
 
-    /// Projects the vertices of `positions` and sets up every triangle of
-    /// `groups`, calling `color(k)` (display RGB) only for vertices of
-    /// triangles that survive culling and cover a pixel centre, once each
-    /// (clipping, which is rare, may ask again).
-    pub fn build_lazy<P: ClipSource>(
+    /// Projects the vertices of `positions`, colours them four at a time
+    /// with `shader` and sets up every triangle of `groups`.
+    pub fn build_shaded<P: ClipSource, S: VertexShader>(
         positions: P,
-        color: impl Fn(usize) -> Vec3,
+        shader: S,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
-        let projected = project_vertices(&positions, vp);
-        let colors = LazyColors {
-            shaded: vec![false; positions.len()],
-            positions,
-            color,
-        };
-        ScreenBatch::build_from(projected, colors, groups, vp)
+        let mut projected = project_vertices(&positions, vp);
+        shade_vertices(&mut projected, &shader);
+        let clip_vertices = ShadedColors { positions, shader };
+        ScreenBatch::build_from(projected, clip_vertices, groups, vp)
     }
 
     /// Sets up every triangle of `groups` over the `projected` vertices.
     fn build_from(
         mut projected: Vec<ProjectedVertex>,
-        mut colors: impl VertexColors,
+        clip_vertices: impl ClipVertices,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
@@ -228,10 +205,13 @@ impl ScreenBatch {
                     continue;
                 }
                 if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.push(&mut projected, &mut colors, tri, group.cull, limits);
+                    batch.push(&projected, tri, group.cull, limits);
                     continue;
                 }
-                clip_triangle([a, b, c].map(|k| colors.clip_vertex(k)), &mut polygon);
+                clip_triangle(
+                    [a, b, c].map(|k| clip_vertices.clip_vertex(k)),
+                    &mut polygon,
+                );
                 if polygon.is_empty() {
                     continue;
                 }
@@ -245,7 +225,7 @@ impl ScreenBatch {
                 projected.extend(vertices);
                 for k in 1..polygon.len() as u32 - 1 {
                     let tri = [base, base + k, base + k + 1];
-                    batch.push(&mut projected, &mut colors, tri, group.cull, limits);
+                    batch.push(&projected, tri, group.cull, limits);
                 }
             }
         }
@@ -277,16 +257,9 @@ impl ScreenBatch {
     }
 
     /// Culls, orients, sets up and keeps one triangle if it covers a pixel
-    /// centre, shading its vertices only then.
+    /// centre.
     #[inline(always)]
-    fn push(
-        &mut self,
-        projected: &mut [ProjectedVertex],
-        colors: &mut impl VertexColors,
-        tri: [u32; 3],
-        cull: CullMode,
-        limits: Vec4,
-    ) {
+    fn push(&mut self, projected: &[ProjectedVertex], tri: [u32; 3], cull: CullMode, limits: Vec4) {
         let [a, b, c] = tri.map(|k| k as usize);
         // Most sub-pixel triangles have no pixel centre in their box: drop them
         // first (the box does not depend on the winding).
@@ -307,10 +280,6 @@ impl ScreenBatch {
         };
         let v = vertices(projected, order);
         let Some(small) = SmallTriangle::of(v, span) else {
-            for k in order {
-                colors.shade(projected, k);
-            }
-            let v = vertices(projected, order);
             let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
             self.push_triangle(tri, span);
             return;
@@ -319,10 +288,7 @@ impl ScreenBatch {
         if mask == 0 {
             return;
         }
-        for k in order {
-            colors.shade(projected, k);
-        }
-        let planes = small.planes(vertices(projected, order), area);
+        let planes = small.planes(v, area);
         if mask.is_power_of_two() {
             let dot = Dot::in_box(&planes, span, mask);
             self.bands

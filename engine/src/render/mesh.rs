@@ -1,13 +1,14 @@
 //! Triangle-mesh instances: one transform for the whole mesh, optionally one
 //! more per named part (rigid-part characters: a capsule per bone).
 
-use glam::{Mat3, Mat4, Vec3};
+use glam::{Mat4, Vec3};
 use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
+use super::mesh_shader::MeshShader;
 use super::project::TransformedPoints;
-use super::shading::{Lighting, encode_display};
+use super::shading::Lighting;
 use crate::geom::TriMesh;
 
 /// Triangles per screen batch: the unit of parallel vertex work for big meshes.
@@ -108,43 +109,25 @@ impl<'a> MeshInstance<'a> {
                 if last >= mesh.positions.len() {
                     return None;
                 }
-                // An identity model (static meshes) is skipped in the lighting
-                // and the fog distance: multiplying by it changes at most the
-                // sign of a zero coordinate, which neither the normalisation,
-                // the lighting nor the distance tells apart.
-                let identity = model == Mat4::IDENTITY;
-                let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
-                let world = |v: usize| match identity {
-                    true => mesh.positions[v],
-                    false => model.transform_point3(mesh.positions[v]),
-                };
-                // Lit (or baked) and fogged, only for vertices of triangles that
-                // reach the screen.
-                let color = |k: usize| {
-                    let v = first + k;
-                    let display = match self.vertex_colors.and_then(|c| c.get(v)) {
-                        Some(&baked) => baked,
-                        None => {
-                            let n = mesh.normals.get(v).copied().unwrap_or(Vec3::Y);
-                            let n = if identity { n } else { normal_matrix * n };
-                            let n = n.normalize_or(Vec3::Y);
-                            let sky = 0.65 + 0.35 * n.y;
-                            encode_display(lighting.radiance(self.color, n, sky, 1.0))
-                        }
-                    };
-                    // Without fog the distance is not needed.
-                    if lighting.fog_density == 0.0 {
-                        return display;
-                    }
-                    lighting.apply_fog(display, (world(v) - camera.eye).length())
+                // The batch's run of a per-vertex slice (shorter when the
+                // slice ends inside the run).
+                let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
+                let shader = MeshShader {
+                    points: &mesh.positions[first..=last],
+                    normals: run(&mesh.normals),
+                    baked: self.vertex_colors.map(run),
+                    model,
+                    albedo: self.color,
+                    lighting: *lighting,
+                    eye: camera.eye,
                 };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
                 let positions =
                     TransformedPoints::new(&mesh.positions[first..=last], model, view_proj);
-                Some(ScreenBatch::build_lazy(
+                Some(ScreenBatch::build_shaded(
                     positions,
-                    color,
+                    shader,
                     &[TriangleGroup {
                         triangles: &local,
                         cull: self.cull,

@@ -33,6 +33,7 @@ mod follow;
 mod frame;
 mod grass;
 mod mesh;
+mod mesh_shader;
 mod project;
 mod raster;
 mod shading;

@@ -18,7 +18,7 @@ use super::clip::{
 use super::raster::{ONE, ScreenVertex};
 
 /// Vertices per step of the lane pass.
-const LANES: usize = 4;
+pub(crate) const LANES: usize = 4;
 
 /// Fixed-point values below this magnitude (16,384 pixels) convert exactly
 /// through the lanes (see [`whole_numbers`]); a group with a larger, infinite
@@ -121,7 +121,7 @@ impl<'a> TransformedPoints<'a> {
 /// lanes: `((row.x x + row.y y) + row.z z) + row.w`, the sums of glam's
 /// matrix products in their order.
 #[inline(always)]
-fn row_times(row: Vec4, x: Vec4, y: Vec4, z: Vec4) -> Vec4 {
+pub(crate) fn row_times(row: Vec4, x: Vec4, y: Vec4, z: Vec4) -> Vec4 {
     x * row.x + y * row.y + z * row.z + Vec4::splat(row.w)
 }
 
@@ -155,6 +155,29 @@ impl ClipSource for TransformedPoints<'_> {
             row_times(v.z_axis, wx, wy, wz),
             row_times(v.w_axis, wx, wy, wz),
         ]
+    }
+}
+
+/// Where the display colours of a batch's vertices come from.
+pub(crate) trait VertexShader {
+    /// The colour of vertex `k`.
+    fn color(&self, k: usize) -> Vec3;
+    /// The colours of vertices `4 * group .. 4 * group + 4` (the same bits as
+    /// [`VertexShader::color`]).
+    fn colors(&self, group: usize) -> [Vec3; LANES];
+}
+
+/// Sets the colour / w of every projected vertex from `shader`.
+pub(crate) fn shade_vertices(vertices: &mut [ProjectedVertex], shader: &impl VertexShader) {
+    let mut groups = vertices.chunks_exact_mut(LANES);
+    for (group, four) in (&mut groups).enumerate() {
+        for (v, color) in four.iter_mut().zip(shader.colors(group)) {
+            v.screen.color_w = color * v.screen.inv_w;
+        }
+    }
+    let base = vertices.len() - vertices.len() % LANES;
+    for (k, v) in vertices[base..].iter_mut().enumerate() {
+        v.screen.color_w = shader.color(base + k) * v.screen.inv_w;
     }
 }
 
