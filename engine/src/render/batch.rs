@@ -4,9 +4,13 @@
 
 use glam::{Vec3, Vec4};
 
-use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
+use super::centre_box::{screen_limits, triangle_span};
+use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
+use super::project::{
+    ClipPositions, ClipSource, ProjectedVertex, VertexShader, project_vertices, shade_vertices,
+};
 use super::raster::{
-    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenBox, ScreenVertex, Triangle, signed_area,
+    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
 };
 use super::small_triangle::SmallTriangle;
 
@@ -44,15 +48,43 @@ pub(crate) struct ScreenBatch {
     tris: Vec<Triangle>,
     /// Triangles covering one pixel centre, kept as that pixel.
     dots: Vec<Dot>,
-    /// Every kept triangle in submission order: an index into `tris`, or into
-    /// `dots` with [`DOT_ENTRY`] set.
-    entries: Vec<u32>,
-    /// First and last pixel row of each entry.
-    rows: Vec<(i32, i32)>,
     /// Edge functions of the triangles too big for a coverage mask.
     edges: Vec<Edges>,
-    /// Entries of each band, in submission order.
-    bins: BandBins,
+    /// The kept triangles of each band, in submission order.
+    bands: BandEntries,
+}
+
+/// The entries of each band of rows (band `k`: rows `k * BAND_ROWS ..`), each
+/// an index into a batch's `tris`, or into its `dots` with [`DOT_ENTRY`] set,
+/// in submission order. Filled as triangles are kept: no binning pass after.
+#[derive(Debug, Default)]
+struct BandEntries(Vec<Vec<u32>>);
+
+impl BandEntries {
+    /// No entries in the bands of a screen `height` pixels tall.
+    fn new(height: i32) -> BandEntries {
+        let bands = (height.max(0) + BAND_ROWS - 1) >> BAND_SHIFT;
+        BandEntries(vec![Vec::new(); bands as usize])
+    }
+
+    /// Appends `entry` to the bands of pixel rows `y0..=y1` (`0 <= y0 <= y1 <
+    /// height`).
+    #[inline(always)]
+    fn push(&mut self, entry: u32, (y0, y1): (i32, i32)) {
+        let (first, last) = ((y0 >> BAND_SHIFT) as usize, (y1 >> BAND_SHIFT) as usize);
+        for band in &mut self.0[first..=last] {
+            band.push(entry);
+        }
+    }
+
+    /// The entries of band `band`, in submission order.
+    #[inline]
+    fn band(&self, band: i32) -> &[u32] {
+        usize::try_from(band)
+            .ok()
+            .and_then(|k| self.0.get(k))
+            .map_or(&[], Vec::as_slice)
+    }
 }
 
 /// The viewport a batch is built for.
@@ -65,7 +97,7 @@ pub(crate) struct Viewport {
 impl Viewport {
     /// The screen vertex of clip position `pos`, its colour not yet set.
     #[inline]
-    fn project_position(&self, pos: Vec4) -> ScreenVertex {
+    pub(crate) fn project_position(&self, pos: Vec4) -> ScreenVertex {
         self.project(&ClipVertex {
             pos,
             color: Vec3::ZERO,
@@ -92,53 +124,33 @@ impl Viewport {
     }
 }
 
-/// Where the vertices of a batch get their colour: all up front
-/// ([`EagerColors`]) or only when a triangle using them is kept ([`LazyColors`]).
-trait VertexColors {
-    /// Makes sure `screen[k].color_w` is set.
-    fn shade(&mut self, screen: &mut [ScreenVertex], k: usize);
-    /// The clip vertex `k` (position and colour), for clipping.
+/// Where clipping finds the clip position and colour of a batch's vertex
+/// (the projected vertices keep neither).
+trait ClipVertices {
+    /// The clip vertex `k` (position and colour).
     fn clip_vertex(&self, k: usize) -> ClipVertex;
 }
 
 /// Colours already projected with the positions.
 struct EagerColors<'a>(&'a [ClipVertex]);
 
-impl VertexColors for EagerColors<'_> {
-    #[inline]
-    fn shade(&mut self, _: &mut [ScreenVertex], _: usize) {}
-
+impl ClipVertices for EagerColors<'_> {
     fn clip_vertex(&self, k: usize) -> ClipVertex {
         self.0[k]
     }
 }
 
-/// Colours computed on first use: `color(k)` (display RGB) of vertex `k`,
-/// whose clip position is `clip[k]`.
-struct LazyColors<C> {
-    clip: Vec<Vec4>,
-    color: C,
-    /// Whether the vertex's colour / w is set (clipped polygons' vertices are).
-    shaded: Vec<bool>,
+/// Colours set before the triangles are set up, for all vertices.
+struct ShadedColors<P, S> {
+    positions: P,
+    shader: S,
 }
 
-impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
-    #[inline]
-    fn shade(&mut self, screen: &mut [ScreenVertex], k: usize) {
-        match self.shaded.get_mut(k) {
-            Some(done) if !*done => {
-                *done = true;
-                let v = &mut screen[k];
-                v.color_w = (self.color)(k) * v.inv_w;
-            }
-            _ => {}
-        }
-    }
-
+impl<P: ClipSource, S: VertexShader> ClipVertices for ShadedColors<P, S> {
     fn clip_vertex(&self, k: usize) -> ClipVertex {
         ClipVertex {
-            pos: self.clip[k],
-            color: (self.color)(k),
+            pos: self.positions.clip(k),
+            color: self.shader.color(k),
         }
     }
 }
@@ -146,39 +158,32 @@ impl<C: Fn(usize) -> Vec3> VertexColors for LazyColors<C> {
 impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
-        let screen = verts.iter().map(|v| vp.project(v)).collect();
-        let codes = verts.iter().map(|v| outcode(v.pos)).collect();
-        ScreenBatch::build_from(screen, codes, EagerColors(verts), groups, vp)
+        let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
+        let mut projected = project_vertices(&ClipPositions(&clip), vp);
+        for (p, v) in projected.iter_mut().zip(verts) {
+            p.screen.color_w = v.color * p.screen.inv_w;
+        }
+        ScreenBatch::build_from(projected, EagerColors(verts), groups, vp)
     }
 
-    /// Projects `count` vertices (clip position of vertex `k`: `position(k)`)
-    /// and sets up every triangle of `groups`, calling `color(k)` (display RGB)
-    /// only for vertices of triangles that survive culling and cover a pixel
-    /// centre, once each (clipping, which is rare, may ask again).
-    pub fn build_lazy(
-        count: usize,
-        position: impl Fn(usize) -> Vec4,
-        color: impl Fn(usize) -> Vec3,
+    /// Projects the vertices of `positions`, colours them four at a time
+    /// with `shader` and sets up every triangle of `groups`.
+    pub fn build_shaded<P: ClipSource, S: VertexShader>(
+        positions: P,
+        shader: S,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
-        let clip: Vec<Vec4> = (0..count).map(position).collect();
-        let screen = clip.iter().map(|&p| vp.project_position(p)).collect();
-        let codes = clip.iter().map(|&p| outcode(p)).collect();
-        let colors = LazyColors {
-            clip,
-            color,
-            shaded: vec![false; count],
-        };
-        ScreenBatch::build_from(screen, codes, colors, groups, vp)
+        let mut projected = project_vertices(&positions, vp);
+        shade_vertices(&mut projected, &shader);
+        let clip_vertices = ShadedColors { positions, shader };
+        ScreenBatch::build_from(projected, clip_vertices, groups, vp)
     }
 
-    /// Sets up every triangle of `groups` over projected vertices `screen` with
-    /// their clip outcodes `codes`.
+    /// Sets up every triangle of `groups` over the `projected` vertices.
     fn build_from(
-        mut screen: Vec<ScreenVertex>,
-        codes: Vec<u8>,
-        mut colors: impl VertexColors,
+        mut projected: Vec<ProjectedVertex>,
+        clip_vertices: impl ClipVertices,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
@@ -187,38 +192,43 @@ impl ScreenBatch {
         let mut batch = ScreenBatch {
             tris: Vec::with_capacity(submitted),
             dots: Vec::with_capacity(submitted),
-            entries: Vec::with_capacity(submitted),
-            rows: Vec::with_capacity(submitted),
-            ..ScreenBatch::default()
+            edges: Vec::new(),
+            bands: BandEntries::new(vp.height),
         };
         let mut polygon = Vec::with_capacity(9);
+        let limits = screen_limits(vp.width, vp.height);
         for group in groups {
             for &tri in group.triangles {
                 let [a, b, c] = tri.map(|k| k as usize);
-                let (ca, cb, cc) = (codes[a], codes[b], codes[c]);
+                let (ca, cb, cc) = (projected[a].code, projected[b].code, projected[c].code);
                 if ca & cb & cc & OUT_FRUSTUM != 0 {
                     continue;
                 }
                 if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.push(&mut screen, &mut colors, tri, group.cull, vp);
+                    batch.push(&projected, tri, group.cull, limits);
                     continue;
                 }
-                clip_triangle([a, b, c].map(|k| colors.clip_vertex(k)), &mut polygon);
+                clip_triangle(
+                    [a, b, c].map(|k| clip_vertices.clip_vertex(k)),
+                    &mut polygon,
+                );
                 if polygon.is_empty() {
                     continue;
                 }
                 // Clipped polygons append their (already shaded) vertices,
                 // dropped with the batch's.
-                let base = screen.len() as u32;
-                screen.extend(polygon.iter().map(|v| vp.project(v)));
+                let base = projected.len() as u32;
+                // Not clipped again: no outcode needed.
+                let vertices = polygon
+                    .iter()
+                    .map(|v| ProjectedVertex::new(vp.project(v), 0));
+                projected.extend(vertices);
                 for k in 1..polygon.len() as u32 - 1 {
                     let tri = [base, base + k, base + k + 1];
-                    batch.push(&mut screen, &mut colors, tri, group.cull, vp);
+                    batch.push(&projected, tri, group.cull, limits);
                 }
             }
         }
-        let entries = batch.entries.iter().copied();
-        batch.bins = BandBins::new(entries.zip(batch.rows.iter().copied()));
         batch
     }
 
@@ -230,14 +240,14 @@ impl ScreenBatch {
 
     /// Number of set-up triangles (dots included).
     pub fn len(&self) -> usize {
-        self.entries.len()
+        self.tris.len() + self.dots.len()
     }
 
     /// Fills the band (band index `band`, of [`BAND_ROWS`] rows) with the
     /// triangles touching it, in submission order.
     #[inline]
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
-        for &t in self.bins.band(band) {
+        for &t in self.bands.band(band) {
             if t & DOT_ENTRY != 0 {
                 self.dots[(t & !DOT_ENTRY) as usize].draw(target);
             } else {
@@ -247,25 +257,17 @@ impl ScreenBatch {
     }
 
     /// Culls, orients, sets up and keeps one triangle if it covers a pixel
-    /// centre, shading its vertices only then.
+    /// centre.
     #[inline(always)]
-    fn push(
-        &mut self,
-        screen: &mut [ScreenVertex],
-        colors: &mut impl VertexColors,
-        tri: [u32; 3],
-        cull: CullMode,
-        vp: Viewport,
-    ) {
+    fn push(&mut self, projected: &[ProjectedVertex], tri: [u32; 3], cull: CullMode, limits: Vec4) {
         let [a, b, c] = tri.map(|k| k as usize);
-        let (sa, sb, sc) = (&screen[a], &screen[b], &screen[c]);
         // Most sub-pixel triangles have no pixel centre in their box: drop them
         // first (the box does not depend on the winding).
-        let bounds = ScreenBox::of([sa, sb, sc]);
-        let span = bounds.span(vp.width, vp.height);
-        if span.is_empty() {
+        let (pa, pb, pc) = (&projected[a], &projected[b], &projected[c]);
+        let Some(span) = triangle_span(pa.centre_box, pb.centre_box, pc.centre_box, limits) else {
             return;
-        }
+        };
+        let (sa, sb, sc) = (&pa.screen, &pb.screen, &pc.screen);
         let area = signed_area(sa, sb, sc);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen.
@@ -276,12 +278,8 @@ impl ScreenBatch {
         } else {
             return;
         };
-        let v = vertices(screen, order);
-        let Some(small) = SmallTriangle::of(v, &bounds, span) else {
-            for k in order {
-                colors.shade(screen, k);
-            }
-            let v = vertices(screen, order);
+        let v = vertices(projected, order);
+        let Some(small) = SmallTriangle::of(v, span) else {
             let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
             self.push_triangle(tri, span);
             return;
@@ -290,14 +288,11 @@ impl ScreenBatch {
         if mask == 0 {
             return;
         }
-        for k in order {
-            colors.shade(screen, k);
-        }
-        let planes = small.planes(vertices(screen, order), area);
+        let planes = small.planes(v, area);
         if mask.is_power_of_two() {
             let dot = Dot::in_box(&planes, span, mask);
-            self.entries.push(self.dots.len() as u32 | DOT_ENTRY);
-            self.rows.push((dot.row(), dot.row()));
+            self.bands
+                .push(self.dots.len() as u32 | DOT_ENTRY, (dot.row(), dot.row()));
             self.dots.push(dot);
         } else {
             self.push_triangle(Triangle::masked(planes, span, mask), span);
@@ -307,8 +302,7 @@ impl ScreenBatch {
     /// Keeps a set-up triangle whose box is `span`.
     #[inline]
     fn push_triangle(&mut self, tri: Triangle, span: PixelSpan) {
-        self.entries.push(self.tris.len() as u32);
-        self.rows.push((span.y0, span.y1));
+        self.bands.push(self.tris.len() as u32, (span.y0, span.y1));
         self.tris.push(tri);
     }
 }
@@ -316,13 +310,15 @@ impl ScreenBatch {
 /// The screen vertices of `order` (an array literal: `array::map` with
 /// bounds-checked indexing becomes a call per triangle).
 #[inline(always)]
-fn vertices(screen: &[ScreenVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
-    [&screen[order[0]], &screen[order[1]], &screen[order[2]]]
+fn vertices(projected: &[ProjectedVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
+    let screen = |k: usize| &projected[k].screen;
+    [screen(order[0]), screen(order[1]), screen(order[2])]
 }
 
 /// Items binned by the bands of rows they touch: a counting sort that keeps
 /// each band's items in the order given (so depth ties resolve the same way
-/// whatever the thread count). Shared by the screen batches and the grass layer.
+/// whatever the thread count). Used by the grass layer, whose pieces are sorted
+/// before they are binned.
 #[derive(Debug, Default)]
 pub(crate) struct BandBins {
     /// First band any item touches.

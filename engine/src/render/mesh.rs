@@ -1,12 +1,14 @@
 //! Triangle-mesh instances: one transform for the whole mesh, optionally one
 //! more per named part (rigid-part characters: a capsule per bone).
 
-use glam::{Mat3, Mat4, Vec3};
+use glam::{Mat4, Vec3};
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
-use super::shading::{Lighting, encode_display};
+use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
+use super::mesh_shader::MeshShader;
+use super::project::TransformedPoints;
+use super::shading::Lighting;
 use crate::geom::TriMesh;
 
 /// Triangles per screen batch: the unit of parallel vertex work for big meshes.
@@ -102,38 +104,30 @@ impl<'a> MeshInstance<'a> {
             .into_par_iter()
             .filter_map(|(range, model)| {
                 let tris = mesh.triangles.get(range)?;
-                let first = tris.iter().flatten().copied().min()? as usize;
-                let last = tris.iter().flatten().copied().max()? as usize;
+                let (first, last) = index_range(tris)?;
+                let (first, last) = (first as usize, last as usize);
                 if last >= mesh.positions.len() {
                     return None;
                 }
-                let normal_matrix = Mat3::from_mat4(model).inverse().transpose();
-                let world = |v: usize| model.transform_point3(mesh.positions[v]);
-                // Lit (or baked) and fogged, only for vertices of triangles that
-                // reach the screen.
-                let color = |k: usize| {
-                    let v = first + k;
-                    let display = match self.vertex_colors.and_then(|c| c.get(v)) {
-                        Some(&baked) => baked,
-                        None => {
-                            let n = mesh.normals.get(v).copied().unwrap_or(Vec3::Y);
-                            let n = (normal_matrix * n).normalize_or(Vec3::Y);
-                            let sky = 0.65 + 0.35 * n.y;
-                            encode_display(lighting.radiance(self.color, n, sky, 1.0))
-                        }
-                    };
-                    // Without fog the distance is not needed.
-                    if lighting.fog_density == 0.0 {
-                        return display;
-                    }
-                    lighting.apply_fog(display, (world(v) - camera.eye).length())
+                // The batch's run of a per-vertex slice (shorter when the
+                // slice ends inside the run).
+                let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
+                let shader = MeshShader {
+                    points: &mesh.positions[first..=last],
+                    normals: run(&mesh.normals),
+                    baked: self.vertex_colors.map(run),
+                    model,
+                    albedo: self.color,
+                    lighting: *lighting,
+                    eye: camera.eye,
                 };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
-                Some(ScreenBatch::build_lazy(
-                    last - first + 1,
-                    |k| to_clip(&view_proj, world(first + k)),
-                    color,
+                let positions =
+                    TransformedPoints::new(&mesh.positions[first..=last], model, view_proj);
+                Some(ScreenBatch::build_shaded(
+                    positions,
+                    shader,
                     &[TriangleGroup {
                         triangles: &local,
                         cull: self.cull,
@@ -143,6 +137,20 @@ impl<'a> MeshInstance<'a> {
             })
             .collect()
     }
+}
+
+/// The smallest and largest vertex index of `triangles` (`None` when empty),
+/// in one pass that compilers vectorise: the indices are compared as `i32`
+/// with the top bit flipped, which orders them as `u32` (SSE2 compares signed
+/// 32-bit lanes only).
+#[inline(never)]
+fn index_range(triangles: &[[u32; 3]]) -> Option<(u32, u32)> {
+    const FLIP: u32 = 1 << 31;
+    let indices = triangles.as_flattened();
+    let signed = indices.iter().map(|&v| (v ^ FLIP) as i32);
+    let (lo, hi) = signed.fold((i32::MAX, i32::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let unsigned = |v: i32| v as u32 ^ FLIP;
+    (!indices.is_empty()).then(|| (unsigned(lo), unsigned(hi)))
 }
 
 #[cfg(test)]
@@ -178,6 +186,28 @@ mod tests {
             .unwrap()
             .look_at(Vec3::new(0.0, 0.9, -0.9), Vec3::ZERO, Vec3::Y);
         (mesh, camera)
+    }
+
+    #[test]
+    fn index_range_is_the_smallest_and_largest_index() {
+        use super::index_range;
+        use crate::rng::SplitMix64;
+        assert_eq!(index_range(&[]), None);
+        let mut rng = SplitMix64::new(7);
+        for len in [1usize, 2, 3, 5, 8, 9, 40] {
+            for spread in [10u32, 1 << 20, u32::MAX] {
+                let tris: Vec<[u32; 3]> = (0..len)
+                    .map(|_| [(); 3].map(|_| (rng.next_u64() as u32) % spread.max(1)))
+                    .collect();
+                let flat = tris.iter().flatten().copied();
+                let expected = (flat.clone().min().unwrap(), flat.max().unwrap());
+                assert_eq!(index_range(&tris), Some(expected), "{tris:?}");
+            }
+        }
+        assert_eq!(
+            index_range(&[[u32::MAX, 0, 1 << 31], [(1 << 31) - 1, 5, 6]]),
+            Some((0, u32::MAX))
+        );
     }
 
     #[test]

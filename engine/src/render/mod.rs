@@ -26,12 +26,15 @@
 mod batch;
 mod blade_span;
 mod camera;
+mod centre_box;
 mod clip;
 mod error;
 mod follow;
 mod frame;
 mod grass;
 mod mesh;
+mod mesh_shader;
+mod project;
 mod raster;
 mod shading;
 mod small_triangle;

@@ -9,9 +9,7 @@
 
 use glam::{BVec4A, Vec4, Vec4Swizzles};
 
-use super::raster::{
-    HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenBox, ScreenVertex,
-};
+use super::raster::{HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenVertex};
 
 /// Boxes of at most this many pixel centres test them one by one.
 const CENTRE_BY_CENTRE_MAX: u32 = 4;
@@ -30,17 +28,12 @@ pub(crate) struct SmallTriangle {
 }
 
 impl SmallTriangle {
-    /// The edge functions of the triangle `v` (clockwise on screen, its
-    /// vertices' bounding box `bounds`) over its non-empty pixel box `span`, or
-    /// `None` when the box or the triangle is too big for exact `f32` edges
-    /// (then the general set-up applies).
+    /// The edge functions of the triangle `v` (clockwise on screen) over its
+    /// non-empty pixel box `span`, or `None` when the box or the triangle is
+    /// too big for exact `f32` edges (then the general set-up applies).
     #[inline(always)]
-    pub fn of(v: [&ScreenVertex; 3], bounds: &ScreenBox, span: PixelSpan) -> Option<SmallTriangle> {
-        if span.x1 - span.x0 >= MASK_SIDE
-            || span.y1 - span.y0 >= MASK_SIDE
-            || bounds.max_x - bounds.min_x >= MASK_EXTENT
-            || bounds.max_y - bounds.min_y >= MASK_EXTENT
-        {
+    pub fn of(v: [&ScreenVertex; 3], span: PixelSpan) -> Option<SmallTriangle> {
+        if span.x1 - span.x0 >= MASK_SIDE || span.y1 - span.y0 >= MASK_SIDE {
             return None;
         }
         // Vertices relative to the first centre, which lies inside the
@@ -62,6 +55,14 @@ impl SmallTriangle {
         );
         let dx = x.yzxw() - x;
         let dy = y.yzxw() - y;
+        // A triangle's extent per axis is the largest of its edges' (lane 3
+        // is zero). The first centre lies inside the vertices' box, so the
+        // offsets are at most the extent: exact below `2^24`, and a larger
+        // extent cannot round below MASK_EXTENT.
+        let extent = dx.abs().max(dy.abs());
+        if extent.cmpge(Vec4::splat(MASK_EXTENT as f32)).any() {
+            return None;
+        }
         // Pixels exactly on an edge belong to it only when it is a top edge
         // (horizontal, going right) or a left edge (going up).
         let top_left: BVec4A = dy.cmplt(Vec4::ZERO) | (dy.cmpeq(Vec4::ZERO) & dx.cmpgt(Vec4::ZERO));
@@ -154,7 +155,7 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
-    use crate::render::raster::{BigTriangle, signed_area};
+    use crate::render::raster::{BigTriangle, ScreenBox, signed_area};
     use crate::rng::SplitMix64;
 
     #[test]
@@ -176,12 +177,11 @@ mod tests {
                 area if area < 0 => ([&a, &c, &b], -area),
                 area => ([&a, &b, &c], area),
             };
-            let bounds = ScreenBox::of(v);
-            let span = bounds.span(48, 48);
+            let span = ScreenBox::of(v).span(48, 48);
             if span.is_empty() {
                 continue;
             }
-            let Some(small) = SmallTriangle::of(v, &bounds, span) else {
+            let Some(small) = SmallTriangle::of(v, span) else {
                 continue;
             };
             let (columns, rows) = (

@@ -1,0 +1,223 @@
+//! Per-vertex colours of a mesh instance (baked, or lit by the sun and the
+//! sky, then fogged), four vertices at a time.
+//!
+//! The lanes do, per vertex, the same IEEE operations in the same order as
+//! [`MeshShader::color`] (glam's `Vec3` and `Mat3` operations, scalar per
+//! component, and [`Lighting::radiance`] and [`encode_display`]); the fog
+//! (an `exp` per vertex) is applied per lane by [`Lighting::apply_fog`]
+//! itself. So both give the same bits.
+
+use glam::{Mat3, Mat4, Vec3, Vec4};
+
+use super::project::{LANES, VertexShader, row_times};
+use super::shading::{Lighting, encode_display};
+
+/// The colours of a run of mesh vertices (vertex `k` of the run).
+pub(crate) struct MeshShader<'a> {
+    /// Model-space positions.
+    pub points: &'a [Vec3],
+    /// Model-space normals (vertices past the end face up).
+    pub normals: &'a [Vec3],
+    /// Baked display colours (vertices past the end are lit).
+    pub baked: Option<&'a [Vec3]>,
+    /// Model-to-world transform.
+    pub model: Mat4,
+    /// Linear RGB albedo of lit vertices.
+    pub albedo: Vec3,
+    /// Light and fog.
+    pub lighting: Lighting,
+    /// The camera position, for the fog distance.
+    pub eye: Vec3,
+}
+
+impl MeshShader<'_> {
+    /// Whether the model transform is the identity: then it is skipped, which
+    /// changes at most the sign of a zero coordinate, which neither the
+    /// normalisation, the lighting nor the distance tells apart.
+    fn identity(&self) -> bool {
+        self.model == Mat4::IDENTITY
+    }
+
+    /// The matrix that takes normals to the world.
+    fn normal_matrix(&self) -> Mat3 {
+        Mat3::from_mat4(self.model).inverse().transpose()
+    }
+
+    /// The display colour of a sun-lit vertex with model-space normal `n`,
+    /// before fog.
+    fn lit(&self, n: Vec3, normal_matrix: &Mat3) -> Vec3 {
+        let n = if self.identity() {
+            n
+        } else {
+            *normal_matrix * n
+        };
+        let n = n.normalize_or(Vec3::Y);
+        let sky = 0.65 + 0.35 * n.y;
+        encode_display(self.lighting.radiance(self.albedo, n, sky, 1.0))
+    }
+
+    /// The world position of vertex `k`.
+    fn world(&self, k: usize) -> Vec3 {
+        if self.identity() {
+            self.points[k]
+        } else {
+            self.model.transform_point3(self.points[k])
+        }
+    }
+
+    /// [`MeshShader::lit`] of four normals given as lanes.
+    #[inline(always)]
+    fn lit_lanes(&self, [x, y, z]: [Vec4; 3], normal_matrix: &Mat3) -> [Vec4; 3] {
+        let (x, y, z) = if self.identity() {
+            (x, y, z)
+        } else {
+            // Mat3 * Vec3: (x_axis x + y_axis y) + z_axis z.
+            let row = |r: usize| {
+                let m = normal_matrix.row(r);
+                x * m.x + y * m.y + z * m.z
+            };
+            (row(0), row(1), row(2))
+        };
+        // normalize_or(Y): times 1 / length when that is finite and positive.
+        let rcp = Vec4::ONE / (x * x + y * y + z * z).sqrt();
+        let ok = rcp.abs().cmplt(Vec4::INFINITY) & rcp.cmpgt(Vec4::ZERO);
+        let x = Vec4::select(ok, x * rcp, Vec4::ZERO);
+        let y = Vec4::select(ok, y * rcp, Vec4::ONE);
+        let z = Vec4::select(ok, z * rcp, Vec4::ZERO);
+        let sky = Vec4::splat(0.65) + y * 0.35;
+        // Lighting::radiance with full sun visibility.
+        let sun = &self.lighting.sun;
+        let d = sun.direction;
+        let lambert = (x * d.x + y * d.y + z * d.z).max(Vec4::ZERO) * 1.0;
+        let channel = |albedo: f32, ambient: f32, color: f32| {
+            let linear = (sky * ambient + lambert * color) * albedo;
+            // encode_display: clamp to [0, 1] (max then min), square root.
+            linear.max(Vec4::ZERO).min(Vec4::ONE).sqrt()
+        };
+        let (a, amb, c) = (self.albedo, sun.ambient, sun.color);
+        [
+            channel(a.x, amb.x, c.x),
+            channel(a.y, amb.y, c.y),
+            channel(a.z, amb.z, c.z),
+        ]
+    }
+
+    /// The fog distances of vertices `4 * group ..` (world position minus the
+    /// eye, its length).
+    #[inline(always)]
+    fn distances(&self, group: usize) -> [f32; LANES] {
+        let p = &self.points[LANES * group..LANES * group + LANES];
+        let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
+        let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
+        let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
+        let (x, y, z) = if self.identity() {
+            (x, y, z)
+        } else {
+            let m = self.model.transpose();
+            (
+                row_times(m.x_axis, x, y, z),
+                row_times(m.y_axis, x, y, z),
+                row_times(m.z_axis, x, y, z),
+            )
+        };
+        let (dx, dy, dz) = (x - self.eye.x, y - self.eye.y, z - self.eye.z);
+        (dx * dx + dy * dy + dz * dz).sqrt().to_array()
+    }
+}
+
+impl VertexShader for MeshShader<'_> {
+    fn color(&self, k: usize) -> Vec3 {
+        let display = match self.baked.and_then(|c| c.get(k)) {
+            Some(&baked) => baked,
+            None => {
+                let n = self.normals.get(k).copied().unwrap_or(Vec3::Y);
+                self.lit(n, &self.normal_matrix())
+            }
+        };
+        // Without fog the distance is not needed.
+        if self.lighting.fog_density == 0.0 {
+            return display;
+        }
+        self.lighting
+            .apply_fog(display, (self.world(k) - self.eye).length())
+    }
+
+    #[inline]
+    fn colors(&self, group: usize) -> [Vec3; LANES] {
+        let range = LANES * group..LANES * group + LANES;
+        let baked = self.baked.map_or(0, <[Vec3]>::len);
+        let display: [Vec3; LANES] = if baked >= range.end {
+            let c = &self.baked.unwrap_or_default()[range];
+            [c[0], c[1], c[2], c[3]]
+        } else if baked <= range.start && self.normals.len() >= range.end {
+            let n = &self.normals[range];
+            let lanes = [
+                Vec4::new(n[0].x, n[1].x, n[2].x, n[3].x),
+                Vec4::new(n[0].y, n[1].y, n[2].y, n[3].y),
+                Vec4::new(n[0].z, n[1].z, n[2].z, n[3].z),
+            ];
+            let [r, g, b] = self.lit_lanes(lanes, &self.normal_matrix());
+            let (r, g, b) = (r.to_array(), g.to_array(), b.to_array());
+            std::array::from_fn(|k| Vec3::new(r[k], g[k], b[k]))
+        } else {
+            return std::array::from_fn(|k| self.color(LANES * group + k));
+        };
+        if self.lighting.fog_density == 0.0 {
+            return display;
+        }
+        let distance = self.distances(group);
+        std::array::from_fn(|k| self.lighting.apply_fog(display[k], distance[k]))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    #[test]
+    fn lanes_give_the_scalar_colours() {
+        let mut rng = SplitMix64::new(0x0801_f2e2_858e_fc16);
+        let count = 4 * 300;
+        let mut v = || rng.range(-3.0, 3.0);
+        let points: Vec<Vec3> = (0..count).map(|_| Vec3::new(v(), v(), v())).collect();
+        let mut normals: Vec<Vec3> = (0..count)
+            .map(|_| Vec3::new(v(), v().abs(), v()).normalize_or(Vec3::Y))
+            .collect();
+        // Degenerate normals take the fallback.
+        normals[5] = Vec3::ZERO;
+        normals[6] = Vec3::splat(f32::NAN);
+        normals[7] = Vec3::new(f32::INFINITY, 0.0, 0.0);
+        let baked: Vec<Vec3> = (0..count / 2).map(|_| Vec3::new(v(), v(), v())).collect();
+        let rotated = Mat4::from_rotation_y(0.6) * Mat4::from_translation(Vec3::X);
+        for model in [Mat4::IDENTITY, rotated] {
+            for fog_density in [0.0, 0.2] {
+                for baked in [None, Some(&baked[..]), Some(&baked[..10])] {
+                    let shader = MeshShader {
+                        points: &points,
+                        normals: &normals[..count - 2],
+                        baked,
+                        model,
+                        albedo: Vec3::new(0.6, 0.5, 0.3),
+                        lighting: Lighting {
+                            fog_density,
+                            fog_start: 1.0,
+                            ..Lighting::default()
+                        },
+                        eye: Vec3::new(0.5, 2.0, -4.0),
+                    };
+                    for group in 0..count / LANES {
+                        let lanes = shader.colors(group);
+                        for (k, lane) in lanes.iter().enumerate() {
+                            let scalar = shader.color(LANES * group + k);
+                            assert_eq!(
+                                lane.to_array().map(f32::to_bits),
+                                scalar.to_array().map(f32::to_bits)
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
