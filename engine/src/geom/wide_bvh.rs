@@ -29,11 +29,10 @@ use super::triangle::Xyz;
 /// Children per node.
 const WIDTH: usize = 4;
 
-/// Rays in flight in [`WideBvh::traverse_many`] (chosen by measurement: 8
-/// was 3–7 % faster than 4 on incoherent rays in same-process A/B runs,
-/// 12 no better; with 8, a walk's next node or packet has longer to arrive
-/// after its prefetch).
-pub(crate) const BATCH_LANES: usize = 8;
+/// Rays in flight in [`WideBvh::traverse_many`] (chosen by measurement: of
+/// 2, 4, 6, 8, 12 and 16, 4 was the fastest or within noise of it on every
+/// workload).
+pub(crate) const BATCH_LANES: usize = 4;
 
 /// Entries at the bottom of each traversal stack ([`Visit::FLOOR`]), and how
 /// many entries a pop looks at together.
