@@ -582,23 +582,16 @@ impl Walk {
                 return false;
             }
         } else {
-            for item in first..first + count {
-                let (t, id) = items.nearest(item, &self.ray, self.t_max);
-                // Every hit lies within `t_max`; a miss is NaN.
-                let hit = t <= self.t_max;
-                if ANY && hit {
-                    (self.t_max, self.best_item) = (t, id);
+            // A leaf holds at least one item (a mesh leaf exactly one); the
+            // first is tested outside the loop, which spares copying the ray
+            // for it.
+            if self.test::<ANY, BRANCHLESS>(first, items) {
+                return true;
+            }
+            for item in first + 1..first + count {
+                if self.test::<ANY, BRANCHLESS>(item, items) {
                     return true;
                 }
-                // Interleaved, kept by selection rather than by a branch:
-                // whether a leaf is hit is then unpredictable.
-                (self.t_max, self.best_item) = if BRANCHLESS {
-                    select_unpredictable(hit, (t, id), (self.t_max, self.best_item))
-                } else if hit {
-                    (t, id)
-                } else {
-                    (self.t_max, self.best_item)
-                };
             }
         }
         if BRANCHLESS {
@@ -613,6 +606,29 @@ impl Walk {
             }
             false
         })
+    }
+
+    /// Tests leaf item `item`, keeping it if it is hit no farther than the
+    /// best hit so far (interleaved, by selection rather than by a branch:
+    /// whether a leaf is hit is then unpredictable); true if the walk is to
+    /// stop there (with `ANY`, on a hit).
+    #[inline(always)]
+    fn test<const ANY: bool, const BRANCHLESS: bool>(
+        &mut self,
+        item: u32,
+        items: &impl LeafItems,
+    ) -> bool {
+        let (t, id) = items.nearest(item, &self.ray, self.t_max);
+        // Every hit lies within `t_max`; a miss is NaN.
+        let hit = t <= self.t_max;
+        (self.t_max, self.best_item) = if BRANCHLESS {
+            select_unpredictable(hit, (t, id), (self.t_max, self.best_item))
+        } else if hit {
+            (t, id)
+        } else {
+            (self.t_max, self.best_item)
+        };
+        ANY && hit
     }
 
     /// Pops the nearest stacked child that still starts before the best hit
