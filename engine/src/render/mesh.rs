@@ -120,6 +120,7 @@ impl<'a> MeshInstance<'a> {
                     albedo: self.color,
                     lighting: *lighting,
                     eye: camera.eye,
+                    identity_model: model == Mat4::IDENTITY,
                 };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();

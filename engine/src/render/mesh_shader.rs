@@ -28,6 +28,8 @@ pub(crate) struct MeshShader<'a> {
     pub lighting: Lighting,
     /// The camera position, for the fog distance.
     pub eye: Vec3,
+    /// `model == Mat4::IDENTITY`, tested once (see [`MeshShader::identity`]).
+    pub identity_model: bool,
 }
 
 impl MeshShader<'_> {
@@ -35,7 +37,7 @@ impl MeshShader<'_> {
     /// changes at most the sign of a zero coordinate, which neither the
     /// normalisation, the lighting nor the distance tells apart.
     fn identity(&self) -> bool {
-        self.model == Mat4::IDENTITY
+        self.identity_model
     }
 
     /// The matrix that takes normals to the world.
@@ -105,7 +107,7 @@ impl MeshShader<'_> {
     /// The fog distances of vertices `4 * group ..` (world position minus the
     /// eye, its length).
     #[inline(always)]
-    fn distances(&self, group: usize) -> [f32; LANES] {
+    fn distances(&self, group: usize) -> Vec4 {
         let p = &self.points[LANES * group..LANES * group + LANES];
         let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
         let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
@@ -121,7 +123,26 @@ impl MeshShader<'_> {
             )
         };
         let (dx, dy, dz) = (x - self.eye.x, y - self.eye.y, z - self.eye.z);
-        (dx * dx + dy * dy + dz * dz).sqrt().to_array()
+        (dx * dx + dy * dy + dz * dz).sqrt()
+    }
+
+    /// [`Lighting::apply_fog`] of the display colours `[r, g, b]` (one vertex
+    /// per lane) of vertices `4 * group ..`, with the same operations per
+    /// lane: the fog amount `1 - exp(-density * max(distance - start, 0))`,
+    /// then glam's `lerp` towards the horizon colour, kept only past the fog
+    /// start (the caller skips a batch without fog).
+    #[inline(always)]
+    fn fogged(&self, [r, g, b]: [Vec4; 3], group: usize) -> [Vec4; 3] {
+        let fog = &self.lighting;
+        let distance = self.distances(group);
+        let exponent = Vec4::splat(-fog.fog_density) * (distance - fog.fog_start).max(Vec4::ZERO);
+        let e = exponent.to_array();
+        let amount = Vec4::ONE - Vec4::new(e[0].exp(), e[1].exp(), e[2].exp(), e[3].exp());
+        let clear = distance.cmple(Vec4::splat(fog.fog_start));
+        let keep = Vec4::ONE - amount;
+        let horizon = fog.sky_horizon;
+        let lerp = |c: Vec4, h: f32| Vec4::select(clear, c, c * keep + Vec4::splat(h) * amount);
+        [lerp(r, horizon.x), lerp(g, horizon.y), lerp(b, horizon.z)]
     }
 }
 
@@ -146,9 +167,17 @@ impl VertexShader for MeshShader<'_> {
     fn colors(&self, group: usize) -> [Vec3; LANES] {
         let range = LANES * group..LANES * group + LANES;
         let baked = self.baked.map_or(0, <[Vec3]>::len);
-        let display: [Vec3; LANES] = if baked >= range.end {
+        let fog = self.lighting.fog_density != 0.0;
+        let lanes = if baked >= range.end {
             let c = &self.baked.unwrap_or_default()[range];
-            [c[0], c[1], c[2], c[3]]
+            if !fog {
+                return [c[0], c[1], c[2], c[3]];
+            }
+            [
+                Vec4::new(c[0].x, c[1].x, c[2].x, c[3].x),
+                Vec4::new(c[0].y, c[1].y, c[2].y, c[3].y),
+                Vec4::new(c[0].z, c[1].z, c[2].z, c[3].z),
+            ]
         } else if baked <= range.start && self.normals.len() >= range.end {
             let n = &self.normals[range];
             let lanes = [
@@ -156,17 +185,18 @@ impl VertexShader for MeshShader<'_> {
                 Vec4::new(n[0].y, n[1].y, n[2].y, n[3].y),
                 Vec4::new(n[0].z, n[1].z, n[2].z, n[3].z),
             ];
-            let [r, g, b] = self.lit_lanes(lanes, &self.normal_matrix());
-            let (r, g, b) = (r.to_array(), g.to_array(), b.to_array());
-            std::array::from_fn(|k| Vec3::new(r[k], g[k], b[k]))
+            self.lit_lanes(lanes, &self.normal_matrix())
         } else {
             return std::array::from_fn(|k| self.color(LANES * group + k));
         };
-        if self.lighting.fog_density == 0.0 {
-            return display;
-        }
-        let distance = self.distances(group);
-        std::array::from_fn(|k| self.lighting.apply_fog(display[k], distance[k]))
+        // Without fog the distance is not needed.
+        let [r, g, b] = if fog {
+            self.fogged(lanes, group)
+        } else {
+            lanes
+        };
+        let (r, g, b) = (r.to_array(), g.to_array(), b.to_array());
+        std::array::from_fn(|k| Vec3::new(r[k], g[k], b[k]))
     }
 }
 
@@ -205,6 +235,7 @@ mod tests {
                             ..Lighting::default()
                         },
                         eye: Vec3::new(0.5, 2.0, -4.0),
+                        identity_model: model == Mat4::IDENTITY,
                     };
                     for group in 0..count / LANES {
                         let lanes = shader.colors(group);
