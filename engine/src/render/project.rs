@@ -102,6 +102,9 @@ pub(crate) struct TransformedPoints<'a> {
     view_proj: Mat4,
     /// The rows of `model` and `view_proj` (their transposes' columns).
     rows: [Mat4; 2],
+    /// `model == Mat4::IDENTITY`: then the model transform is skipped, which
+    /// changes at most the sign of a zero coordinate (`-0 + 0` is `+0`).
+    identity: bool,
 }
 
 impl<'a> TransformedPoints<'a> {
@@ -113,6 +116,7 @@ impl<'a> TransformedPoints<'a> {
             model,
             view_proj,
             rows: [model.transpose(), view_proj.transpose()],
+            identity: model == Mat4::IDENTITY,
         }
     }
 }
@@ -132,7 +136,13 @@ impl ClipSource for TransformedPoints<'_> {
 
     #[inline]
     fn clip(&self, k: usize) -> Vec4 {
-        to_clip(&self.view_proj, self.model.transform_point3(self.points[k]))
+        let p = self.points[k];
+        let world = if self.identity {
+            p
+        } else {
+            self.model.transform_point3(p)
+        };
+        to_clip(&self.view_proj, world)
     }
 
     #[inline(always)]
@@ -143,11 +153,15 @@ impl ClipSource for TransformedPoints<'_> {
         let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
         // transform_point3: ((x_axis x + y_axis y) + z_axis z) + w_axis.
         let [m, v] = &self.rows;
-        let [wx, wy, wz] = [
-            row_times(m.x_axis, x, y, z),
-            row_times(m.y_axis, x, y, z),
-            row_times(m.z_axis, x, y, z),
-        ];
+        let [wx, wy, wz] = if self.identity {
+            [x, y, z]
+        } else {
+            [
+                row_times(m.x_axis, x, y, z),
+                row_times(m.y_axis, x, y, z),
+                row_times(m.z_axis, x, y, z),
+            ]
+        };
         // Mat4 * Vec4 with w = 1: ((x_axis x + y_axis y) + z_axis z) + w_axis * 1.
         [
             row_times(v.x_axis, wx, wy, wz),
@@ -349,6 +363,34 @@ mod tests {
                         clip.to_array().map(f32::to_bits)
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn an_identity_model_is_skipped_up_to_the_sign_of_zero() {
+        let view_proj = crate::render::Camera::perspective(0.9, 64, 48, 0.05, 50.0)
+            .unwrap()
+            .look_at(Vec3::new(1.0, 3.0, -8.0), Vec3::ZERO, Vec3::Y)
+            .view_proj();
+        let mut rng = SplitMix64::new(0x1c27_f1e5_a0b3_4d96);
+        let mut points: Vec<Vec3> = (0..4 * 200)
+            .map(|_| Vec3::new(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), 0.0))
+            .collect();
+        points.extend([
+            Vec3::ZERO,
+            Vec3::splat(-0.0),
+            Vec3::new(-0.0, 1.0, -0.0),
+            Vec3::X,
+        ]);
+        let source = TransformedPoints::new(&points, Mat4::IDENTITY, view_proj);
+        for (k, &p) in points.iter().enumerate() {
+            let full = to_clip(&view_proj, Mat4::IDENTITY.transform_point3(p));
+            let skipped = source.clip(k);
+            // Equal as numbers (-0 == +0), and bit for bit but for zeros.
+            assert_eq!(skipped, full, "{p}");
+            for (a, b) in skipped.to_array().into_iter().zip(full.to_array()) {
+                assert!(a.to_bits() == b.to_bits() || a == 0.0, "{p}");
             }
         }
     }
