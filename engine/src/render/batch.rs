@@ -7,7 +7,7 @@ use glam::{Vec3, Vec4};
 use super::centre_box::{screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
 use super::project::{
-    ClipPositions, ClipSource, ProjectedVertex, VertexShader, project_vertices, shade_vertices,
+    ClipPositions, ClipSource, LANES, ProjectedVertex, VertexShader, project_vertices,
 };
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
@@ -140,6 +140,16 @@ impl ClipVertices for EagerColors<'_> {
     }
 }
 
+impl VertexShader for EagerColors<'_> {
+    fn color(&self, k: usize) -> Vec3 {
+        self.0[k].color
+    }
+
+    fn colors(&self, group: usize) -> [Vec3; LANES] {
+        std::array::from_fn(|k| self.color(LANES * group + k))
+    }
+}
+
 /// Colours set before the triangles are set up, for all vertices.
 struct ShadedColors<P, S> {
     positions: P,
@@ -159,10 +169,7 @@ impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
         let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
-        let mut projected = project_vertices(&ClipPositions(&clip), vp);
-        for (p, v) in projected.iter_mut().zip(verts) {
-            p.screen.color_w = v.color * p.screen.inv_w;
-        }
+        let projected = project_vertices(&ClipPositions(&clip), &EagerColors(verts), vp);
         ScreenBatch::build_from(projected, EagerColors(verts), groups, vp)
     }
 
@@ -174,8 +181,7 @@ impl ScreenBatch {
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
-        let mut projected = project_vertices(&positions, vp);
-        shade_vertices(&mut projected, &shader);
+        let projected = project_vertices(&positions, &shader, vp);
         let clip_vertices = ShadedColors { positions, shader };
         ScreenBatch::build_from(projected, clip_vertices, groups, vp)
     }

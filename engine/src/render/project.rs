@@ -181,44 +181,44 @@ pub(crate) trait VertexShader {
     fn colors(&self, group: usize) -> [Vec3; LANES];
 }
 
-/// Sets the colour / w of every projected vertex from `shader`.
-pub(crate) fn shade_vertices(vertices: &mut [ProjectedVertex], shader: &impl VertexShader) {
-    let mut groups = vertices.chunks_exact_mut(LANES);
-    for (group, four) in (&mut groups).enumerate() {
-        for (v, color) in four.iter_mut().zip(shader.colors(group)) {
-            v.screen.color_w = color * v.screen.inv_w;
-        }
-    }
-    let base = vertices.len() - vertices.len() % LANES;
-    for (k, v) in vertices[base..].iter_mut().enumerate() {
-        v.screen.color_w = shader.color(base + k) * v.screen.inv_w;
-    }
-}
-
-/// The projected vertices (colour not set: `color_w` is zero) of the clip
-/// positions of `source`, in order.
-pub(crate) fn project_vertices(source: &impl ClipSource, vp: Viewport) -> Vec<ProjectedVertex> {
+/// The projected vertices of the clip positions of `source`, in order, with
+/// the colours of `shader` (each times the vertex's `1/w`).
+pub(crate) fn project_vertices(
+    source: &impl ClipSource,
+    shader: &impl VertexShader,
+    vp: Viewport,
+) -> Vec<ProjectedVertex> {
     let count = source.len();
     // Records are pushed one by one, built in place (arrays of four built
     // elsewhere and copied in cost block copies; zeroing first costs a pass).
     let mut vertices = Vec::with_capacity(count + SPARE);
+    let scalar = |k: usize| {
+        let mut v = ProjectedVertex::scalar(source.clip(k), vp);
+        v.screen.color_w = shader.color(k) * v.screen.inv_w;
+        v
+    };
     for group in 0..count / LANES {
-        if !project_four(source.lanes(group), vp, &mut vertices) {
-            let scalar = |k| ProjectedVertex::scalar(source.clip(LANES * group + k), vp);
-            vertices.extend((0..LANES).map(scalar));
+        let colors = shader.colors(group);
+        if !project_four(source.lanes(group), colors, vp, &mut vertices) {
+            vertices.extend((LANES * group..LANES * group + LANES).map(scalar));
         }
     }
-    let scalar = |k| ProjectedVertex::scalar(source.clip(k), vp);
     vertices.extend((count - count % LANES..count).map(scalar));
     vertices
 }
 
-/// Appends to `out` the screen vertices, outcodes and centre boxes of four
-/// clip positions given as lanes (x, y, z, w), and returns true; or returns
+/// Appends to `out` the screen vertices (with `colors` times their `1/w`),
+/// outcodes and centre boxes of four clip positions given as lanes (x, y, z,
+/// w), and returns true; or returns
 /// false, appending nothing, when a fixed-point coordinate is too large (or NaN)
 /// for the exact lane conversion.
 #[inline(always)]
-fn project_four(lanes: [Vec4; LANES], vp: Viewport, out: &mut Vec<ProjectedVertex>) -> bool {
+fn project_four(
+    lanes: [Vec4; LANES],
+    colors: [Vec3; LANES],
+    vp: Viewport,
+    out: &mut Vec<ProjectedVertex>,
+) -> bool {
     let [x, y, z, w] = lanes;
     // The same operations as `Viewport::project`, lane by lane.
     let inv_w = Vec4::ONE / w;
@@ -245,7 +245,7 @@ fn project_four(lanes: [Vec4; LANES], vp: Viewport, out: &mut Vec<ProjectedVerte
                 x: ix[k],
                 y: iy[k],
                 inv_w: inv_w[k],
-                color_w: Vec3::ZERO,
+                color_w: colors[k] * inv_w[k],
             },
             code: codes[k],
         });
@@ -294,7 +294,21 @@ fn outcodes(x: Vec4, y: Vec4, z: Vec4, w: Vec4) -> [u8; LANES] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::clip::ClipVertex;
     use crate::rng::SplitMix64;
+
+    /// Colours from a table.
+    pub(crate) struct ColorTable<'a>(pub &'a [Vec3]);
+
+    impl VertexShader for ColorTable<'_> {
+        fn color(&self, k: usize) -> Vec3 {
+            self.0[k]
+        }
+
+        fn colors(&self, group: usize) -> [Vec3; LANES] {
+            std::array::from_fn(|k| self.color(LANES * group + k))
+        }
+    }
 
     /// Clip positions that exercise every branch: ordinary, behind the near
     /// plane, at `w = 0`, huge, NaN and infinite, exact `.5` fixed-point
@@ -405,11 +419,16 @@ mod tests {
         // Lengths that leave every remainder.
         for count in [0, 1, 3, 4, 7, 20_000, 20_003] {
             let clip = awkward_positions(&mut rng, count);
-            let out = project_vertices(&ClipPositions(&clip), vp);
+            let colors: Vec<Vec3> = (0..count)
+                .map(|_| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()))
+                .collect();
+            let out = project_vertices(&ClipPositions(&clip), &ColorTable(&colors), vp);
             assert_eq!(out.len(), count);
-            for (got, &p) in out.iter().zip(&clip) {
-                let expected = vp.project_position(p);
+            for ((got, &p), &color) in out.iter().zip(&clip).zip(&colors) {
+                let expected = vp.project(&ClipVertex { pos: p, color });
                 let screen = got.screen;
+                let bits = |c: Vec3| c.to_array().map(f32::to_bits);
+                assert_eq!(bits(screen.color_w), bits(expected.color_w), "{p:?}");
                 assert_eq!((screen.x, screen.y), (expected.x, expected.y), "{p:?}");
                 assert_eq!(screen.inv_w.to_bits(), expected.inv_w.to_bits(), "{p:?}");
                 assert_eq!(got.code, outcode(p), "{p:?}");
