@@ -276,15 +276,15 @@ impl ScreenBatch {
         let (sa, sb, sc) = (&pa.screen, &pb.screen, &pc.screen);
         let area = signed_area(sa, sb, sc);
         // Counter-clockwise in the world, seen from the front, projects to a
-        // negative area on the y-down screen.
-        let (order, area) = if area < 0 {
-            ([a, c, b], -area)
+        // negative area on the y-down screen. (The vertices already looked
+        // up are reordered, not their indices: no second bounds check.)
+        let (v, area) = if area < 0 {
+            ([sa, sc, sb], -area)
         } else if area > 0 && cull == CullMode::None {
-            ([a, b, c], area)
+            ([sa, sb, sc], area)
         } else {
             return;
         };
-        let v = vertices(projected, order);
         let Some(small) = SmallTriangle::of(v, span) else {
             let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
             self.push_triangle(tri, span);
@@ -311,14 +311,6 @@ impl ScreenBatch {
         self.bands.push(self.tris.len() as u32, (span.y0, span.y1));
         self.tris.push(tri);
     }
-}
-
-/// The screen vertices of `order` (an array literal: `array::map` with
-/// bounds-checked indexing becomes a call per triangle).
-#[inline(always)]
-fn vertices(projected: &[ProjectedVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
-    let screen = |k: usize| &projected[k].screen;
-    [screen(order[0]), screen(order[1]), screen(order[2])]
 }
 
 /// Items binned by the bands of rows they touch: a counting sort that keeps
