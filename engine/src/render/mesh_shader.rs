@@ -104,25 +104,30 @@ impl MeshShader<'_> {
         ]
     }
 
-    /// The fog distances of vertices `4 * group ..` (world position minus the
-    /// eye, its length).
+    /// The world positions of vertices `4 * group ..` as lanes (x, y, z): the
+    /// model applied as [`super::project::TransformedPoints`] applies it.
     #[inline(always)]
-    fn distances(&self, group: usize) -> Vec4 {
+    fn world_lanes(&self, group: usize) -> [Vec4; 3] {
         let p = &self.points[LANES * group..LANES * group + LANES];
         let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
         let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
         let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
-        let (x, y, z) = if self.identity() {
-            (x, y, z)
-        } else {
-            let m = self.model.transpose();
-            (
-                row_times(m.x_axis, x, y, z),
-                row_times(m.y_axis, x, y, z),
-                row_times(m.z_axis, x, y, z),
-            )
-        };
-        let (dx, dy, dz) = (x - self.eye.x, y - self.eye.y, z - self.eye.z);
+        if self.identity() {
+            return [x, y, z];
+        }
+        let m = self.model.transpose();
+        [
+            row_times(m.x_axis, x, y, z),
+            row_times(m.y_axis, x, y, z),
+            row_times(m.z_axis, x, y, z),
+        ]
+    }
+
+    /// The fog distances of vertices at the world positions `[x, y, z]`
+    /// (lanes): the length of the position minus the eye.
+    #[inline(always)]
+    fn distances(&self, [x, y, z]: &[Vec4; 3]) -> Vec4 {
+        let (dx, dy, dz) = (*x - self.eye.x, *y - self.eye.y, *z - self.eye.z);
         (dx * dx + dy * dy + dz * dz).sqrt()
     }
 
@@ -132,9 +137,9 @@ impl MeshShader<'_> {
     /// then glam's `lerp` towards the horizon colour, kept only past the fog
     /// start (the caller skips a batch without fog).
     #[inline(always)]
-    fn fogged(&self, [r, g, b]: [Vec4; 3], group: usize) -> [Vec4; 3] {
+    fn fogged(&self, [r, g, b]: [Vec4; 3], world: &[Vec4; 3]) -> [Vec4; 3] {
         let fog = &self.lighting;
-        let distance = self.distances(group);
+        let distance = self.distances(world);
         let exponent = Vec4::splat(-fog.fog_density) * (distance - fog.fog_start).max(Vec4::ZERO);
         let e = exponent.to_array();
         let amount = Vec4::ONE - Vec4::new(e[0].exp(), e[1].exp(), e[2].exp(), e[3].exp());
@@ -165,6 +170,11 @@ impl VertexShader for MeshShader<'_> {
 
     #[inline]
     fn colors(&self, group: usize) -> [Vec3; LANES] {
+        self.colors_at(group, &self.world_lanes(group))
+    }
+
+    #[inline(always)]
+    fn colors_at(&self, group: usize, world: &[Vec4; 3]) -> [Vec3; LANES] {
         let range = LANES * group..LANES * group + LANES;
         let baked = self.baked.map_or(0, <[Vec3]>::len);
         let fog = self.lighting.fog_density != 0.0;
@@ -191,7 +201,7 @@ impl VertexShader for MeshShader<'_> {
         };
         // Without fog the distance is not needed.
         let [r, g, b] = if fog {
-            self.fogged(lanes, group)
+            self.fogged(lanes, world)
         } else {
             lanes
         };

@@ -64,8 +64,10 @@ pub(crate) trait ClipSource {
     /// The clip position of vertex `k`.
     fn clip(&self, k: usize) -> Vec4;
     /// The clip positions of vertices `4 * group .. 4 * group + 4` as lanes:
-    /// all x, all y, all z, all w (the same bits as [`ClipSource::clip`]).
-    fn lanes(&self, group: usize) -> [Vec4; LANES];
+    /// all x, all y, all z, all w (the same bits as [`ClipSource::clip`]),
+    /// and the world positions they come from as lanes (x, y, z; the clip
+    /// ones when there is no world space).
+    fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]);
 }
 
 /// Clip positions given as they are.
@@ -82,10 +84,11 @@ impl ClipSource for ClipPositions<'_> {
     }
 
     #[inline(always)]
-    fn lanes(&self, group: usize) -> [Vec4; LANES] {
+    fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
         let p = &self.0[LANES * group..LANES * group + LANES];
         let rows = Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
-        [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis]
+        let [x, y, z, w] = [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis];
+        ([x, y, z, w], [x, y, z])
     }
 }
 
@@ -146,7 +149,7 @@ impl ClipSource for TransformedPoints<'_> {
     }
 
     #[inline(always)]
-    fn lanes(&self, group: usize) -> [Vec4; LANES] {
+    fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
         let p = &self.points[LANES * group..LANES * group + LANES];
         let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
         let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
@@ -163,12 +166,13 @@ impl ClipSource for TransformedPoints<'_> {
             ]
         };
         // Mat4 * Vec4 with w = 1: ((x_axis x + y_axis y) + z_axis z) + w_axis * 1.
-        [
+        let clip = [
             row_times(v.x_axis, wx, wy, wz),
             row_times(v.y_axis, wx, wy, wz),
             row_times(v.z_axis, wx, wy, wz),
             row_times(v.w_axis, wx, wy, wz),
-        ]
+        ];
+        (clip, [wx, wy, wz])
     }
 }
 
@@ -179,6 +183,13 @@ pub(crate) trait VertexShader {
     /// The colours of vertices `4 * group .. 4 * group + 4` (the same bits as
     /// [`VertexShader::color`]).
     fn colors(&self, group: usize) -> [Vec3; LANES];
+    /// [`VertexShader::colors`] of vertices whose world positions (as given
+    /// by [`ClipSource::lanes`]) are `world`, for shaders that need them.
+    #[inline(always)]
+    fn colors_at(&self, group: usize, world: &[Vec4; 3]) -> [Vec3; LANES] {
+        let _ = world;
+        self.colors(group)
+    }
 }
 
 /// The projected vertices of the clip positions of `source`, in order, with
@@ -198,8 +209,9 @@ pub(crate) fn project_vertices(
         v
     };
     for group in 0..count / LANES {
-        let colors = shader.colors(group);
-        if !project_four(source.lanes(group), colors, vp, &mut vertices) {
+        let (clip, world) = source.lanes(group);
+        let colors = shader.colors_at(group, &world);
+        if !project_four(clip, colors, vp, &mut vertices) {
             vertices.extend((LANES * group..LANES * group + LANES).map(scalar));
         }
     }
@@ -368,7 +380,7 @@ mod tests {
         for model in models {
             let source = TransformedPoints::new(&points, model, camera.view_proj());
             for group in 0..points.len() / LANES {
-                let lanes = source.lanes(group);
+                let (lanes, _) = source.lanes(group);
                 for k in 0..LANES {
                     let clip = source.clip(LANES * group + k);
                     let from_lanes = Vec4::from_array(lanes.map(|lane| lane[k]));
