@@ -143,11 +143,21 @@ impl MeshShader<'_> {
         let exponent = Vec4::splat(-fog.fog_density) * (distance - fog.fog_start).max(Vec4::ZERO);
         let e = exponent.to_array();
         let amount = Vec4::ONE - Vec4::new(e[0].exp(), e[1].exp(), e[2].exp(), e[3].exp());
-        let clear = distance.cmple(Vec4::splat(fog.fog_start));
         let keep = Vec4::ONE - amount;
         let horizon = fog.sky_horizon;
-        let lerp = |c: Vec4, h: f32| Vec4::select(clear, c, c * keep + Vec4::splat(h) * amount);
-        [lerp(r, horizon.x), lerp(g, horizon.y), lerp(b, horizon.z)]
+        let lerp = |c: Vec4, h: f32| c * keep + Vec4::splat(h) * amount;
+        let fogged = [lerp(r, horizon.x), lerp(g, horizon.y), lerp(b, horizon.z)];
+        let clear = distance.cmple(Vec4::splat(fog.fog_start));
+        if !clear.any() {
+            // Every vertex past the fog start (the common case).
+            return fogged;
+        }
+        let [fr, fg, fb] = fogged;
+        [
+            Vec4::select(clear, r, fr),
+            Vec4::select(clear, g, fg),
+            Vec4::select(clear, b, fb),
+        ]
     }
 }
 
