@@ -241,7 +241,9 @@ mod tests {
         let baked: Vec<Vec3> = (0..count / 2).map(|_| Vec3::new(v(), v(), v())).collect();
         let rotated = Mat4::from_rotation_y(0.6) * Mat4::from_translation(Vec3::X);
         for model in [Mat4::IDENTITY, rotated] {
-            for fog_density in [0.0, 0.2] {
+            // Fog starting before every vertex, and among them (groups with
+            // vertices on both sides of the start).
+            for (fog_density, fog_start) in [(0.0, 1.0), (0.2, 1.0), (0.2, 6.0)] {
                 for baked in [None, Some(&baked[..]), Some(&baked[..10])] {
                     let shader = MeshShader {
                         points: &points,
@@ -251,12 +253,19 @@ mod tests {
                         albedo: Vec3::new(0.6, 0.5, 0.3),
                         lighting: Lighting {
                             fog_density,
-                            fog_start: 1.0,
+                            fog_start,
                             ..Lighting::default()
                         },
                         eye: Vec3::new(0.5, 2.0, -4.0),
                         identity_model: model == Mat4::IDENTITY,
                     };
+                    let past_start = |k: usize| {
+                        (shader.world(k) - shader.eye).length() > shader.lighting.fog_start
+                    };
+                    let mixed = (0..count / LANES)
+                        .filter(|g| (0..LANES).any(|k| !past_start(LANES * g + k)))
+                        .count();
+                    assert_eq!(mixed > 20, fog_start > 1.0, "{mixed} groups partly clear");
                     for group in 0..count / LANES {
                         let lanes = shader.colors(group);
                         for (k, lane) in lanes.iter().enumerate() {
