@@ -7,7 +7,7 @@ use glam::{Vec3, Vec4};
 use super::centre_box::{screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
 use super::project::{
-    ClipPositions, ClipSource, ProjectedVertex, VertexShader, project_vertices, shade_vertices,
+    ClipPositions, ClipSource, LANES, ProjectedVertex, VertexShader, project_vertices,
 };
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
@@ -140,6 +140,16 @@ impl ClipVertices for EagerColors<'_> {
     }
 }
 
+impl VertexShader for EagerColors<'_> {
+    fn color(&self, k: usize) -> Vec3 {
+        self.0[k].color
+    }
+
+    fn colors(&self, group: usize) -> [Vec3; LANES] {
+        std::array::from_fn(|k| self.color(LANES * group + k))
+    }
+}
+
 /// Colours set before the triangles are set up, for all vertices.
 struct ShadedColors<P, S> {
     positions: P,
@@ -159,10 +169,7 @@ impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
         let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
-        let mut projected = project_vertices(&ClipPositions(&clip), vp);
-        for (p, v) in projected.iter_mut().zip(verts) {
-            p.screen.color_w = v.color * p.screen.inv_w;
-        }
+        let projected = project_vertices(&ClipPositions(&clip), &EagerColors(verts), vp);
         ScreenBatch::build_from(projected, EagerColors(verts), groups, vp)
     }
 
@@ -174,8 +181,7 @@ impl ScreenBatch {
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
-        let mut projected = project_vertices(&positions, vp);
-        shade_vertices(&mut projected, &shader);
+        let projected = project_vertices(&positions, &shader, vp);
         let clip_vertices = ShadedColors { positions, shader };
         ScreenBatch::build_from(projected, clip_vertices, groups, vp)
     }
@@ -270,15 +276,15 @@ impl ScreenBatch {
         let (sa, sb, sc) = (&pa.screen, &pb.screen, &pc.screen);
         let area = signed_area(sa, sb, sc);
         // Counter-clockwise in the world, seen from the front, projects to a
-        // negative area on the y-down screen.
-        let (order, area) = if area < 0 {
-            ([a, c, b], -area)
+        // negative area on the y-down screen. (The vertices already looked
+        // up are reordered, not their indices: no second bounds check.)
+        let (v, area) = if area < 0 {
+            ([sa, sc, sb], -area)
         } else if area > 0 && cull == CullMode::None {
-            ([a, b, c], area)
+            ([sa, sb, sc], area)
         } else {
             return;
         };
-        let v = vertices(projected, order);
         let Some(small) = SmallTriangle::of(v, span) else {
             let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
             self.push_triangle(tri, span);
@@ -305,14 +311,6 @@ impl ScreenBatch {
         self.bands.push(self.tris.len() as u32, (span.y0, span.y1));
         self.tris.push(tri);
     }
-}
-
-/// The screen vertices of `order` (an array literal: `array::map` with
-/// bounds-checked indexing becomes a call per triangle).
-#[inline(always)]
-fn vertices(projected: &[ProjectedVertex], order: [usize; 3]) -> [&ScreenVertex; 3] {
-    let screen = |k: usize| &projected[k].screen;
-    [screen(order[0]), screen(order[1]), screen(order[2])]
 }
 
 /// Items binned by the bands of rows they touch: a counting sort that keeps

@@ -1,7 +1,7 @@
 //! Triangle-mesh instances: one transform for the whole mesh, optionally one
 //! more per named part (rigid-part characters: a capsule per bone).
 
-use glam::{Mat4, Vec3};
+use glam::{IVec4, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::Camera;
@@ -120,6 +120,7 @@ impl<'a> MeshInstance<'a> {
                     albedo: self.color,
                     lighting: *lighting,
                     eye: camera.eye,
+                    identity_model: model == Mat4::IDENTITY,
                 };
                 let local: Vec<[u32; 3]> =
                     tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
@@ -139,14 +140,49 @@ impl<'a> MeshInstance<'a> {
     }
 }
 
-/// The smallest and largest vertex index of `triangles` (`None` when empty),
-/// in one pass that compilers vectorise: the indices are compared as `i32`
-/// with the top bit flipped, which orders them as `u32` (SSE2 compares signed
-/// 32-bit lanes only).
+/// The smallest and largest vertex index of `triangles` (`None` when empty).
+///
+/// Indices below `2^24` (every mesh that fits in memory in practice) are
+/// exact as `f32`, and SSE2 has `f32` minimum and maximum (not `u32` ones):
+/// four indices per step, converted as `i32`. A mesh with a larger index
+/// (which would round, or turn negative as `i32`) takes [`exact_index_range`].
 #[inline(never)]
 fn index_range(triangles: &[[u32; 3]]) -> Option<(u32, u32)> {
-    const FLIP: u32 = 1 << 31;
+    /// Indices from here on may round as `f32`.
+    const EXACT_MAX: f32 = (1 << f32::MANTISSA_DIGITS) as f32;
     let indices = triangles.as_flattened();
+    if indices.is_empty() {
+        return None;
+    }
+    let mut lo = Vec4::splat(f32::INFINITY);
+    let mut hi = Vec4::splat(f32::NEG_INFINITY);
+    let mut fours = indices.chunks_exact(4);
+    for four in &mut fours {
+        let v = IVec4::new(
+            four[0] as i32,
+            four[1] as i32,
+            four[2] as i32,
+            four[3] as i32,
+        );
+        let v = v.as_vec4();
+        (lo, hi) = (lo.min(v), hi.max(v));
+    }
+    for &index in fours.remainder() {
+        let v = Vec4::splat(index as i32 as f32);
+        (lo, hi) = (lo.min(v), hi.max(v));
+    }
+    let (lo, hi) = (lo.min_element(), hi.max_element());
+    if lo >= 0.0 && hi < EXACT_MAX {
+        Some((lo as u32, hi as u32))
+    } else {
+        exact_index_range(indices)
+    }
+}
+
+/// The smallest and largest of `indices` (`None` when empty), compared as
+/// `i32` with the top bit flipped, which orders them as `u32`.
+fn exact_index_range(indices: &[u32]) -> Option<(u32, u32)> {
+    const FLIP: u32 = 1 << 31;
     let signed = indices.iter().map(|&v| (v ^ FLIP) as i32);
     let (lo, hi) = signed.fold((i32::MAX, i32::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
     let unsigned = |v: i32| v as u32 ^ FLIP;
@@ -208,6 +244,16 @@ mod tests {
             index_range(&[[u32::MAX, 0, 1 << 31], [(1 << 31) - 1, 5, 6]]),
             Some((0, u32::MAX))
         );
+        // Around the largest index exact as `f32`, and past it.
+        let edge = 1u32 << 24;
+        for (tris, expected) in [
+            ([[edge - 1, edge - 2, 7]], (7, edge - 1)),
+            ([[edge + 1, edge, 7]], (7, edge + 1)),
+            ([[edge + 3, edge + 1, edge + 2]], (edge + 1, edge + 3)),
+            ([[1 << 31, 3, 2]], (2, 1 << 31)),
+        ] {
+            assert_eq!(index_range(&tris), Some(expected));
+        }
     }
 
     #[test]

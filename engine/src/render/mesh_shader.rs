@@ -28,6 +28,8 @@ pub(crate) struct MeshShader<'a> {
     pub lighting: Lighting,
     /// The camera position, for the fog distance.
     pub eye: Vec3,
+    /// `model == Mat4::IDENTITY`, tested once (see [`MeshShader::identity`]).
+    pub identity_model: bool,
 }
 
 impl MeshShader<'_> {
@@ -35,7 +37,7 @@ impl MeshShader<'_> {
     /// changes at most the sign of a zero coordinate, which neither the
     /// normalisation, the lighting nor the distance tells apart.
     fn identity(&self) -> bool {
-        self.model == Mat4::IDENTITY
+        self.identity_model
     }
 
     /// The matrix that takes normals to the world.
@@ -102,26 +104,60 @@ impl MeshShader<'_> {
         ]
     }
 
-    /// The fog distances of vertices `4 * group ..` (world position minus the
-    /// eye, its length).
+    /// The world positions of vertices `4 * group ..` as lanes (x, y, z): the
+    /// model applied as [`super::project::TransformedPoints`] applies it.
     #[inline(always)]
-    fn distances(&self, group: usize) -> [f32; LANES] {
+    fn world_lanes(&self, group: usize) -> [Vec4; 3] {
         let p = &self.points[LANES * group..LANES * group + LANES];
         let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
         let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
         let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
-        let (x, y, z) = if self.identity() {
-            (x, y, z)
-        } else {
-            let m = self.model.transpose();
-            (
-                row_times(m.x_axis, x, y, z),
-                row_times(m.y_axis, x, y, z),
-                row_times(m.z_axis, x, y, z),
-            )
-        };
-        let (dx, dy, dz) = (x - self.eye.x, y - self.eye.y, z - self.eye.z);
-        (dx * dx + dy * dy + dz * dz).sqrt().to_array()
+        if self.identity() {
+            return [x, y, z];
+        }
+        let m = self.model.transpose();
+        [
+            row_times(m.x_axis, x, y, z),
+            row_times(m.y_axis, x, y, z),
+            row_times(m.z_axis, x, y, z),
+        ]
+    }
+
+    /// The fog distances of vertices at the world positions `[x, y, z]`
+    /// (lanes): the length of the position minus the eye.
+    #[inline(always)]
+    fn distances(&self, [x, y, z]: &[Vec4; 3]) -> Vec4 {
+        let (dx, dy, dz) = (*x - self.eye.x, *y - self.eye.y, *z - self.eye.z);
+        (dx * dx + dy * dy + dz * dz).sqrt()
+    }
+
+    /// [`Lighting::apply_fog`] of the display colours `[r, g, b]` (one vertex
+    /// per lane) of vertices `4 * group ..`, with the same operations per
+    /// lane: the fog amount `1 - exp(-density * max(distance - start, 0))`,
+    /// then glam's `lerp` towards the horizon colour, kept only past the fog
+    /// start (the caller skips a batch without fog).
+    #[inline(always)]
+    fn fogged(&self, [r, g, b]: [Vec4; 3], world: &[Vec4; 3]) -> [Vec4; 3] {
+        let fog = &self.lighting;
+        let distance = self.distances(world);
+        let exponent = Vec4::splat(-fog.fog_density) * (distance - fog.fog_start).max(Vec4::ZERO);
+        let e = exponent.to_array();
+        let amount = Vec4::ONE - Vec4::new(e[0].exp(), e[1].exp(), e[2].exp(), e[3].exp());
+        let keep = Vec4::ONE - amount;
+        let horizon = fog.sky_horizon;
+        let lerp = |c: Vec4, h: f32| c * keep + Vec4::splat(h) * amount;
+        let fogged = [lerp(r, horizon.x), lerp(g, horizon.y), lerp(b, horizon.z)];
+        let clear = distance.cmple(Vec4::splat(fog.fog_start));
+        if !clear.any() {
+            // Every vertex past the fog start (the common case).
+            return fogged;
+        }
+        let [fr, fg, fb] = fogged;
+        [
+            Vec4::select(clear, r, fr),
+            Vec4::select(clear, g, fg),
+            Vec4::select(clear, b, fb),
+        ]
     }
 }
 
@@ -144,11 +180,24 @@ impl VertexShader for MeshShader<'_> {
 
     #[inline]
     fn colors(&self, group: usize) -> [Vec3; LANES] {
+        self.colors_at(group, &self.world_lanes(group))
+    }
+
+    #[inline(always)]
+    fn colors_at(&self, group: usize, world: &[Vec4; 3]) -> [Vec3; LANES] {
         let range = LANES * group..LANES * group + LANES;
         let baked = self.baked.map_or(0, <[Vec3]>::len);
-        let display: [Vec3; LANES] = if baked >= range.end {
+        let fog = self.lighting.fog_density != 0.0;
+        let lanes = if baked >= range.end {
             let c = &self.baked.unwrap_or_default()[range];
-            [c[0], c[1], c[2], c[3]]
+            if !fog {
+                return [c[0], c[1], c[2], c[3]];
+            }
+            [
+                Vec4::new(c[0].x, c[1].x, c[2].x, c[3].x),
+                Vec4::new(c[0].y, c[1].y, c[2].y, c[3].y),
+                Vec4::new(c[0].z, c[1].z, c[2].z, c[3].z),
+            ]
         } else if baked <= range.start && self.normals.len() >= range.end {
             let n = &self.normals[range];
             let lanes = [
@@ -156,17 +205,18 @@ impl VertexShader for MeshShader<'_> {
                 Vec4::new(n[0].y, n[1].y, n[2].y, n[3].y),
                 Vec4::new(n[0].z, n[1].z, n[2].z, n[3].z),
             ];
-            let [r, g, b] = self.lit_lanes(lanes, &self.normal_matrix());
-            let (r, g, b) = (r.to_array(), g.to_array(), b.to_array());
-            std::array::from_fn(|k| Vec3::new(r[k], g[k], b[k]))
+            self.lit_lanes(lanes, &self.normal_matrix())
         } else {
             return std::array::from_fn(|k| self.color(LANES * group + k));
         };
-        if self.lighting.fog_density == 0.0 {
-            return display;
-        }
-        let distance = self.distances(group);
-        std::array::from_fn(|k| self.lighting.apply_fog(display[k], distance[k]))
+        // Without fog the distance is not needed.
+        let [r, g, b] = if fog {
+            self.fogged(lanes, world)
+        } else {
+            lanes
+        };
+        let (r, g, b) = (r.to_array(), g.to_array(), b.to_array());
+        std::array::from_fn(|k| Vec3::new(r[k], g[k], b[k]))
     }
 }
 
@@ -191,7 +241,9 @@ mod tests {
         let baked: Vec<Vec3> = (0..count / 2).map(|_| Vec3::new(v(), v(), v())).collect();
         let rotated = Mat4::from_rotation_y(0.6) * Mat4::from_translation(Vec3::X);
         for model in [Mat4::IDENTITY, rotated] {
-            for fog_density in [0.0, 0.2] {
+            // Fog starting before every vertex, and among them (groups with
+            // vertices on both sides of the start).
+            for (fog_density, fog_start) in [(0.0, 1.0), (0.2, 1.0), (0.2, 6.0)] {
                 for baked in [None, Some(&baked[..]), Some(&baked[..10])] {
                     let shader = MeshShader {
                         points: &points,
@@ -201,11 +253,19 @@ mod tests {
                         albedo: Vec3::new(0.6, 0.5, 0.3),
                         lighting: Lighting {
                             fog_density,
-                            fog_start: 1.0,
+                            fog_start,
                             ..Lighting::default()
                         },
                         eye: Vec3::new(0.5, 2.0, -4.0),
+                        identity_model: model == Mat4::IDENTITY,
                     };
+                    let past_start = |k: usize| {
+                        (shader.world(k) - shader.eye).length() > shader.lighting.fog_start
+                    };
+                    let mixed = (0..count / LANES)
+                        .filter(|g| (0..LANES).any(|k| !past_start(LANES * g + k)))
+                        .count();
+                    assert_eq!(mixed > 20, fog_start > 1.0, "{mixed} groups partly clear");
                     for group in 0..count / LANES {
                         let lanes = shader.colors(group);
                         for (k, lane) in lanes.iter().enumerate() {

@@ -64,8 +64,10 @@ pub(crate) trait ClipSource {
     /// The clip position of vertex `k`.
     fn clip(&self, k: usize) -> Vec4;
     /// The clip positions of vertices `4 * group .. 4 * group + 4` as lanes:
-    /// all x, all y, all z, all w (the same bits as [`ClipSource::clip`]).
-    fn lanes(&self, group: usize) -> [Vec4; LANES];
+    /// all x, all y, all z, all w (the same bits as [`ClipSource::clip`]),
+    /// and the world positions they come from as lanes (x, y, z; the clip
+    /// ones when there is no world space).
+    fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]);
 }
 
 /// Clip positions given as they are.
@@ -82,10 +84,11 @@ impl ClipSource for ClipPositions<'_> {
     }
 
     #[inline(always)]
-    fn lanes(&self, group: usize) -> [Vec4; LANES] {
+    fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
         let p = &self.0[LANES * group..LANES * group + LANES];
         let rows = Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
-        [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis]
+        let [x, y, z, w] = [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis];
+        ([x, y, z, w], [x, y, z])
     }
 }
 
@@ -102,6 +105,9 @@ pub(crate) struct TransformedPoints<'a> {
     view_proj: Mat4,
     /// The rows of `model` and `view_proj` (their transposes' columns).
     rows: [Mat4; 2],
+    /// `model == Mat4::IDENTITY`: then the model transform is skipped, which
+    /// changes at most the sign of a zero coordinate (`-0 + 0` is `+0`).
+    identity: bool,
 }
 
 impl<'a> TransformedPoints<'a> {
@@ -113,6 +119,7 @@ impl<'a> TransformedPoints<'a> {
             model,
             view_proj,
             rows: [model.transpose(), view_proj.transpose()],
+            identity: model == Mat4::IDENTITY,
         }
     }
 }
@@ -132,29 +139,40 @@ impl ClipSource for TransformedPoints<'_> {
 
     #[inline]
     fn clip(&self, k: usize) -> Vec4 {
-        to_clip(&self.view_proj, self.model.transform_point3(self.points[k]))
+        let p = self.points[k];
+        let world = if self.identity {
+            p
+        } else {
+            self.model.transform_point3(p)
+        };
+        to_clip(&self.view_proj, world)
     }
 
     #[inline(always)]
-    fn lanes(&self, group: usize) -> [Vec4; LANES] {
+    fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
         let p = &self.points[LANES * group..LANES * group + LANES];
         let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
         let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
         let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
         // transform_point3: ((x_axis x + y_axis y) + z_axis z) + w_axis.
         let [m, v] = &self.rows;
-        let [wx, wy, wz] = [
-            row_times(m.x_axis, x, y, z),
-            row_times(m.y_axis, x, y, z),
-            row_times(m.z_axis, x, y, z),
-        ];
+        let [wx, wy, wz] = if self.identity {
+            [x, y, z]
+        } else {
+            [
+                row_times(m.x_axis, x, y, z),
+                row_times(m.y_axis, x, y, z),
+                row_times(m.z_axis, x, y, z),
+            ]
+        };
         // Mat4 * Vec4 with w = 1: ((x_axis x + y_axis y) + z_axis z) + w_axis * 1.
-        [
+        let clip = [
             row_times(v.x_axis, wx, wy, wz),
             row_times(v.y_axis, wx, wy, wz),
             row_times(v.z_axis, wx, wy, wz),
             row_times(v.w_axis, wx, wy, wz),
-        ]
+        ];
+        (clip, [wx, wy, wz])
     }
 }
 
@@ -165,46 +183,54 @@ pub(crate) trait VertexShader {
     /// The colours of vertices `4 * group .. 4 * group + 4` (the same bits as
     /// [`VertexShader::color`]).
     fn colors(&self, group: usize) -> [Vec3; LANES];
-}
-
-/// Sets the colour / w of every projected vertex from `shader`.
-pub(crate) fn shade_vertices(vertices: &mut [ProjectedVertex], shader: &impl VertexShader) {
-    let mut groups = vertices.chunks_exact_mut(LANES);
-    for (group, four) in (&mut groups).enumerate() {
-        for (v, color) in four.iter_mut().zip(shader.colors(group)) {
-            v.screen.color_w = color * v.screen.inv_w;
-        }
-    }
-    let base = vertices.len() - vertices.len() % LANES;
-    for (k, v) in vertices[base..].iter_mut().enumerate() {
-        v.screen.color_w = shader.color(base + k) * v.screen.inv_w;
+    /// [`VertexShader::colors`] of vertices whose world positions (as given
+    /// by [`ClipSource::lanes`]) are `world`, for shaders that need them.
+    #[inline(always)]
+    fn colors_at(&self, group: usize, world: &[Vec4; 3]) -> [Vec3; LANES] {
+        let _ = world;
+        self.colors(group)
     }
 }
 
-/// The projected vertices (colour not set: `color_w` is zero) of the clip
-/// positions of `source`, in order.
-pub(crate) fn project_vertices(source: &impl ClipSource, vp: Viewport) -> Vec<ProjectedVertex> {
+/// The projected vertices of the clip positions of `source`, in order, with
+/// the colours of `shader` (each times the vertex's `1/w`).
+pub(crate) fn project_vertices(
+    source: &impl ClipSource,
+    shader: &impl VertexShader,
+    vp: Viewport,
+) -> Vec<ProjectedVertex> {
     let count = source.len();
     // Records are pushed one by one, built in place (arrays of four built
     // elsewhere and copied in cost block copies; zeroing first costs a pass).
     let mut vertices = Vec::with_capacity(count + SPARE);
+    let scalar = |k: usize| {
+        let mut v = ProjectedVertex::scalar(source.clip(k), vp);
+        v.screen.color_w = shader.color(k) * v.screen.inv_w;
+        v
+    };
     for group in 0..count / LANES {
-        if !project_four(source.lanes(group), vp, &mut vertices) {
-            let scalar = |k| ProjectedVertex::scalar(source.clip(LANES * group + k), vp);
-            vertices.extend((0..LANES).map(scalar));
+        let (clip, world) = source.lanes(group);
+        let colors = shader.colors_at(group, &world);
+        if !project_four(clip, colors, vp, &mut vertices) {
+            vertices.extend((LANES * group..LANES * group + LANES).map(scalar));
         }
     }
-    let scalar = |k| ProjectedVertex::scalar(source.clip(k), vp);
     vertices.extend((count - count % LANES..count).map(scalar));
     vertices
 }
 
-/// Appends to `out` the screen vertices, outcodes and centre boxes of four
-/// clip positions given as lanes (x, y, z, w), and returns true; or returns
+/// Appends to `out` the screen vertices (with `colors` times their `1/w`),
+/// outcodes and centre boxes of four clip positions given as lanes (x, y, z,
+/// w), and returns true; or returns
 /// false, appending nothing, when a fixed-point coordinate is too large (or NaN)
 /// for the exact lane conversion.
 #[inline(always)]
-fn project_four(lanes: [Vec4; LANES], vp: Viewport, out: &mut Vec<ProjectedVertex>) -> bool {
+fn project_four(
+    lanes: [Vec4; LANES],
+    colors: [Vec3; LANES],
+    vp: Viewport,
+    out: &mut Vec<ProjectedVertex>,
+) -> bool {
     let [x, y, z, w] = lanes;
     // The same operations as `Viewport::project`, lane by lane.
     let inv_w = Vec4::ONE / w;
@@ -231,7 +257,7 @@ fn project_four(lanes: [Vec4; LANES], vp: Viewport, out: &mut Vec<ProjectedVerte
                 x: ix[k],
                 y: iy[k],
                 inv_w: inv_w[k],
-                color_w: Vec3::ZERO,
+                color_w: colors[k] * inv_w[k],
             },
             code: codes[k],
         });
@@ -280,7 +306,21 @@ fn outcodes(x: Vec4, y: Vec4, z: Vec4, w: Vec4) -> [u8; LANES] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::clip::ClipVertex;
     use crate::rng::SplitMix64;
+
+    /// Colours from a table.
+    pub(crate) struct ColorTable<'a>(pub &'a [Vec3]);
+
+    impl VertexShader for ColorTable<'_> {
+        fn color(&self, k: usize) -> Vec3 {
+            self.0[k]
+        }
+
+        fn colors(&self, group: usize) -> [Vec3; LANES] {
+            std::array::from_fn(|k| self.color(LANES * group + k))
+        }
+    }
 
     /// Clip positions that exercise every branch: ordinary, behind the near
     /// plane, at `w = 0`, huge, NaN and infinite, exact `.5` fixed-point
@@ -340,7 +380,7 @@ mod tests {
         for model in models {
             let source = TransformedPoints::new(&points, model, camera.view_proj());
             for group in 0..points.len() / LANES {
-                let lanes = source.lanes(group);
+                let (lanes, _) = source.lanes(group);
                 for k in 0..LANES {
                     let clip = source.clip(LANES * group + k);
                     let from_lanes = Vec4::from_array(lanes.map(|lane| lane[k]));
@@ -349,6 +389,34 @@ mod tests {
                         clip.to_array().map(f32::to_bits)
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn an_identity_model_is_skipped_up_to_the_sign_of_zero() {
+        let view_proj = crate::render::Camera::perspective(0.9, 64, 48, 0.05, 50.0)
+            .unwrap()
+            .look_at(Vec3::new(1.0, 3.0, -8.0), Vec3::ZERO, Vec3::Y)
+            .view_proj();
+        let mut rng = SplitMix64::new(0x1c27_f1e5_a0b3_4d96);
+        let mut points: Vec<Vec3> = (0..4 * 200)
+            .map(|_| Vec3::new(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), 0.0))
+            .collect();
+        points.extend([
+            Vec3::ZERO,
+            Vec3::splat(-0.0),
+            Vec3::new(-0.0, 1.0, -0.0),
+            Vec3::X,
+        ]);
+        let source = TransformedPoints::new(&points, Mat4::IDENTITY, view_proj);
+        for (k, &p) in points.iter().enumerate() {
+            let full = to_clip(&view_proj, Mat4::IDENTITY.transform_point3(p));
+            let skipped = source.clip(k);
+            // Equal as numbers (-0 == +0), and bit for bit but for zeros.
+            assert_eq!(skipped, full, "{p}");
+            for (a, b) in skipped.to_array().into_iter().zip(full.to_array()) {
+                assert!(a.to_bits() == b.to_bits() || a == 0.0, "{p}");
             }
         }
     }
@@ -363,11 +431,16 @@ mod tests {
         // Lengths that leave every remainder.
         for count in [0, 1, 3, 4, 7, 20_000, 20_003] {
             let clip = awkward_positions(&mut rng, count);
-            let out = project_vertices(&ClipPositions(&clip), vp);
+            let colors: Vec<Vec3> = (0..count)
+                .map(|_| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()))
+                .collect();
+            let out = project_vertices(&ClipPositions(&clip), &ColorTable(&colors), vp);
             assert_eq!(out.len(), count);
-            for (got, &p) in out.iter().zip(&clip) {
-                let expected = vp.project_position(p);
+            for ((got, &p), &color) in out.iter().zip(&clip).zip(&colors) {
+                let expected = vp.project(&ClipVertex { pos: p, color });
                 let screen = got.screen;
+                let bits = |c: Vec3| c.to_array().map(f32::to_bits);
+                assert_eq!(bits(screen.color_w), bits(expected.color_w), "{p:?}");
                 assert_eq!((screen.x, screen.y), (expected.x, expected.y), "{p:?}");
                 assert_eq!(screen.inv_w.to_bits(), expected.inv_w.to_bits(), "{p:?}");
                 assert_eq!(got.code, outcode(p), "{p:?}");
