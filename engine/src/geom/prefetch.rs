@@ -33,9 +33,10 @@ pub(crate) fn span(start: *const u8) {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         let start = start.cast::<i8>();
         for offset in [0, LINE, SPAN - 1] {
-            // SAFETY: as in `lines`: SSE is in the target's baseline, and a
-            // prefetch never faults whatever the address; `wrapping_add`
-            // never dereferences.
+            // SAFETY: this code is compiled only for targets with SSE (the
+            // x86_64 baseline), which `_mm_prefetch` needs; a prefetch never
+            // faults whatever the address, and `wrapping_add` never
+            // dereferences.
             unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset)) }
         }
     }

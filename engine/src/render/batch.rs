@@ -7,7 +7,7 @@ use glam::{Vec3, Vec4};
 use super::centre_box::{screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
 use super::project::{
-    ClipPositions, ClipSource, LANES, ProjectedVertex, VertexShader, project_vertices,
+    ClipSource, LANES, ProjectedVertex, VertexShader, position_lanes, project_vertices,
 };
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
@@ -54,15 +54,17 @@ pub(crate) struct ScreenBatch {
     bands: BandEntries,
 }
 
-/// The entries of each band of rows (band `k`: rows `k * BAND_ROWS ..`), each
-/// an index into a batch's `tris`, or into its `dots` with [`DOT_ENTRY`] set,
-/// in submission order. Filled as triangles are kept: no binning pass after.
+/// Items binned by the bands of rows they touch (band `k`: rows
+/// `k * BAND_ROWS ..`), each band's in the order they were pushed (so depth
+/// ties resolve the same way whatever the thread count). Filled as items are
+/// kept: no binning pass after. A batch's entries index its `tris`, or its
+/// `dots` with [`DOT_ENTRY`] set; the grass layer's index its pieces.
 #[derive(Debug, Default)]
-struct BandEntries(Vec<Vec<u32>>);
+pub(crate) struct BandEntries(Vec<Vec<u32>>);
 
 impl BandEntries {
     /// No entries in the bands of a screen `height` pixels tall.
-    fn new(height: i32) -> BandEntries {
+    pub(crate) fn new(height: i32) -> BandEntries {
         let bands = (height.max(0) + BAND_ROWS - 1) >> BAND_SHIFT;
         BandEntries(vec![Vec::new(); bands as usize])
     }
@@ -70,7 +72,7 @@ impl BandEntries {
     /// Appends `entry` to the bands of pixel rows `y0..=y1` (`0 <= y0 <= y1 <
     /// height`).
     #[inline(always)]
-    fn push(&mut self, entry: u32, (y0, y1): (i32, i32)) {
+    pub(crate) fn push(&mut self, entry: u32, (y0, y1): (i32, i32)) {
         let (first, last) = ((y0 >> BAND_SHIFT) as usize, (y1 >> BAND_SHIFT) as usize);
         for band in &mut self.0[first..=last] {
             band.push(entry);
@@ -79,7 +81,7 @@ impl BandEntries {
 
     /// The entries of band `band`, in submission order.
     #[inline]
-    fn band(&self, band: i32) -> &[u32] {
+    pub(crate) fn band(&self, band: i32) -> &[u32] {
         usize::try_from(band)
             .ok()
             .and_then(|k| self.0.get(k))
@@ -124,23 +126,27 @@ impl Viewport {
     }
 }
 
-/// Where clipping finds the clip position and colour of a batch's vertex
-/// (the projected vertices keep neither).
-trait ClipVertices {
-    /// The clip vertex `k` (position and colour).
-    fn clip_vertex(&self, k: usize) -> ClipVertex;
-}
+/// Clip vertices given whole: each with its position and its colour.
+#[derive(Clone, Copy)]
+struct ClipVertexList<'a>(&'a [ClipVertex]);
 
-/// Colours already projected with the positions.
-struct EagerColors<'a>(&'a [ClipVertex]);
+impl ClipSource for ClipVertexList<'_> {
+    fn len(&self) -> usize {
+        self.0.len()
+    }
 
-impl ClipVertices for EagerColors<'_> {
-    fn clip_vertex(&self, k: usize) -> ClipVertex {
-        self.0[k]
+    #[inline]
+    fn clip(&self, k: usize) -> Vec4 {
+        self.0[k].pos
+    }
+
+    #[inline(always)]
+    fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
+        position_lanes(std::array::from_fn(|k| self.0[LANES * group + k].pos))
     }
 }
 
-impl VertexShader for EagerColors<'_> {
+impl VertexShader for ClipVertexList<'_> {
     fn color(&self, k: usize) -> Vec3 {
         self.0[k].color
     }
@@ -150,49 +156,27 @@ impl VertexShader for EagerColors<'_> {
     }
 }
 
-/// Colours set before the triangles are set up, for all vertices.
-struct ShadedColors<P, S> {
-    positions: P,
-    shader: S,
-}
-
-impl<P: ClipSource, S: VertexShader> ClipVertices for ShadedColors<P, S> {
-    fn clip_vertex(&self, k: usize) -> ClipVertex {
-        ClipVertex {
-            pos: self.positions.clip(k),
-            color: self.shader.color(k),
-        }
-    }
-}
-
 impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
     pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
-        let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
-        let projected = project_vertices(&ClipPositions(&clip), &EagerColors(verts), vp);
-        ScreenBatch::build_from(projected, EagerColors(verts), groups, vp)
+        let verts = ClipVertexList(verts);
+        ScreenBatch::build_shaded(verts, verts, groups, vp)
     }
 
     /// Projects the vertices of `positions`, colours them four at a time
     /// with `shader` and sets up every triangle of `groups`.
-    pub fn build_shaded<P: ClipSource, S: VertexShader>(
-        positions: P,
-        shader: S,
+    pub fn build_shaded(
+        positions: impl ClipSource,
+        shader: impl VertexShader,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
     ) -> ScreenBatch {
-        let projected = project_vertices(&positions, &shader, vp);
-        let clip_vertices = ShadedColors { positions, shader };
-        ScreenBatch::build_from(projected, clip_vertices, groups, vp)
-    }
-
-    /// Sets up every triangle of `groups` over the `projected` vertices.
-    fn build_from(
-        mut projected: Vec<ProjectedVertex>,
-        clip_vertices: impl ClipVertices,
-        groups: &[TriangleGroup<'_>],
-        vp: Viewport,
-    ) -> ScreenBatch {
+        let mut projected = project_vertices(&positions, &shader, vp);
+        // What clipping needs of a vertex (the projected ones keep neither).
+        let clip_vertex = |k: usize| ClipVertex {
+            pos: positions.clip(k),
+            color: shader.color(k),
+        };
         let submitted = groups.iter().map(|g| g.triangles.len()).sum();
         // Growing these would copy them; untouched capacity costs nothing.
         let mut batch = ScreenBatch {
@@ -214,10 +198,7 @@ impl ScreenBatch {
                     batch.push(&projected, tri, group.cull, limits);
                     continue;
                 }
-                clip_triangle(
-                    [a, b, c].map(|k| clip_vertices.clip_vertex(k)),
-                    &mut polygon,
-                );
+                clip_triangle([a, b, c].map(clip_vertex), &mut polygon);
                 if polygon.is_empty() {
                     continue;
                 }
@@ -313,84 +294,6 @@ impl ScreenBatch {
     }
 }
 
-/// Items binned by the bands of rows they touch: a counting sort that keeps
-/// each band's items in the order given (so depth ties resolve the same way
-/// whatever the thread count). Used by the grass layer, whose pieces are sorted
-/// before they are binned.
-#[derive(Debug, Default)]
-pub(crate) struct BandBins {
-    /// First band any item touches.
-    first_band: i32,
-    /// `starts[k]..starts[k + 1]` indexes `binned` for band `first_band + k`.
-    starts: Vec<u32>,
-    /// Items of each band, in the order given.
-    binned: Vec<u32>,
-}
-
-impl BandBins {
-    /// Bins `items`, each an id and its first and last pixel row (`0 <= y0 <=
-    /// y1`); the iterator is walked three times.
-    pub(crate) fn new<I>(items: I) -> BandBins
-    where
-        I: Iterator<Item = (u32, (i32, i32))> + Clone,
-    {
-        let (first, last) = items
-            .clone()
-            .fold((i32::MAX, i32::MIN), |(lo, hi), (_, (y0, y1))| {
-                (lo.min(y0), hi.max(y1))
-            });
-        if first > last {
-            return BandBins::default();
-        }
-        let first_band = first >> BAND_SHIFT;
-        let bands = ((last >> BAND_SHIFT) - first_band + 1) as usize;
-        // Rows are non-negative: shifts, not signed divisions.
-        let band_range = |(y0, y1): (i32, i32)| {
-            (
-                ((y0 >> BAND_SHIFT) - first_band) as usize,
-                ((y1 >> BAND_SHIFT) - first_band) as usize,
-            )
-        };
-        let mut starts = vec![0u32; bands + 1];
-        for (_, rows) in items.clone() {
-            let (b0, b1) = band_range(rows);
-            // Most items touch one band: no range to iterate.
-            starts[b0 + 1] += 1;
-            for b in b0 + 1..=b1 {
-                starts[b + 1] += 1;
-            }
-        }
-        for b in 0..bands {
-            starts[b + 1] += starts[b];
-        }
-        let mut fill = starts.clone();
-        let mut binned = vec![0; starts[bands] as usize];
-        for (id, rows) in items {
-            let (b0, b1) = band_range(rows);
-            for b in b0..=b1 {
-                binned[fill[b] as usize] = id;
-                fill[b] += 1;
-            }
-        }
-        BandBins {
-            first_band,
-            starts,
-            binned,
-        }
-    }
-
-    /// The items touching band `band` (of [`BAND_ROWS`] rows), in the order given.
-    #[inline]
-    pub(crate) fn band(&self, band: i32) -> &[u32] {
-        let k = band - self.first_band;
-        if k < 0 || k as usize + 1 >= self.starts.len() {
-            return &[];
-        }
-        let k = k as usize;
-        &self.binned[self.starts[k] as usize..self.starts[k + 1] as usize]
-    }
-}
-
 /// A clip-space position from a world point and a world-to-clip matrix.
 #[inline]
 pub(crate) fn to_clip(view_proj: &glam::Mat4, p: glam::Vec3) -> Vec4 {
@@ -402,7 +305,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn band_bins_keep_order_and_repeat_items_spanning_bands() {
+    fn band_entries_keep_order_and_repeat_items_spanning_bands() {
         let b = BAND_ROWS;
         let items = [
             (7, (b + 3, b + 3)),
@@ -410,13 +313,16 @@ mod tests {
             (4, (b, 2 * b - 1)),
             (9, (3 * b, 3 * b)),
         ];
-        let bins = BandBins::new(items.iter().copied());
+        let mut bins = BandEntries::new(5 * b);
+        for (id, rows) in items {
+            bins.push(id, rows);
+        }
         assert!(bins.band(0).is_empty());
         assert_eq!(bins.band(1), &[7, 1, 4]);
         assert_eq!(bins.band(2), &[1]);
         assert_eq!(bins.band(3), &[1, 9]);
         assert!(bins.band(4).is_empty());
         assert!(bins.band(-1).is_empty());
-        assert!(BandBins::new(std::iter::empty()).band(0).is_empty());
+        assert!(BandEntries::new(0).band(0).is_empty());
     }
 }

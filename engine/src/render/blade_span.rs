@@ -153,6 +153,36 @@ fn color_fixed(c: Vec3) -> IVec3 {
     scaled.as_ivec3()
 }
 
+/// The two sides of a blade outline in its usual shape ([`Side::of_blade`]),
+/// walking forwards (`3 4 0`) and backwards (`3 2 1`), indexed by its bottom
+/// root: the other root ends the side that reaches it first.
+const USUAL_BLADE_SIDES: [[Side; 2]; 2] = [
+    [
+        Side {
+            vertices: [3, 4, 0, 3, 3],
+            edges: [3, 4, 0, 0, 0],
+            len: 3,
+        },
+        Side {
+            vertices: [3, 2, 1, 0, 3],
+            edges: [2, 1, 0, 0, 0],
+            len: 4,
+        },
+    ],
+    [
+        Side {
+            vertices: [3, 4, 0, 1, 3],
+            edges: [3, 4, 0, 0, 0],
+            len: 4,
+        },
+        Side {
+            vertices: [3, 2, 1, 3, 3],
+            edges: [2, 1, 0, 0, 0],
+            len: 3,
+        },
+    ],
+];
+
 /// One side of a polygon, from its top vertex down to its bottom one.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Side {
@@ -265,34 +295,7 @@ impl Side {
         if !usual {
             return None;
         }
-        // The root other than the bottom one ends the side that reaches it first.
-        let (forward, backward) = if bottom == 0 {
-            (
-                Side {
-                    vertices: [3, 4, 0, 3, 3],
-                    edges: [3, 4, 0, 0, 0],
-                    len: 3,
-                },
-                Side {
-                    vertices: [3, 2, 1, 0, 3],
-                    edges: [2, 1, 0, 0, 0],
-                    len: 4,
-                },
-            )
-        } else {
-            (
-                Side {
-                    vertices: [3, 4, 0, 1, 3],
-                    edges: [3, 4, 0, 0, 0],
-                    len: 4,
-                },
-                Side {
-                    vertices: [3, 2, 1, 3, 3],
-                    edges: [2, 1, 0, 0, 0],
-                    len: 3,
-                },
-            )
-        };
+        let [forward, backward] = USUAL_BLADE_SIDES[bottom];
         Some(Side::by_winding(v, forward, backward))
     }
 }

@@ -5,7 +5,7 @@ use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{BandBins, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::batch::{BandEntries, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::blade_span::{BladePiece, NotMonotone, SpanVertex};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, outcode};
 use super::raster::Band;
@@ -132,7 +132,7 @@ pub(crate) struct GrassLayer {
     pieces: Vec<Vec<BladePiece>>,
     /// Piece ids of each band, in drawing order: group index above
     /// [`GROUP_BITS`] bits, index within the group below.
-    bins: BandBins,
+    bins: BandEntries,
 }
 
 /// What one group of blades turns into.
@@ -184,17 +184,20 @@ impl GrassLayer {
             }],
             vp,
         );
-        layer.bin();
+        layer.bin(vp.height);
         layer
     }
 
     /// Sorts the pieces into per-band lists (order kept).
-    fn bin(&mut self) {
-        let pieces = &self.pieces;
-        self.bins = BandBins::new(pieces.iter().enumerate().flat_map(|(g, group)| {
-            (group.iter().enumerate())
-                .map(move |(k, p)| (((g as u32) << GROUP_BITS) | k as u32, p.rows()))
-        }));
+    fn bin(&mut self, height: i32) {
+        self.bins = BandEntries::new(height);
+        for (g, group) in self.pieces.iter().enumerate() {
+            for (k, piece) in group.iter().enumerate() {
+                // A piece's rows lie on the screen (its runs are clamped to it).
+                self.bins
+                    .push(((g as u32) << GROUP_BITS) | k as u32, piece.rows());
+            }
+        }
     }
 
     /// Blade pieces plus clipped triangles set up.

@@ -112,20 +112,18 @@ impl<'a> MeshInstance<'a> {
                 // The batch's run of a per-vertex slice (shorter when the
                 // slice ends inside the run).
                 let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
-                let shader = MeshShader {
-                    points: &mesh.positions[first..=last],
-                    normals: run(&mesh.normals),
-                    baked: self.vertex_colors.map(run),
-                    model,
-                    albedo: self.color,
-                    lighting: *lighting,
-                    eye: camera.eye,
-                    identity_model: model == Mat4::IDENTITY,
-                };
-                let local: Vec<[u32; 3]> =
-                    tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
                 let positions =
                     TransformedPoints::new(&mesh.positions[first..=last], model, view_proj);
+                let shader = MeshShader::new(
+                    positions,
+                    run(&mesh.normals),
+                    self.vertex_colors.map(run),
+                    self.color,
+                    *lighting,
+                    camera.eye,
+                );
+                let local: Vec<[u32; 3]> =
+                    tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
                 Some(ScreenBatch::build_shaded(
                     positions,
                     shader,

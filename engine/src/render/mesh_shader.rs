@@ -9,76 +9,82 @@
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 
-use super::project::{LANES, VertexShader, row_times};
+use super::project::{LANES, TransformedPoints, VertexShader, vec3_lanes};
 use super::shading::{Lighting, encode_display};
 
 /// The colours of a run of mesh vertices (vertex `k` of the run).
 pub(crate) struct MeshShader<'a> {
-    /// Model-space positions.
-    pub points: &'a [Vec3],
+    /// The run's model-space positions and their model transform (whose
+    /// world positions the fog measures).
+    placed: TransformedPoints<'a>,
     /// Model-space normals (vertices past the end face up).
-    pub normals: &'a [Vec3],
+    normals: &'a [Vec3],
     /// Baked display colours (vertices past the end are lit).
-    pub baked: Option<&'a [Vec3]>,
-    /// Model-to-world transform.
-    pub model: Mat4,
+    baked: Option<&'a [Vec3]>,
+    /// The matrix that takes normals to the world; `None` for an identity
+    /// model, which is skipped: that changes at most the sign of a zero
+    /// coordinate, which neither the normalisation nor the lighting tells
+    /// apart.
+    normal_matrix: Option<Mat3>,
     /// Linear RGB albedo of lit vertices.
-    pub albedo: Vec3,
+    albedo: Vec3,
     /// Light and fog.
-    pub lighting: Lighting,
+    lighting: Lighting,
     /// The camera position, for the fog distance.
-    pub eye: Vec3,
-    /// `model == Mat4::IDENTITY`, tested once (see [`MeshShader::identity`]).
-    pub identity_model: bool,
+    eye: Vec3,
 }
 
-impl MeshShader<'_> {
-    /// Whether the model transform is the identity: then it is skipped, which
-    /// changes at most the sign of a zero coordinate, which neither the
-    /// normalisation, the lighting nor the distance tells apart.
-    fn identity(&self) -> bool {
-        self.identity_model
-    }
-
-    /// The matrix that takes normals to the world.
-    fn normal_matrix(&self) -> Mat3 {
-        Mat3::from_mat4(self.model).inverse().transpose()
+impl<'a> MeshShader<'a> {
+    /// The shader of the vertices of `placed` (whose model transform also
+    /// turns the normals), with their `normals` and `baked` colours (either
+    /// may be shorter than the run), lit with `albedo` under `lighting` and
+    /// fogged as seen from `eye`.
+    pub fn new(
+        placed: TransformedPoints<'a>,
+        normals: &'a [Vec3],
+        baked: Option<&'a [Vec3]>,
+        albedo: Vec3,
+        lighting: Lighting,
+        eye: Vec3,
+    ) -> MeshShader<'a> {
+        let model = placed.model();
+        MeshShader {
+            placed,
+            normals,
+            baked,
+            normal_matrix: (model != Mat4::IDENTITY)
+                .then(|| Mat3::from_mat4(model).inverse().transpose()),
+            albedo,
+            lighting,
+            eye,
+        }
     }
 
     /// The display colour of a sun-lit vertex with model-space normal `n`,
     /// before fog.
-    fn lit(&self, n: Vec3, normal_matrix: &Mat3) -> Vec3 {
-        let n = if self.identity() {
-            n
-        } else {
-            *normal_matrix * n
+    fn lit(&self, n: Vec3) -> Vec3 {
+        let n = match &self.normal_matrix {
+            Some(m) => *m * n,
+            None => n,
         };
         let n = n.normalize_or(Vec3::Y);
         let sky = 0.65 + 0.35 * n.y;
         encode_display(self.lighting.radiance(self.albedo, n, sky, 1.0))
     }
 
-    /// The world position of vertex `k`.
-    fn world(&self, k: usize) -> Vec3 {
-        if self.identity() {
-            self.points[k]
-        } else {
-            self.model.transform_point3(self.points[k])
-        }
-    }
-
     /// [`MeshShader::lit`] of four normals given as lanes.
     #[inline(always)]
-    fn lit_lanes(&self, [x, y, z]: [Vec4; 3], normal_matrix: &Mat3) -> [Vec4; 3] {
-        let (x, y, z) = if self.identity() {
-            (x, y, z)
-        } else {
-            // Mat3 * Vec3: (x_axis x + y_axis y) + z_axis z.
-            let row = |r: usize| {
-                let m = normal_matrix.row(r);
-                x * m.x + y * m.y + z * m.z
-            };
-            (row(0), row(1), row(2))
+    fn lit_lanes(&self, [x, y, z]: [Vec4; 3]) -> [Vec4; 3] {
+        let (x, y, z) = match &self.normal_matrix {
+            None => (x, y, z),
+            Some(normal_matrix) => {
+                // Mat3 * Vec3: (x_axis x + y_axis y) + z_axis z.
+                let row = |r: usize| {
+                    let m = normal_matrix.row(r);
+                    x * m.x + y * m.y + z * m.z
+                };
+                (row(0), row(1), row(2))
+            }
         };
         // normalize_or(Y): times 1 / length when that is finite and positive.
         let rcp = Vec4::ONE / (x * x + y * y + z * z).sqrt();
@@ -101,25 +107,6 @@ impl MeshShader<'_> {
             channel(a.x, amb.x, c.x),
             channel(a.y, amb.y, c.y),
             channel(a.z, amb.z, c.z),
-        ]
-    }
-
-    /// The world positions of vertices `4 * group ..` as lanes (x, y, z): the
-    /// model applied as [`super::project::TransformedPoints`] applies it.
-    #[inline(always)]
-    fn world_lanes(&self, group: usize) -> [Vec4; 3] {
-        let p = &self.points[LANES * group..LANES * group + LANES];
-        let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
-        let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
-        let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
-        if self.identity() {
-            return [x, y, z];
-        }
-        let m = self.model.transpose();
-        [
-            row_times(m.x_axis, x, y, z),
-            row_times(m.y_axis, x, y, z),
-            row_times(m.z_axis, x, y, z),
         ]
     }
 
@@ -167,7 +154,7 @@ impl VertexShader for MeshShader<'_> {
             Some(&baked) => baked,
             None => {
                 let n = self.normals.get(k).copied().unwrap_or(Vec3::Y);
-                self.lit(n, &self.normal_matrix())
+                self.lit(n)
             }
         };
         // Without fog the distance is not needed.
@@ -175,12 +162,12 @@ impl VertexShader for MeshShader<'_> {
             return display;
         }
         self.lighting
-            .apply_fog(display, (self.world(k) - self.eye).length())
+            .apply_fog(display, (self.placed.world(k) - self.eye).length())
     }
 
     #[inline]
     fn colors(&self, group: usize) -> [Vec3; LANES] {
-        self.colors_at(group, &self.world_lanes(group))
+        self.colors_at(group, &self.placed.world_lanes(group))
     }
 
     #[inline(always)]
@@ -193,19 +180,9 @@ impl VertexShader for MeshShader<'_> {
             if !fog {
                 return [c[0], c[1], c[2], c[3]];
             }
-            [
-                Vec4::new(c[0].x, c[1].x, c[2].x, c[3].x),
-                Vec4::new(c[0].y, c[1].y, c[2].y, c[3].y),
-                Vec4::new(c[0].z, c[1].z, c[2].z, c[3].z),
-            ]
+            vec3_lanes(c)
         } else if baked <= range.start && self.normals.len() >= range.end {
-            let n = &self.normals[range];
-            let lanes = [
-                Vec4::new(n[0].x, n[1].x, n[2].x, n[3].x),
-                Vec4::new(n[0].y, n[1].y, n[2].y, n[3].y),
-                Vec4::new(n[0].z, n[1].z, n[2].z, n[3].z),
-            ];
-            self.lit_lanes(lanes, &self.normal_matrix())
+            self.lit_lanes(vec3_lanes(&self.normals[range]))
         } else {
             return std::array::from_fn(|k| self.color(LANES * group + k));
         };
@@ -245,22 +222,20 @@ mod tests {
             // vertices on both sides of the start).
             for (fog_density, fog_start) in [(0.0, 1.0), (0.2, 1.0), (0.2, 6.0)] {
                 for baked in [None, Some(&baked[..]), Some(&baked[..10])] {
-                    let shader = MeshShader {
-                        points: &points,
-                        normals: &normals[..count - 2],
+                    let shader = MeshShader::new(
+                        TransformedPoints::new(&points, model, Mat4::IDENTITY),
+                        &normals[..count - 2],
                         baked,
-                        model,
-                        albedo: Vec3::new(0.6, 0.5, 0.3),
-                        lighting: Lighting {
+                        Vec3::new(0.6, 0.5, 0.3),
+                        Lighting {
                             fog_density,
                             fog_start,
                             ..Lighting::default()
                         },
-                        eye: Vec3::new(0.5, 2.0, -4.0),
-                        identity_model: model == Mat4::IDENTITY,
-                    };
+                        Vec3::new(0.5, 2.0, -4.0),
+                    );
                     let past_start = |k: usize| {
-                        (shader.world(k) - shader.eye).length() > shader.lighting.fog_start
+                        (shader.placed.world(k) - shader.eye).length() > shader.lighting.fog_start
                     };
                     let mixed = (0..count / LANES)
                         .filter(|g| (0..LANES).any(|k| !past_start(LANES * g + k)))

@@ -70,25 +70,31 @@ pub(crate) trait ClipSource {
     fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]);
 }
 
-/// Clip positions given as they are.
+/// Four clip positions as lanes (all x, all y, all z, all w), and as the
+/// world lanes of a source without world space (x, y, z).
+#[inline(always)]
+pub(crate) fn position_lanes(p: [Vec4; LANES]) -> ([Vec4; LANES], [Vec4; 3]) {
+    let rows = Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
+    let [x, y, z, w] = [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis];
+    ([x, y, z, w], [x, y, z])
+}
+
+/// Clip positions given as they are (tests build batches from them).
+#[cfg(test)]
 pub(crate) struct ClipPositions<'a>(pub &'a [Vec4]);
 
+#[cfg(test)]
 impl ClipSource for ClipPositions<'_> {
     fn len(&self) -> usize {
         self.0.len()
     }
 
-    #[inline]
     fn clip(&self, k: usize) -> Vec4 {
         self.0[k]
     }
 
-    #[inline(always)]
     fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
-        let p = &self.0[LANES * group..LANES * group + LANES];
-        let rows = Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
-        let [x, y, z, w] = [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis];
-        ([x, y, z, w], [x, y, z])
+        position_lanes(std::array::from_fn(|k| self.0[LANES * group + k]))
     }
 }
 
@@ -96,6 +102,7 @@ impl ClipSource for ClipPositions<'_> {
 /// position `view_proj * (model * p)`, computed four points at a time with the
 /// same operations, in the same order, as glam's `transform_point3` and
 /// matrix-vector product.
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct TransformedPoints<'a> {
     /// Model-space positions.
     points: &'a [Vec3],
@@ -122,6 +129,50 @@ impl<'a> TransformedPoints<'a> {
             identity: model == Mat4::IDENTITY,
         }
     }
+
+    /// The model-to-world transform.
+    pub fn model(&self) -> Mat4 {
+        self.model
+    }
+
+    /// The world position of point `k`.
+    #[inline]
+    pub fn world(&self, k: usize) -> Vec3 {
+        let p = self.points[k];
+        if self.identity {
+            p
+        } else {
+            self.model.transform_point3(p)
+        }
+    }
+
+    /// The world positions of points `4 * group .. 4 * group + 4` as lanes
+    /// (x, y, z), with the operations of [`TransformedPoints::world`].
+    #[inline(always)]
+    pub fn world_lanes(&self, group: usize) -> [Vec4; 3] {
+        let [x, y, z] = vec3_lanes(&self.points[LANES * group..LANES * group + LANES]);
+        if self.identity {
+            return [x, y, z];
+        }
+        // transform_point3: ((x_axis x + y_axis y) + z_axis z) + w_axis.
+        let m = &self.rows[0];
+        [
+            row_times(m.x_axis, x, y, z),
+            row_times(m.y_axis, x, y, z),
+            row_times(m.z_axis, x, y, z),
+        ]
+    }
+}
+
+/// Four `Vec3`s (`p` holds exactly [`LANES`]) as lanes: all x, all y, all z.
+#[inline(always)]
+pub(crate) fn vec3_lanes(p: &[Vec3]) -> [Vec4; 3] {
+    let p: &[Vec3; LANES] = p.try_into().expect("one group of lanes");
+    [
+        Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x),
+        Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y),
+        Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z),
+    ]
 }
 
 /// Row `row` of a matrix applied to four points `(x, y, z, 1)` given as
@@ -139,33 +190,14 @@ impl ClipSource for TransformedPoints<'_> {
 
     #[inline]
     fn clip(&self, k: usize) -> Vec4 {
-        let p = self.points[k];
-        let world = if self.identity {
-            p
-        } else {
-            self.model.transform_point3(p)
-        };
-        to_clip(&self.view_proj, world)
+        to_clip(&self.view_proj, self.world(k))
     }
 
     #[inline(always)]
     fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
-        let p = &self.points[LANES * group..LANES * group + LANES];
-        let x = Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x);
-        let y = Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y);
-        let z = Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z);
-        // transform_point3: ((x_axis x + y_axis y) + z_axis z) + w_axis.
-        let [m, v] = &self.rows;
-        let [wx, wy, wz] = if self.identity {
-            [x, y, z]
-        } else {
-            [
-                row_times(m.x_axis, x, y, z),
-                row_times(m.y_axis, x, y, z),
-                row_times(m.z_axis, x, y, z),
-            ]
-        };
+        let [wx, wy, wz] = self.world_lanes(group);
         // Mat4 * Vec4 with w = 1: ((x_axis x + y_axis y) + z_axis z) + w_axis * 1.
+        let v = &self.rows[1];
         let clip = [
             row_times(v.x_axis, wx, wy, wz),
             row_times(v.y_axis, wx, wy, wz),

@@ -154,9 +154,6 @@ impl Edge {
     fn new(a: &ScreenVertex, b: &ScreenVertex, px: i64, py: i64) -> Edge {
         let dx = b.x as i64 - a.x as i64;
         let dy = b.y as i64 - a.y as i64;
-        // Interior is E > 0 (clockwise on a y-down screen). Pixels exactly on an
-        // edge belong to it only when it is a top edge (horizontal, going right)
-        // or a left edge (going up), so shared edges are drawn exactly once.
         Edge {
             step_x: -dy * ONE,
             step_y: dx * ONE,
