@@ -158,28 +158,12 @@ fn color_fixed(c: Vec3) -> IVec3 {
 /// root: the other root ends the side that reaches it first.
 const USUAL_BLADE_SIDES: [[Side; 2]; 2] = [
     [
-        Side {
-            vertices: [3, 4, 0, 3, 3],
-            edges: [3, 4, 0, 0, 0],
-            len: 3,
-        },
-        Side {
-            vertices: [3, 2, 1, 0, 3],
-            edges: [2, 1, 0, 0, 0],
-            len: 4,
-        },
+        Side::new([3, 4, 0, 3, 3], [3, 4, 0, 0, 0], 3),
+        Side::new([3, 2, 1, 0, 3], [2, 1, 0, 0, 0], 4),
     ],
     [
-        Side {
-            vertices: [3, 4, 0, 1, 3],
-            edges: [3, 4, 0, 0, 0],
-            len: 4,
-        },
-        Side {
-            vertices: [3, 2, 1, 3, 3],
-            edges: [2, 1, 0, 0, 0],
-            len: 3,
-        },
+        Side::new([3, 4, 0, 1, 3], [3, 4, 0, 0, 0], 4),
+        Side::new([3, 2, 1, 3, 3], [2, 1, 0, 0, 0], 3),
     ],
 ];
 
@@ -196,6 +180,15 @@ struct Side {
 }
 
 impl Side {
+    /// The side through `vertices[..len]` along `edges[..len - 1]`.
+    const fn new(vertices: [u8; MAX_VERTICES], edges: [u8; MAX_VERTICES], len: usize) -> Side {
+        Side {
+            vertices,
+            edges,
+            len,
+        }
+    }
+
     /// The side of `v` from `top` to `bottom` walking forwards (vertex `k` to
     /// `k + 1`) or backwards; [`NotMonotone`] when it goes up again.
     #[inline(always)]
