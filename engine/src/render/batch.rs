@@ -3,9 +3,11 @@
 //! least one pixel centre), binned by bands, which the bands then fill.
 
 use glam::{Vec3, Vec4};
+use multiversion::multiversion;
 
 use super::centre_box::{screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
+use super::kernels::Kernels;
 use super::project::{
     ClipSource, LANES, ProjectedVertex, VertexShader, position_lanes, project_vertices,
 };
@@ -158,65 +160,30 @@ impl VertexShader for ClipVertexList<'_> {
 
 impl ScreenBatch {
     /// Projects `verts` and sets up every triangle of `groups`.
-    pub fn build(verts: &[ClipVertex], groups: &[TriangleGroup<'_>], vp: Viewport) -> ScreenBatch {
+    pub fn build(
+        verts: &[ClipVertex],
+        groups: &[TriangleGroup<'_>],
+        vp: Viewport,
+        kernels: Kernels,
+    ) -> ScreenBatch {
         let verts = ClipVertexList(verts);
-        ScreenBatch::build_shaded(verts, verts, groups, vp)
+        ScreenBatch::build_shaded(verts, verts, groups, vp, kernels)
     }
 
     /// Projects the vertices of `positions`, colours them four at a time
-    /// with `shader` and sets up every triangle of `groups`.
-    pub fn build_shaded(
-        positions: impl ClipSource,
-        shader: impl VertexShader,
+    /// with `shader` and sets up every triangle of `groups`, with the machine
+    /// code `kernels` selects.
+    pub fn build_shaded<P: ClipSource, S: VertexShader>(
+        positions: P,
+        shader: S,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
+        kernels: Kernels,
     ) -> ScreenBatch {
-        let mut projected = project_vertices(&positions, &shader, vp);
-        // What clipping needs of a vertex (the projected ones keep neither).
-        let clip_vertex = |k: usize| ClipVertex {
-            pos: positions.clip(k),
-            color: shader.color(k),
-        };
-        let submitted = groups.iter().map(|g| g.triangles.len()).sum();
-        // Growing these would copy them; untouched capacity costs nothing.
-        let mut batch = ScreenBatch {
-            tris: Vec::with_capacity(submitted),
-            dots: Vec::with_capacity(submitted),
-            edges: Vec::new(),
-            bands: BandEntries::new(vp.height),
-        };
-        let mut polygon = Vec::with_capacity(9);
-        let limits = screen_limits(vp.width, vp.height);
-        for group in groups {
-            for &tri in group.triangles {
-                let [a, b, c] = tri.map(|k| k as usize);
-                let (ca, cb, cc) = (projected[a].code, projected[b].code, projected[c].code);
-                if ca & cb & cc & OUT_FRUSTUM != 0 {
-                    continue;
-                }
-                if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.push(&projected, tri, group.cull, limits);
-                    continue;
-                }
-                clip_triangle([a, b, c].map(clip_vertex), &mut polygon);
-                if polygon.is_empty() {
-                    continue;
-                }
-                // Clipped polygons append their (already shaded) vertices,
-                // dropped with the batch's.
-                let base = projected.len() as u32;
-                // Not clipped again: no outcode needed.
-                let vertices = polygon
-                    .iter()
-                    .map(|v| ProjectedVertex::new(vp.project(v), 0));
-                projected.extend(vertices);
-                for k in 1..polygon.len() as u32 - 1 {
-                    let tri = [base, base + k, base + k + 1];
-                    batch.push(&projected, tri, group.cull, limits);
-                }
-            }
+        match kernels {
+            Kernels::Dispatched => build_dispatched(positions, shader, groups, vp),
+            Kernels::Baseline => build_batch(positions, shader, groups, vp),
         }
-        batch
     }
 
     /// How many kept triangles became dots, and how many are full triangles.
@@ -232,7 +199,7 @@ impl ScreenBatch {
 
     /// Fills the band (band index `band`, of [`BAND_ROWS`] rows) with the
     /// triangles touching it, in submission order.
-    #[inline]
+    #[inline(always)]
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
         for &t in self.bands.band(band) {
             if t & DOT_ENTRY != 0 {
@@ -292,6 +259,75 @@ impl ScreenBatch {
         self.bands.push(self.tris.len() as u32, (span.y0, span.y1));
         self.tris.push(tri);
     }
+}
+
+/// [`build_batch`] in the best machine code for the CPU (see [`Kernels`]).
+#[multiversion(targets("x86_64+avx2"))]
+fn build_dispatched<P: ClipSource, S: VertexShader>(
+    positions: P,
+    shader: S,
+    groups: &[TriangleGroup<'_>],
+    vp: Viewport,
+) -> ScreenBatch {
+    build_batch(positions, shader, groups, vp)
+}
+
+/// The batch of `groups` over the vertices of `positions` coloured by
+/// `shader` (see [`ScreenBatch::build_shaded`]); inlined into each copy of
+/// its callers.
+#[inline(always)]
+fn build_batch(
+    positions: impl ClipSource,
+    shader: impl VertexShader,
+    groups: &[TriangleGroup<'_>],
+    vp: Viewport,
+) -> ScreenBatch {
+    let mut projected = project_vertices(&positions, &shader, vp);
+    // What clipping needs of a vertex (the projected ones keep neither).
+    let clip_vertex = |k: usize| ClipVertex {
+        pos: positions.clip(k),
+        color: shader.color(k),
+    };
+    let submitted = groups.iter().map(|g| g.triangles.len()).sum();
+    // Growing these would copy them; untouched capacity costs nothing.
+    let mut batch = ScreenBatch {
+        tris: Vec::with_capacity(submitted),
+        dots: Vec::with_capacity(submitted),
+        edges: Vec::new(),
+        bands: BandEntries::new(vp.height),
+    };
+    let mut polygon = Vec::with_capacity(9);
+    let limits = screen_limits(vp.width, vp.height);
+    for group in groups {
+        for &tri in group.triangles {
+            let [a, b, c] = tri.map(|k| k as usize);
+            let (ca, cb, cc) = (projected[a].code, projected[b].code, projected[c].code);
+            if ca & cb & cc & OUT_FRUSTUM != 0 {
+                continue;
+            }
+            if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
+                batch.push(&projected, tri, group.cull, limits);
+                continue;
+            }
+            clip_triangle([a, b, c].map(clip_vertex), &mut polygon);
+            if polygon.is_empty() {
+                continue;
+            }
+            // Clipped polygons append their (already shaded) vertices,
+            // dropped with the batch's.
+            let base = projected.len() as u32;
+            // Not clipped again: no outcode needed.
+            let vertices = polygon
+                .iter()
+                .map(|v| ProjectedVertex::new(vp.project(v), 0));
+            projected.extend(vertices);
+            for k in 1..polygon.len() as u32 - 1 {
+                let tri = [base, base + k, base + k + 1];
+                batch.push(&projected, tri, group.cull, limits);
+            }
+        }
+    }
+    batch
 }
 
 /// A clip-space position from a world point and a world-to-clip matrix.

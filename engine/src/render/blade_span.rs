@@ -438,7 +438,7 @@ impl BladePiece {
     ///
     /// The band's rows are clipped once per run; a row then costs two edge
     /// steps, two shifts and clamps, one depth start and a compare per pixel.
-    #[inline]
+    #[inline(always)]
     pub fn draw(&self, band: &mut Band<'_>) {
         let width = band.width as usize;
         let [d0, d_dx, d_dy] = self.depth;

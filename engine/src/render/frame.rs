@@ -4,12 +4,14 @@ use std::sync::{Arc, Mutex};
 
 use glam::Vec3;
 use image::RgbaImage;
+use multiversion::multiversion;
 use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
 use super::error::RenderError;
 use super::grass::{GrassBlade, GrassLayer};
+use super::kernels::Kernels;
 use super::mesh::MeshInstance;
 use super::raster::{Band, to_u8};
 use super::shading::Lighting;
@@ -71,6 +73,8 @@ pub struct Renderer {
     /// The depth buffer kept between frames (saves allocating and faulting in
     /// a fresh one per frame); a frame that finds it busy allocates its own.
     depth: Arc<Mutex<Vec<f32>>>,
+    /// The machine code of the hot kernels.
+    kernels: Kernels,
 }
 
 impl Renderer {
@@ -88,6 +92,7 @@ impl Renderer {
             height,
             pool: None,
             depth: Arc::default(),
+            kernels: Kernels::default(),
         })
     }
 
@@ -108,6 +113,13 @@ impl Renderer {
             })?;
         self.pool = Some(Arc::new(pool));
         Ok(self)
+    }
+
+    /// The same renderer running its hot kernels with `kernels`.
+    #[cfg(test)]
+    pub(crate) fn with_kernels(mut self, kernels: Kernels) -> Renderer {
+        self.kernels = kernels;
+        self
     }
 
     /// Image width in pixels.
@@ -154,7 +166,7 @@ impl Renderer {
                 )
             },
             // Grass: its own pass per band, after terrain and meshes.
-            || GrassLayer::build(scene.blades, camera, &scene.lighting, vp),
+            || GrassLayer::build(scene.blades, camera, &scene.lighting, vp, self.kernels),
         );
         let stats = FrameStats {
             batches: batches.len(),
@@ -176,24 +188,16 @@ impl Renderer {
             // band, not half of a run of them, so both finish together.
             .with_max_len(1)
             .for_each(|(b, (color, depth))| {
-                let y0 = b as i32 * BAND_ROWS;
-                let y1 = y0 + (depth.len() / w) as i32;
-                depth.fill(0.0);
-                for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
-                    let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
-                    fill_row(row, px);
-                }
-                let mut band = Band {
+                let band = BandJob {
+                    index: b as i32,
                     color,
                     depth,
-                    width: vp.width,
-                    y0,
-                    y1,
+                    sky_rows: &sky_rows,
                 };
-                for batch in &batches {
-                    batch.draw_band(b as i32, &mut band);
+                match self.kernels {
+                    Kernels::Dispatched => fill_band_dispatched(band, &batches, &grass, vp),
+                    Kernels::Baseline => fill_band(band, &batches, &grass, vp),
                 }
-                grass.draw_band(b as i32, &mut band);
             });
         let image = RgbaImage::from_raw(self.width, self.height, color)
             .expect("the colour buffer has width * height * 4 bytes");
@@ -205,14 +209,14 @@ impl Renderer {
         let lighting = &scene.lighting;
         let (mut batches, meshes) = rayon::join(
             || match scene.terrain {
-                Some(t) => t.batches(camera, lighting, vp),
+                Some(t) => t.batches(camera, lighting, vp, self.kernels),
                 None => Vec::new(),
             },
             || -> Vec<Vec<ScreenBatch>> {
                 scene
                     .meshes
                     .par_iter()
-                    .map(|m| m.batches(camera, lighting, vp))
+                    .map(|m| m.batches(camera, lighting, vp, self.kernels))
                     .collect()
             },
         );
@@ -232,6 +236,60 @@ impl Renderer {
             })
             .collect()
     }
+}
+
+/// One band's share of the frame buffers.
+struct BandJob<'a> {
+    /// Band index (rows `index * BAND_ROWS ..`).
+    index: i32,
+    /// The band's RGBA8 rows.
+    color: &'a mut [u8],
+    /// The band's depth rows.
+    depth: &'a mut [f32],
+    /// The sky colour of every row of the frame.
+    sky_rows: &'a [Vec3],
+}
+
+/// [`fill_band`] in the best machine code for the CPU (see [`Kernels`]).
+#[multiversion(targets("x86_64+avx2"))]
+fn fill_band_dispatched(
+    job: BandJob<'_>,
+    batches: &[ScreenBatch],
+    grass: &GrassLayer,
+    vp: Viewport,
+) {
+    fill_band(job, batches, grass, vp);
+}
+
+/// Clears a band to the sky and empty depth, then draws the batches and the
+/// grass touching it, in scene order.
+#[inline(always)]
+fn fill_band(job: BandJob<'_>, batches: &[ScreenBatch], grass: &GrassLayer, vp: Viewport) {
+    let BandJob {
+        index,
+        color,
+        depth,
+        sky_rows,
+    } = job;
+    let w = vp.width as usize;
+    let y0 = index * BAND_ROWS;
+    let y1 = y0 + (depth.len() / w) as i32;
+    depth.fill(0.0);
+    for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
+        let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
+        fill_row(row, px);
+    }
+    let mut band = Band {
+        color,
+        depth,
+        width: vp.width,
+        y0,
+        y1,
+    };
+    for batch in batches {
+        batch.draw_band(index, &mut band);
+    }
+    grass.draw_band(index, &mut band);
 }
 
 /// Fills an RGBA8 row with one pixel value: the first pixel, then doubling

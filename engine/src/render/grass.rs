@@ -8,6 +8,7 @@ use super::Camera;
 use super::batch::{BandEntries, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::blade_span::{BladePiece, NotMonotone, SpanVertex};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, outcode};
+use super::kernels::Kernels;
 use super::raster::Band;
 use super::shading::{Lighting, encode_display};
 use crate::rng::SplitMix64;
@@ -151,6 +152,7 @@ impl GrassLayer {
         camera: &Camera,
         lighting: &Lighting,
         vp: Viewport,
+        kernels: Kernels,
     ) -> GrassLayer {
         let view_proj = camera.view_proj();
         let groups: Vec<BladeGroup> = drawn_blades(blades, camera)
@@ -183,6 +185,7 @@ impl GrassLayer {
                 cull: CullMode::None,
             }],
             vp,
+            kernels,
         );
         layer.bin(vp.height);
         layer
@@ -212,6 +215,7 @@ impl GrassLayer {
 
     /// Draws the grass touching band `band` (of `BAND_ROWS` rows): clipped
     /// blades, then the pieces, nearest blade first.
+    #[inline(always)]
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
         self.clipped.draw_band(band, target);
         for &p in self.bins.band(band) {
@@ -426,7 +430,13 @@ mod tests {
             width: 160,
             height: 100,
         };
-        let layer = GrassLayer::build(&blades, &camera, &Lighting::default(), vp);
+        let layer = GrassLayer::build(
+            &blades,
+            &camera,
+            &Lighting::default(),
+            vp,
+            Kernels::Baseline,
+        );
         assert!(
             layer.clipped.len() > 0,
             "the blade around the eye is clipped"

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
+use super::kernels::Kernels;
 use super::mesh_shader::MeshShader;
 use super::project::TransformedPoints;
 use super::shading::Lighting;
@@ -87,6 +88,7 @@ impl<'a> MeshInstance<'a> {
         camera: &Camera,
         lighting: &Lighting,
         vp: Viewport,
+        kernels: Kernels,
     ) -> Vec<ScreenBatch> {
         let view_proj = camera.view_proj();
         let mesh = self.mesh;
@@ -132,6 +134,7 @@ impl<'a> MeshInstance<'a> {
                         cull: self.cull,
                     }],
                     vp,
+                    kernels,
                 ))
             })
             .collect()

@@ -32,6 +32,7 @@ mod error;
 mod follow;
 mod frame;
 mod grass;
+mod kernels;
 mod mesh;
 mod mesh_shader;
 mod project;

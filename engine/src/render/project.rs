@@ -225,7 +225,9 @@ pub(crate) trait VertexShader {
 }
 
 /// The projected vertices of the clip positions of `source`, in order, with
-/// the colours of `shader` (each times the vertex's `1/w`).
+/// the colours of `shader` (each times the vertex's `1/w`). Inlined into each
+/// copy of the batch build ([`super::kernels::Kernels`]).
+#[inline(always)]
 pub(crate) fn project_vertices(
     source: &impl ClipSource,
     shader: &impl VertexShader,

@@ -370,7 +370,7 @@ impl Dot {
 
     /// Writes the pixel if it lies in the band and is nearer than what is there
     /// (the same test and value as filling its triangle).
-    #[inline]
+    #[inline(always)]
     pub fn draw(&self, band: &mut Band<'_>) {
         if self.y < band.y0 || self.y >= band.y1 {
             return;
@@ -386,7 +386,7 @@ impl Dot {
 impl Triangle {
     /// Calls `run` for every row in `rows` where the triangle covers pixel
     /// centres, with the covered columns (contiguous: the triangle is convex).
-    #[inline]
+    #[inline(always)]
     pub fn for_each_run(
         &self,
         edges: &[Edges],
@@ -452,7 +452,7 @@ impl Triangle {
 
     /// Draws the triangle into the band: depth test `1/w` greater than stored,
     /// perspective-correct colour.
-    #[inline]
+    #[inline(always)]
     pub fn draw(&self, edges: &[Edges], band: &mut Band<'_>) {
         let width = band.width as usize;
         let y0 = band.y0;
@@ -531,6 +531,7 @@ mod tests {
     use crate::render::Camera;
     use crate::render::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport};
     use crate::render::clip::ClipVertex;
+    use crate::render::kernels::Kernels;
     use crate::render::project::{ClipPositions, LANES, VertexShader};
     use crate::render::small_triangle::SmallTriangle;
     use crate::rng::SplitMix64;
@@ -682,6 +683,7 @@ mod tests {
                 width: w,
                 height: h,
             },
+            Kernels::Dispatched,
         )
     }
 
@@ -785,11 +787,14 @@ mod tests {
             height: h,
         };
         let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
-        let shaded = ScreenBatch::build_shaded(ClipPositions(&clip), Table(&verts), &group, vp);
-        let eager = ScreenBatch::build(&verts, &group, vp);
-        assert!(shaded.len() > 50);
-        assert_eq!(shaded.len(), eager.len());
-        assert_eq!(draw(&shaded, w, h), draw(&eager, w, h));
+        let eager = ScreenBatch::build(&verts, &group, vp, Kernels::Baseline);
+        for kernels in [Kernels::Baseline, Kernels::Dispatched] {
+            let shaded =
+                ScreenBatch::build_shaded(ClipPositions(&clip), Table(&verts), &group, vp, kernels);
+            assert!(shaded.len() > 50);
+            assert_eq!(shaded.len(), eager.len());
+            assert_eq!(draw(&shaded, w, h), draw(&eager, w, h), "{kernels:?}");
+        }
     }
 
     #[test]

@@ -13,6 +13,7 @@ use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::clip::ClipVertex;
 use super::error::{RenderError, positive};
+use super::kernels::Kernels;
 use super::shading::{Lighting, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
@@ -313,6 +314,7 @@ impl TerrainRenderer {
         camera: &Camera,
         lighting: &Lighting,
         vp: Viewport,
+        kernels: Kernels,
     ) -> Vec<ScreenBatch> {
         let levels = self.choose_levels(camera);
         let view_proj = camera.view_proj();
@@ -341,7 +343,9 @@ impl TerrainRenderer {
                     neighbour(-1, 0),
                     neighbour(1, 0),
                 ];
-                self.patch_batch(k, level, skirts, &view_proj, camera.eye, lighting, vp)
+                self.patch_batch(
+                    k, level, skirts, &view_proj, camera.eye, lighting, vp, kernels,
+                )
             })
             .collect()
     }
@@ -356,6 +360,7 @@ impl TerrainRenderer {
         eye: Vec3,
         lighting: &Lighting,
         vp: Viewport,
+        kernels: Kernels,
     ) -> ScreenBatch {
         let patch = &self.patches[k];
         let lod = &patch.levels[level];
@@ -417,6 +422,7 @@ impl TerrainRenderer {
                 },
             ],
             vp,
+            kernels,
         )
     }
 }
