@@ -182,7 +182,7 @@ impl ScreenBatch {
     ) -> ScreenBatch {
         match kernels {
             Kernels::Dispatched => build_dispatched(positions, shader, groups, vp),
-            Kernels::Baseline => build_batch(positions, shader, groups, vp),
+            Kernels::Baseline => build_baseline(positions, shader, groups, vp),
         }
     }
 
@@ -264,6 +264,19 @@ impl ScreenBatch {
 /// [`build_batch`] in the best machine code for the CPU (see [`Kernels`]).
 #[multiversion(targets("x86_64+avx2"))]
 fn build_dispatched<P: ClipSource, S: VertexShader>(
+    positions: P,
+    shader: S,
+    groups: &[TriangleGroup<'_>],
+    vp: Viewport,
+) -> ScreenBatch {
+    build_batch(positions, shader, groups, vp)
+}
+
+/// [`build_batch`] in the baseline machine code, out of line like the
+/// dispatched copies (so that neither changes how the other's caller is
+/// compiled).
+#[inline(never)]
+fn build_baseline<P: ClipSource, S: VertexShader>(
     positions: P,
     shader: S,
     groups: &[TriangleGroup<'_>],

@@ -196,7 +196,7 @@ impl Renderer {
                 };
                 match self.kernels {
                     Kernels::Dispatched => fill_band_dispatched(band, &batches, &grass, vp),
-                    Kernels::Baseline => fill_band(band, &batches, &grass, vp),
+                    Kernels::Baseline => fill_band_baseline(band, &batches, &grass, vp),
                 }
             });
         let image = RgbaImage::from_raw(self.width, self.height, color)
@@ -258,6 +258,13 @@ fn fill_band_dispatched(
     grass: &GrassLayer,
     vp: Viewport,
 ) {
+    fill_band(job, batches, grass, vp);
+}
+
+/// [`fill_band`] in the baseline machine code, out of line like the
+/// dispatched copies.
+#[inline(never)]
+fn fill_band_baseline(job: BandJob<'_>, batches: &[ScreenBatch], grass: &GrassLayer, vp: Viewport) {
     fill_band(job, batches, grass, vp);
 }
 
