@@ -283,6 +283,79 @@ mod tests {
         best
     }
 
+    /// Random rays over the terrain, from above and below and along the axes,
+    /// in every direction octant.
+    fn random_rays(seed: u64, n: usize) -> Vec<Ray> {
+        let mut rng = SplitMix64::new(seed);
+        let mut rays: Vec<Ray> = (0..n)
+            .map(|_| {
+                let o = Vec3::new(
+                    rng.range(-4.0, 28.0),
+                    rng.range(-3.0, 4.0),
+                    rng.range(-4.0, 28.0),
+                );
+                let to = Vec3::new(rng.range(0.0, 24.0), 0.0, rng.range(0.0, 24.0));
+                Ray::new(o, to - o).unwrap()
+            })
+            .collect();
+        for k in 0..60 {
+            let (x, z) = ((k % 24) as f32, (k / 3) as f32 * 0.5);
+            rays.push(Ray::down(x, 3.0, z).unwrap());
+            rays.push(Ray::new(Vec3::new(-1.0, 0.0, z), Vec3::X).unwrap());
+            rays.push(Ray::new(Vec3::new(25.0, 0.2, z), -Vec3::X).unwrap());
+        }
+        rays
+    }
+
+    #[test]
+    fn the_dispatched_walks_answer_like_the_baseline_ones() {
+        // On a CPU with AVX2 the dispatched walks are the AVX2 compilation;
+        // elsewhere both are the baseline and the test still holds.
+        let bvh = MeshBvh::build(&terrain(24)).unwrap();
+        let rays = random_rays(5, 600);
+        let (wide, packets) = (&bvh.bvh, &bvh.packets);
+        let max_t = 40.0;
+        let single = |ray: &Ray| (Vec3A::from(ray.origin()), Vec3A::from(ray.dir()));
+        for any in [false, true] {
+            let mut found = 0;
+            for ray in &rays {
+                let (o, d) = single(ray);
+                let (dispatched, baseline) = if any {
+                    let dispatched = wide.traverse::<true>(o, d, max_t, packets);
+                    (
+                        dispatched,
+                        wide.traverse_baseline::<true>(o, d, max_t, packets),
+                    )
+                } else {
+                    let dispatched = wide.traverse::<false>(o, d, max_t, packets);
+                    (
+                        dispatched,
+                        wide.traverse_baseline::<false>(o, d, max_t, packets),
+                    )
+                };
+                let bits = |h: Option<(f32, u32)>| h.map(|(t, id)| (t.to_bits(), id));
+                assert_eq!(bits(dispatched), bits(baseline), "{ray:?}");
+                found += usize::from(dispatched.is_some());
+            }
+            assert!(found > rays.len() / 2, "only {found} hits");
+            let mut dispatched = vec![None; rays.len()];
+            let mut baseline = vec![None; rays.len()];
+            if any {
+                wide.traverse_many::<true>(&rays, max_t, packets, |k, h| dispatched[k] = h);
+                wide.traverse_many_baseline::<true>(&rays, max_t, packets, |k, h| baseline[k] = h);
+            } else {
+                wide.traverse_many::<false>(&rays, max_t, packets, |k, h| dispatched[k] = h);
+                wide.traverse_many_baseline::<false>(&rays, max_t, packets, |k, h| baseline[k] = h);
+            }
+            let bits = |hits: Vec<Option<(f32, u32)>>| -> Vec<_> {
+                hits.into_iter()
+                    .map(|h| h.map(|(t, id)| (t.to_bits(), id)))
+                    .collect()
+            };
+            assert_eq!(bits(dispatched), bits(baseline));
+        }
+    }
+
     #[test]
     fn one_by_one_and_batched_casts_match_brute_force() {
         let mesh = terrain(24);
