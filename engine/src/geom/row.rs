@@ -1,12 +1,14 @@
 //! [`Row`]: one `f32` per child lane of a wide BVH node, with the few
-//! element-wise operations a box test needs, written as plain loops over a
-//! fixed-size array so that the compiler vectorises them for whatever the
-//! code is compiled for: one 8-lane `ymm` operation per step with AVX2, two
+//! element-wise operations a box test needs, written over a fixed-size array
+//! so that the compiler vectorises them for whatever the code is compiled
+//! for: one 8-lane `ymm` operation per step in an AVX2 compilation, two
 //! 4-lane `xmm` ones on the SSE2 baseline. One implementation serves both,
 //! and each operation is the IEEE one lane by lane (never fused), so every
 //! compilation gives the same bits.
 
 use std::ops::{Index, Mul, Sub};
+
+use glam::{BVec4A, Vec4};
 
 /// One value per lane, `N` lanes (a multiple of 4), aligned so that a row
 /// is whole vector registers.
@@ -42,38 +44,31 @@ impl<const N: usize> Row<N> {
         self.zip(other, |a, b| if a <= b { a } else { instead })
     }
 
+    /// The smallest lane, in every lane: a butterfly of lane swaps, each a
+    /// whole-row operation (with no NaN lane, the order of the comparisons
+    /// does not matter).
+    #[inline(always)]
+    pub(crate) fn min_all(self) -> Row<N> {
+        let mut row = self;
+        let mut stride = N / 2;
+        while stride > 0 {
+            row = row.min(Row(std::array::from_fn(|k| row.0[k ^ stride])));
+            stride /= 2;
+        }
+        row
+    }
+
     /// Bit `k` set when lane `k` is at most lane `k` of `other` (false
     /// with a NaN).
     #[inline(always)]
     pub(crate) fn lanes_le(&self, other: &Row<N>) -> u32 {
-        self.0
-            .iter()
-            .zip(&other.0)
-            .enumerate()
-            .fold(0, |mask, (k, (&a, &b))| mask | u32::from(a <= b) << k)
+        self.mask(other, Vec4::cmple)
     }
 
-    /// Bit `k` set when lane `k` equals `value`.
+    /// Bit `k` set when lane `k` equals lane `k` of `other`.
     #[inline(always)]
-    pub(crate) fn lanes_equal(&self, value: f32) -> u32 {
-        self.mask(|a| a == value)
-    }
-
-    /// The smallest lane (with no NaN lane, the order of comparisons does
-    /// not matter).
-    #[inline(always)]
-    pub(crate) fn min_lane(&self) -> f32 {
-        // Halving pairwise, as a vector reduction does.
-        let mut lanes = self.0;
-        let mut width = N;
-        while width > 1 {
-            width /= 2;
-            for k in 0..width {
-                let (a, b) = (lanes[k], lanes[k + width]);
-                lanes[k] = if a < b { a } else { b };
-            }
-        }
-        lanes[0]
+    pub(crate) fn lanes_eq(&self, other: &Row<N>) -> u32 {
+        self.mask(other, Vec4::cmpeq)
     }
 
     #[inline(always)]
@@ -81,12 +76,19 @@ impl<const N: usize> Row<N> {
         Row(std::array::from_fn(|k| f(self.0[k], other.0[k])))
     }
 
+    /// Bit `k` set where `test` holds for lane `k` of `self` and `other`,
+    /// four lanes at a time: a form the compiler turns into one mask move
+    /// per register, where a fold over single lanes comes out as a long
+    /// sequence of bit shuffles.
     #[inline(always)]
-    fn mask(&self, f: impl Fn(f32) -> bool) -> u32 {
+    fn mask(&self, other: &Row<N>, test: impl Fn(Vec4, Vec4) -> BVec4A) -> u32 {
         self.0
-            .iter()
+            .chunks_exact(4)
+            .zip(other.0.chunks_exact(4))
             .enumerate()
-            .fold(0, |mask, (k, &a)| mask | u32::from(f(a)) << k)
+            .fold(0, |mask, (q, (a, b))| {
+                mask | test(Vec4::from_slice(a), Vec4::from_slice(b)).bitmask() << (4 * q)
+            })
     }
 }
 
@@ -150,8 +152,10 @@ mod tests {
             assert_eq!(a.lanes_le(&b), va.cmple(vb).bitmask());
         }
         let row = Row([3.0, -1.0, 7.0, -1.0, 2.0, 9.0, 0.5, 4.0]);
-        assert_eq!(row.min_lane(), -1.0);
-        assert_eq!(row.lanes_equal(-1.0), 0b1010);
+        let least = row.min_all();
+        assert_eq!(least, Row::splat(-1.0));
+        assert_eq!(row.lanes_eq(&least), 0b1010);
+        assert_eq!(row.lanes_le(&Row::splat(2.0)), 0b0101_1010);
         assert_eq!(
             (row - 1.0) * 2.0,
             Row([4.0, -4.0, 12.0, -4.0, 2.0, 16.0, -1.0, 6.0])

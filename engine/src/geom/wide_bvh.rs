@@ -615,7 +615,11 @@ impl WideRay {
             t_out = t_out.min((node.planes[axis][near ^ 1] - o) * inv);
         }
         Entered {
-            entry: t_in.where_le(t_out, f32::INFINITY),
+            // Handed on through memory: the lanes are then read one by one,
+            // and without this break the compiler vectorises the whole test
+            // lane group by lane group to suit those reads (scalar and 4-lane
+            // pieces) instead of as whole rows (one AVX2 operation per step).
+            entry: std::hint::black_box(t_in.where_le(t_out, f32::INFINITY)),
             hits: t_in.lanes_le(&t_out),
         }
     }
@@ -634,9 +638,9 @@ impl Entered {
     /// among equally near ones); at least one child must be hit.
     #[inline(always)]
     fn nearest(&self) -> (f32, usize) {
-        let nearest = self.entry.min_lane();
-        let lane = self.entry.lanes_equal(nearest).trailing_zeros() as usize % WIDTH;
-        (nearest, lane)
+        let nearest = self.entry.min_all();
+        let lane = self.entry.lanes_eq(&nearest).trailing_zeros() as usize % WIDTH;
+        (nearest[0], lane)
     }
 }
 
