@@ -24,7 +24,7 @@ const LEAF_BUILD: BvhBuildParams = BvhBuildParams {
 };
 
 /// A BVH over a static [`TriMesh`]: an obvhs PLOC binary BVH (very slow preset, with reinsertion)
-/// collapsed into an 8-wide BVH with full-precision boxes, whose leaves are
+/// collapsed into a 4-wide BVH with full-precision boxes, whose leaves are
 /// packets of up to four triangles tested together.
 ///
 /// Packets are stored in the order the tree is laid out (depth first), each
@@ -87,10 +87,6 @@ impl LeafItems for Packets {
     fn address(&self, item: u32) -> *const u8 {
         self.packets.as_ptr().wrapping_add(item as usize).cast()
     }
-
-    /// A packet, wherever it starts in its first cache line (it is 16-byte
-    /// aligned, so it starts at most 48 bytes in).
-    const SPAN: usize = size_of::<TriPacket>() + 48;
 }
 
 impl std::fmt::Debug for MeshBvh {

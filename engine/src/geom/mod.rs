@@ -12,7 +12,6 @@ mod mesh_bvh;
 mod prefetch;
 mod ray;
 mod ray_scene;
-mod row;
 mod tri_mesh;
 mod triangle;
 mod wide_bvh;

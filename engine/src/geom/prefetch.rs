@@ -6,6 +6,9 @@
 /// Bytes per cache line.
 const LINE: usize = 64;
 
+/// Bytes [`span`] covers from its start, wherever that lies in a line.
+pub(crate) const SPAN: usize = 2 * LINE + 16;
+
 /// True when this CPU has the prefetch instruction used by [`span`]
 /// (checked at run time; SSE on x86_64).
 pub(crate) fn available() -> bool {
@@ -19,20 +22,17 @@ pub(crate) fn available() -> bool {
     }
 }
 
-/// Hints that the cache lines holding the bytes at `start`, `start + 64`,
-/// ... below `start + bytes` will be read soon: all of an object of up to
-/// `bytes` bytes that starts at a line boundary (a BVH node), or of up to
-/// `bytes - 48` bytes at a 16-byte boundary (a triangle packet). `bytes` is
-/// meant to be a constant, so that the hints unroll with no loop and so no
-/// branch to mispredict. `start` need not point to anything: a prefetch
-/// never reads.
+/// Hints that the cache lines holding the bytes at `start`, `start + 64`
+/// and `start + SPAN - 1` will be read soon: all of a BVH node or triangle
+/// packet (up to [`SPAN`] bytes) from `start`, with no loop and so no branch
+/// to mispredict. `start` need not point to anything: a prefetch never reads.
 #[inline(always)]
-pub(crate) fn span(start: *const u8, bytes: usize) {
+pub(crate) fn span(start: *const u8) {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse"))]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         let start = start.cast::<i8>();
-        for offset in (0..bytes).step_by(LINE) {
+        for offset in [0, LINE, SPAN - 1] {
             // SAFETY: this code is compiled only for targets with SSE (the
             // x86_64 baseline), which `_mm_prefetch` needs; a prefetch never
             // faults whatever the address, and `wrapping_add` never
@@ -42,6 +42,6 @@ pub(crate) fn span(start: *const u8, bytes: usize) {
     }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse")))]
     {
-        let _ = (start, bytes);
+        let _ = start;
     }
 }

@@ -1,12 +1,11 @@
-//! An 8-wide BVH with full-precision child boxes in structure-of-arrays form,
+//! A 4-wide BVH with full-precision child boxes in structure-of-arrays form,
 //! collapsed from an obvhs [`Bvh2`], and its ordered traversal, one ray at a
 //! time or several interleaved.
 //!
-//! One node tests its eight children's slabs at once with two independent
-//! 4-lane halves of vector arithmetic (no decompression), visits the nearest
-//! hit child next and culls stacked children that start beyond the closest
-//! hit found so far. Eight children rather than four make the tree about a
-//! third shallower, so each ray takes fewer dependent node steps.
+//! One node tests its four children's slabs at once with 4-lane vector
+//! arithmetic (about 25 vector operations, no decompression), visits the
+//! nearest hit child next and culls stacked children that start beyond the
+//! closest hit found so far.
 //!
 //! A traversal is a [`Walk`]: a small state machine whose every step reads one
 //! node or one leaf. [`WideBvh::traverse`] runs one walk to its end;
@@ -20,21 +19,16 @@
 use std::cell::Cell;
 use std::hint::select_unpredictable;
 
-use glam::{Vec3A, Vec4};
+use glam::{BVec4A, Vec3A, Vec4};
 use multiversion::multiversion;
 use obvhs::bvh2::Bvh2;
 
 use super::Ray;
 use super::prefetch;
-use super::row::Row;
 use super::triangle::Xyz;
 
-/// Children per node: a multiple of 4 (4 gives the previous 4-wide tree,
-/// for comparison).
-const WIDTH: usize = 8;
-
-/// One value per child lane of a node.
-type Lanes = Row<WIDTH>;
+/// Children per node.
+const WIDTH: usize = 4;
 
 /// Rays in flight in [`WideBvh::traverse_many`] (chosen by measurement: of
 /// 2, 4, 6, 8, 12 and 16, 4 was the fastest or within noise of it on every
@@ -79,8 +73,8 @@ thread_local! {
     static ORDER: Cell<Vec<usize>> = const { Cell::new(Vec::new()) };
 }
 
-/// A node: the boxes of up to [`WIDTH`] children (lane `k` is child `k`),
-/// four cache lines when 8-wide.
+/// A node: the boxes of up to four children (lane `k` is child `k`), two
+/// cache lines.
 ///
 /// Unused lanes have an empty box (`min = +inf`, `max = -inf`), which every
 /// ray misses, so the traversal needs no lane mask.
@@ -90,14 +84,14 @@ struct Node {
     /// Per axis (x, y, z), the children's box minima (`[axis][0]`) and
     /// maxima (`[axis][1]`), so that a ray picks its entry and exit planes by
     /// index rather than by branch.
-    planes: [[Lanes; 2]; 3],
+    planes: [[Vec4; 2]; 3],
     /// Per lane, the child as a [`Visit::child`] reference.
     child: [u32; WIDTH],
 }
 
 impl Node {
     const EMPTY: Node = Node {
-        planes: [[Lanes::splat(f32::INFINITY), Lanes::splat(f32::NEG_INFINITY)]; 3],
+        planes: [[Vec4::INFINITY, Vec4::NEG_INFINITY]; 3],
         child: [0; WIDTH],
     };
 }
@@ -153,17 +147,13 @@ pub(crate) trait LeafItems {
     /// traversal keeps its best hit by selection rather than by a branch.
     fn nearest(&self, item: u32, ray: &WideRay, t_max: f32) -> (f32, u32);
 
-    /// Where item `item` lies in memory, for prefetching: the cache lines
-    /// of its first [`LeafItems::SPAN`] bytes are hinted (the pointer is
-    /// never dereferenced, so it may be computed without bounds checks).
+    /// Where item `item` lies in memory, for prefetching: its first
+    /// [`prefetch::SPAN`] bytes are hinted (the pointer is never
+    /// dereferenced, so it may be computed without bounds checks).
     fn address(&self, item: u32) -> *const u8;
-
-    /// Bytes from [`LeafItems::address`] whose cache lines hold all of an
-    /// item (see [`prefetch::span`]).
-    const SPAN: usize;
 }
 
-/// An 8-wide ([`WIDTH`]) BVH over leaf items.
+/// A 4-wide BVH over leaf items.
 #[derive(Clone, Debug)]
 pub(crate) struct WideBvh {
     nodes: Vec<Node>,
@@ -172,9 +162,9 @@ pub(crate) struct WideBvh {
 }
 
 impl WideBvh {
-    /// Collapses `bvh2` (root at index 0) into [`WIDTH`]-wide nodes: each
-    /// node takes a binary node's two children and keeps opening its largest
-    /// inner child (by surface area) until it has `WIDTH`.
+    /// Collapses `bvh2` (root at index 0) into 4-wide nodes: each node takes a
+    /// binary node's two children and keeps opening its largest inner child
+    /// (by surface area) until it has four.
     ///
     /// `leaf(first, count)` is called for each binary leaf (its primitive slot
     /// range), in depth-first order of the wide tree, and returns the leaf's
@@ -197,7 +187,7 @@ impl WideBvh {
     }
 
     /// Appends the node whose children are the binary nodes `children`
-    /// (opened further up to [`WIDTH`]) and, depth first, its inner children.
+    /// (opened further up to four) and, depth first, its inner children.
     fn emit(
         &mut self,
         bvh2: &Bvh2,
@@ -228,8 +218,8 @@ impl WideBvh {
             let b = &bvh2.nodes[c];
             let aabb = b.aabb();
             for axis in 0..3 {
-                node.planes[axis][0].0[lane] = aabb.min[axis];
-                node.planes[axis][1].0[lane] = aabb.max[axis];
+                node.planes[axis][0][lane] = aabb.min[axis];
+                node.planes[axis][1][lane] = aabb.max[axis];
             }
             let (first, count) = if b.is_leaf() {
                 let (first, count) = leaf(b.first_index, b.prim_count);
@@ -407,15 +397,14 @@ impl WideBvh {
     /// interleaved walks mix unrelated rays, so a branch on the kind of visit
     /// would mispredict often.
     #[inline(always)]
-    fn prefetch<I: LeafItems>(&self, visit: Visit, items: &I) {
+    fn prefetch(&self, visit: Visit, items: &impl LeafItems) {
         let node = self.nodes.as_ptr().wrapping_add(visit.first() as usize);
         let leaf = items.address(visit.first());
-        let start = if visit.count() == 0 {
+        prefetch::span(if visit.count() == 0 {
             node.cast()
         } else {
             leaf
-        };
-        prefetch::span(start, size_of::<Node>().max(I::SPAN));
+        });
     }
 }
 
@@ -579,7 +568,7 @@ pub(crate) struct WideRay {
     pub(crate) origin: Xyz<Vec4>,
     /// The direction, each component in all four lanes.
     pub(crate) dir: Xyz<Vec4>,
-    inv_dir: [f32; 3],
+    inv_dir: [Vec4; 3],
 }
 
 impl WideRay {
@@ -592,55 +581,27 @@ impl WideRay {
         WideRay {
             origin: Xyz::from(origin),
             dir: Xyz::from(dir),
-            inv_dir: inv.to_array(),
+            inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
         }
     }
 
     /// Entry distances of the ray, whose direction lies in octant `OCTANT`,
-    /// into the child boxes of `node`, and which of them it meets within
+    /// into the four child boxes of `node`, and which of them it meets within
     /// `0..=t_max`. A ray running towards negative coordinates on an axis
     /// enters a box through its maximum plane ([`Node::planes`] index 1).
-    /// All lanes are tested together ([`Row`]: one AVX2 operation per step
-    /// in the AVX2 compilation, two SSE ones on the baseline).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // one index picks the axis in four arrays
-    fn enter<const OCTANT: u8>(&self, node: &Node, t_max: f32) -> Entered {
-        let origin = [self.origin.x.x, self.origin.y.x, self.origin.z.x];
-        let mut t_in = Lanes::splat(0.0);
-        let mut t_out = Lanes::splat(t_max);
+    fn enter<const OCTANT: u8>(&self, node: &Node, t_max: f32) -> (Vec4, BVec4A) {
+        let origin = [self.origin.x, self.origin.y, self.origin.z];
+        let mut t_in = Vec4::ZERO;
+        let mut t_out = Vec4::splat(t_max);
         for axis in 0..3 {
             let near = usize::from(OCTANT >> axis & 1);
             let (o, inv) = (origin[axis], self.inv_dir[axis]);
             t_in = t_in.max((node.planes[axis][near] - o) * inv);
             t_out = t_out.min((node.planes[axis][near ^ 1] - o) * inv);
         }
-        Entered {
-            // Handed on through memory: the lanes are then read one by one,
-            // and without this break the compiler vectorises the whole test
-            // lane group by lane group to suit those reads (scalar and 4-lane
-            // pieces) instead of as whole rows (one AVX2 operation per step).
-            entry: std::hint::black_box(t_in.where_le(t_out, f32::INFINITY)),
-            hits: t_in.lanes_le(&t_out),
-        }
-    }
-}
-
-/// A node's test by one ray ([`WideRay::enter`]): per child lane, the
-/// distance at which the ray enters the child's box (infinite where it
-/// misses it), and which children it meets (bit `k` for child `k`).
-struct Entered {
-    entry: Lanes,
-    hits: u32,
-}
-
-impl Entered {
-    /// The nearest hit child's entry distance and lane (the lowest lane
-    /// among equally near ones); at least one child must be hit.
-    #[inline(always)]
-    fn nearest(&self) -> (f32, usize) {
-        let nearest = self.entry.min_all();
-        let lane = self.entry.lanes_eq(&nearest).trailing_zeros() as usize % WIDTH;
-        (nearest[0], lane)
+        (t_in, t_in.cmple(t_out))
     }
 }
 
@@ -702,13 +663,12 @@ impl Walk {
         let (first, count) = (self.next.first(), self.next.count());
         if count == 0 {
             let node = &bvh.nodes[first as usize];
-            let entered = self.ray.enter::<OCTANT>(node, self.t_max);
-            let hits = entered.hits;
-            if hits != 0 {
+            let (entry, hits) = self.ray.enter::<OCTANT>(node, self.t_max);
+            if hits.any() {
                 self.next = if BRANCHLESS {
-                    Walk::push_branchless(node, &entered, hits, stack, &mut self.top)
+                    Walk::push_branchless(node, entry, hits, stack, &mut self.top)
                 } else {
-                    Walk::push_sorting(node, &entered, hits, stack, &mut self.top)
+                    Walk::push_sorting(node, entry, hits, stack, &mut self.top)
                 };
                 if PREFETCH {
                     bvh.prefetch(self.next, items);
@@ -811,16 +771,18 @@ impl Walk {
     #[inline(always)]
     fn push_sorting(
         node: &Node,
-        entered: &Entered,
-        mut hits: u32,
+        entry: Vec4,
+        hits: BVec4A,
         stack: &mut [Visit],
         top: &mut usize,
     ) -> Visit {
+        let entry = entry.to_array();
+        let mut hits = hits.bitmask();
         let mut take = || {
             let lane = hits.trailing_zeros() as usize % WIDTH;
             hits &= hits - 1;
             let visit = Visit {
-                entry: entered.entry[lane],
+                entry: entry[lane],
                 child: node.child[lane],
             };
             (visit, hits != 0)
@@ -846,22 +808,25 @@ impl Walk {
     #[inline(always)]
     fn push_branchless(
         node: &Node,
-        entered: &Entered,
-        hits: u32,
+        entry: Vec4,
+        hits: BVec4A,
         stack: &mut [Visit],
         top: &mut usize,
     ) -> Visit {
-        let (nearest, lane) = entered.nearest();
-        let others = hits & !(1 << lane);
+        let entered = Vec4::select(hits, entry, Vec4::INFINITY);
+        let nearest = entered.min_element();
+        let lane = entered
+            .cmpeq(Vec4::splat(nearest))
+            .bitmask()
+            .trailing_zeros() as usize
+            % WIDTH;
+        let others = hits.bitmask() & !(1 << lane);
         let pushed: &mut [Visit; WIDTH] = (&mut stack[*top..*top + WIDTH])
             .try_into()
             .expect("the stack holds WIDTH entries past any reachable top");
         let mut count = 0;
-        for (k, &child) in node.child.iter().enumerate() {
-            pushed[count % WIDTH] = Visit {
-                entry: entered.entry[k],
-                child,
-            };
+        for (k, (&entry, &child)) in entry.to_array().iter().zip(&node.child).enumerate() {
+            pushed[count % WIDTH] = Visit { entry, child };
             count += (others >> k) as usize & 1;
         }
         *top += count;
@@ -900,8 +865,6 @@ mod tests {
         fn address(&self, item: u32) -> *const u8 {
             self.boxes.as_ptr().wrapping_add(item as usize).cast()
         }
-
-        const SPAN: usize = size_of::<Aabb>();
     }
 
     /// Unit cubes at x = 0, 2, 4, ...: a ray along +x meets them in order.
@@ -1016,8 +979,6 @@ mod tests {
             fn address(&self, _: u32) -> *const u8 {
                 std::ptr::null()
             }
-
-            const SPAN: usize = 0;
         }
         let (wide, boxes) = cubes(500);
         let o = Vec3A::new(-1.0, 0.5, 0.5);
