@@ -20,7 +20,6 @@ use std::cell::Cell;
 use std::hint::select_unpredictable;
 
 use glam::{BVec4A, Vec3A, Vec4};
-use multiversion::multiversion;
 use obvhs::bvh2::Bvh2;
 
 use super::Ray;
@@ -249,35 +248,8 @@ impl WideBvh {
     /// Items are visited in an order fixed by the tree and the ray alone, so
     /// results are deterministic; an item hit at the same distance as the best
     /// so far replaces it.
-    ///
-    /// Runs the walk compiled for the best instruction set this CPU has (see
-    /// [`traverse_dispatched`]).
+    #[inline]
     pub(crate) fn traverse<const ANY: bool>(
-        &self,
-        origin: Vec3A,
-        dir: Vec3A,
-        max_t: f32,
-        items: &impl LeafItems,
-    ) -> Option<(f32, u32)> {
-        traverse_dispatched::<ANY>(self, origin, dir, max_t, items)
-    }
-
-    /// [`WideBvh::traverse`] compiled for the baseline target only, whatever
-    /// the CPU (to check that both compilations answer alike).
-    #[cfg(test)]
-    pub(crate) fn traverse_baseline<const ANY: bool>(
-        &self,
-        origin: Vec3A,
-        dir: Vec3A,
-        max_t: f32,
-        items: &impl LeafItems,
-    ) -> Option<(f32, u32)> {
-        self.walk_one::<ANY>(origin, dir, max_t, items)
-    }
-
-    /// The body of [`WideBvh::traverse`], inlined into each compilation.
-    #[inline(always)]
-    fn walk_one<const ANY: bool>(
         &self,
         origin: Vec3A,
         dir: Vec3A,
@@ -302,34 +274,8 @@ impl WideBvh {
     /// interleaved step by step, with prefetching where the CPU has it.
     /// `found(k, hit)` receives ray `k`'s answer: `traverse`'s distance, bit
     /// for bit (the item may be another one hit at exactly that distance);
-    /// rays finish out of order. Runs the walks compiled for the best
-    /// instruction set this CPU has (see [`traverse_dispatched`]).
+    /// rays finish out of order.
     pub(crate) fn traverse_many<const ANY: bool>(
-        &self,
-        rays: &[Ray],
-        max_t: f32,
-        items: &impl LeafItems,
-        found: impl FnMut(usize, Option<(f32, u32)>),
-    ) {
-        traverse_many_dispatched::<ANY>(self, rays, max_t, items, found);
-    }
-
-    /// [`WideBvh::traverse_many`] compiled for the baseline target only,
-    /// whatever the CPU (to check that both compilations answer alike).
-    #[cfg(test)]
-    pub(crate) fn traverse_many_baseline<const ANY: bool>(
-        &self,
-        rays: &[Ray],
-        max_t: f32,
-        items: &impl LeafItems,
-        found: impl FnMut(usize, Option<(f32, u32)>),
-    ) {
-        self.walk_many::<ANY>(rays, max_t, items, found);
-    }
-
-    /// The body of [`WideBvh::traverse_many`], inlined into each compilation.
-    #[inline(always)]
-    fn walk_many<const ANY: bool>(
         &self,
         rays: &[Ray],
         max_t: f32,
@@ -347,7 +293,6 @@ impl WideBvh {
     /// not. The rays are grouped by direction octant first (a counting sort
     /// of their indices), so that each group's walks know at compile time
     /// through which plane of each axis a ray enters a box.
-    #[inline(always)]
     fn interleave<const ANY: bool, const PREFETCH: bool, const LANES: usize>(
         &self,
         rays: &[Ray],
@@ -405,45 +350,6 @@ impl WideBvh {
         } else {
             leaf
         });
-    }
-}
-
-/// The instruction sets the walks are compiled for besides the baseline, the
-/// best the CPU has chosen at run time: AVX2 (with the bit-manipulation
-/// extensions of the same CPU generation), which gives the 4-lane arithmetic
-/// three-operand (VEX) forms. No FMA: Rust never fuses a multiply and an add
-/// by itself, so every compilation computes the same IEEE results, bit for bit.
-macro_rules! walk_targets {
-    ($item:item) => {
-        #[multiversion(targets("x86_64+avx2+bmi1+bmi2+lzcnt+popcnt"))]
-        $item
-    };
-}
-
-walk_targets! {
-    /// [`WideBvh::traverse`], compiled once per [`walk_targets`] target and
-    /// once for the baseline, the best one the CPU has taken at run time.
-    fn traverse_dispatched<const ANY: bool>(
-        bvh: &WideBvh,
-        origin: Vec3A,
-        dir: Vec3A,
-        max_t: f32,
-        items: &impl LeafItems,
-    ) -> Option<(f32, u32)> {
-        bvh.walk_one::<ANY>(origin, dir, max_t, items)
-    }
-}
-
-walk_targets! {
-    /// [`WideBvh::traverse_many`], compiled like [`traverse_dispatched`].
-    fn traverse_many_dispatched<const ANY: bool>(
-        bvh: &WideBvh,
-        rays: &[Ray],
-        max_t: f32,
-        items: &impl LeafItems,
-        found: impl FnMut(usize, Option<(f32, u32)>),
-    ) {
-        bvh.walk_many::<ANY>(rays, max_t, items, found);
     }
 }
 
