@@ -343,7 +343,9 @@ fn build_batch(
                 let lanes = SpanLanes::of(pa.centre_box, pb.centre_box, pc.centre_box, limits);
                 let clip = (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) != 0;
                 let visible = ca & cb & cc & OUT_FRUSTUM == 0;
-                kept[count] = KeptTriangle { tri, lanes, clip };
+                // `count` is below the chunk's length: the mask only spares
+                // the bounds check.
+                kept[count & (KEEP_CHUNK - 1)] = KeptTriangle { tri, lanes, clip };
                 count += usize::from(visible & (clip | !lanes.is_empty()));
             }
             for &KeptTriangle { tri, lanes, clip } in &kept[..count] {
@@ -374,7 +376,7 @@ fn build_batch(
 }
 
 /// A clip-space position from a world point and a world-to-clip matrix.
-/// Triangles selected at a time before their set-up.
+/// Triangles selected at a time before their set-up (a power of two).
 const KEEP_CHUNK: usize = 256;
 
 /// A triangle that may draw: not outside the frustum, and either to be
