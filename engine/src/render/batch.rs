@@ -5,7 +5,7 @@
 use glam::{Vec3, Vec4};
 use multiversion::multiversion;
 
-use super::centre_box::{screen_limits, triangle_span};
+use super::centre_box::{SpanLanes, screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
 use super::kernels::Kernels;
 use super::project::{
@@ -221,7 +221,25 @@ impl ScreenBatch {
         let Some(span) = triangle_span(pa.centre_box, pb.centre_box, pc.centre_box, limits) else {
             return;
         };
-        let (sa, sb, sc) = (&pa.screen, &pb.screen, &pc.screen);
+        self.push_in_span(projected, tri, cull, span);
+    }
+
+    /// [`ScreenBatch::push`] for a triangle whose pixel span `span` is known
+    /// to hold a pixel centre.
+    #[inline(always)]
+    fn push_in_span(
+        &mut self,
+        projected: &[ProjectedVertex],
+        tri: [u32; 3],
+        cull: CullMode,
+        span: PixelSpan,
+    ) {
+        let [a, b, c] = tri.map(|k| k as usize);
+        let (sa, sb, sc) = (
+            &projected[a].screen,
+            &projected[b].screen,
+            &projected[c].screen,
+        );
         let area = signed_area(sa, sb, sc);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen. (The vertices already looked
@@ -311,32 +329,46 @@ fn build_batch(
     };
     let mut polygon = Vec::with_capacity(9);
     let limits = screen_limits(vp.width, vp.height);
+    let mut kept = [KeptTriangle::default(); KEEP_CHUNK];
     for group in groups {
-        for &tri in group.triangles {
-            let [a, b, c] = tri.map(|k| k as usize);
-            let (ca, cb, cc) = (projected[a].code, projected[b].code, projected[c].code);
-            if ca & cb & cc & OUT_FRUSTUM != 0 {
-                continue;
+        for chunk in group.triangles.chunks(KEEP_CHUNK) {
+            // First the triangles that may draw, in order, selected without
+            // branches (whether a small triangle's box holds a pixel centre is
+            // data-random), then their set-up.
+            let mut count = 0;
+            for &tri in chunk {
+                let [a, b, c] = tri.map(|k| k as usize);
+                let (pa, pb, pc) = (&projected[a], &projected[b], &projected[c]);
+                let (ca, cb, cc) = (pa.code, pb.code, pc.code);
+                let lanes = SpanLanes::of(pa.centre_box, pb.centre_box, pc.centre_box, limits);
+                let clip = (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) != 0;
+                let visible = ca & cb & cc & OUT_FRUSTUM == 0;
+                // `count` is below the chunk's length: the mask only spares
+                // the bounds check.
+                kept[count & (KEEP_CHUNK - 1)] = KeptTriangle { tri, lanes, clip };
+                count += usize::from(visible & (clip | !lanes.is_empty()));
             }
-            if (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) == 0 {
-                batch.push(&projected, tri, group.cull, limits);
-                continue;
-            }
-            clip_triangle([a, b, c].map(clip_vertex), &mut polygon);
-            if polygon.is_empty() {
-                continue;
-            }
-            // Clipped polygons append their (already shaded) vertices,
-            // dropped with the batch's.
-            let base = projected.len() as u32;
-            // Not clipped again: no outcode needed.
-            let vertices = polygon
-                .iter()
-                .map(|v| ProjectedVertex::new(vp.project(v), 0));
-            projected.extend(vertices);
-            for k in 1..polygon.len() as u32 - 1 {
-                let tri = [base, base + k, base + k + 1];
-                batch.push(&projected, tri, group.cull, limits);
+            for &KeptTriangle { tri, lanes, clip } in &kept[..count] {
+                if !clip {
+                    batch.push_in_span(&projected, tri, group.cull, lanes.span());
+                    continue;
+                }
+                clip_triangle(tri.map(|k| clip_vertex(k as usize)), &mut polygon);
+                if polygon.is_empty() {
+                    continue;
+                }
+                // Clipped polygons append their (already shaded) vertices,
+                // dropped with the batch's.
+                let base = projected.len() as u32;
+                // Not clipped again: no outcode needed.
+                let vertices = polygon
+                    .iter()
+                    .map(|v| ProjectedVertex::new(vp.project(v), 0));
+                projected.extend(vertices);
+                for k in 1..polygon.len() as u32 - 1 {
+                    let tri = [base, base + k, base + k + 1];
+                    batch.push(&projected, tri, group.cull, limits);
+                }
             }
         }
     }
@@ -344,6 +376,28 @@ fn build_batch(
 }
 
 /// A clip-space position from a world point and a world-to-clip matrix.
+/// Triangles selected at a time before their set-up (a power of two).
+const KEEP_CHUNK: usize = 256;
+
+/// A triangle that may draw: not outside the frustum, and either to be
+/// clipped or with a pixel centre in its box.
+#[derive(Debug, Clone, Copy)]
+struct KeptTriangle {
+    tri: [u32; 3],
+    lanes: SpanLanes,
+    clip: bool,
+}
+
+impl Default for KeptTriangle {
+    fn default() -> KeptTriangle {
+        KeptTriangle {
+            tri: [0; 3],
+            lanes: SpanLanes::of(Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, Vec4::ZERO),
+            clip: false,
+        }
+    }
+}
+
 #[inline]
 pub(crate) fn to_clip(view_proj: &glam::Mat4, p: glam::Vec3) -> Vec4 {
     *view_proj * p.extend(1.0)

@@ -44,20 +44,43 @@ pub(crate) fn screen_limits(width: i32, height: i32) -> Vec4 {
 /// [`super::raster::ScreenBox::span`] of the vertices' box.
 #[inline(always)]
 pub(crate) fn triangle_span(a: Vec4, b: Vec4, c: Vec4, limits: Vec4) -> Option<PixelSpan> {
-    // (x0, -x1, y0, -y1), clipped to the screen.
-    let lanes = a.min(b).min(c).max(limits);
-    // Empty when x0 > x1 or y0 > y1: x0 + (-x1) > 0 in lane 0, y in lane 2.
-    let empty = (lanes + lanes.yxwz()).cmpgt(Vec4::ZERO).bitmask() & 0b0101 != 0;
-    if empty {
-        return None;
+    let lanes = SpanLanes::of(a, b, c, limits);
+    (!lanes.is_empty()).then(|| lanes.span())
+}
+
+/// A triangle's pixel span in centre-box lanes, `(x0, -x1, y0, -y1)`, clipped
+/// to the screen: [`triangle_span`] in two steps, so that the emptiness test
+/// can feed a branch-free selection.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SpanLanes(Vec4);
+
+impl SpanLanes {
+    /// The span lanes of a triangle whose vertices have centre boxes `a`,
+    /// `b` and `c`, clipped to the screen of `limits` ([`screen_limits`]).
+    #[inline(always)]
+    pub fn of(a: Vec4, b: Vec4, c: Vec4, limits: Vec4) -> SpanLanes {
+        SpanLanes(a.min(b).min(c).max(limits))
     }
-    let [x0, x1, y0, y1] = whole_numbers(lanes);
-    Some(PixelSpan {
-        x0,
-        x1: -x1,
-        y0,
-        y1: -y1,
-    })
+
+    /// Whether no pixel centre lies in the span: x0 > x1 or y0 > y1, that is
+    /// x0 + (-x1) > 0 in lane 0, y in lane 2.
+    #[inline(always)]
+    pub fn is_empty(self) -> bool {
+        let lanes = self.0;
+        (lanes + lanes.yxwz()).cmpgt(Vec4::ZERO).bitmask() & 0b0101 != 0
+    }
+
+    /// The span (only meaningful when not [`SpanLanes::is_empty`]).
+    #[inline(always)]
+    pub fn span(self) -> PixelSpan {
+        let [x0, x1, y0, y1] = whole_numbers(self.0);
+        PixelSpan {
+            x0,
+            x1: -x1,
+            y0,
+            y1: -y1,
+        }
+    }
 }
 
 /// `1.5 * 2^23`: a whole number `t` with `|t| < 2^22` added to it gives a
