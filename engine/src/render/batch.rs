@@ -7,7 +7,7 @@ use multiversion::multiversion;
 
 use super::centre_box::{SpanLanes, screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
-use super::kernels::Kernels;
+use super::kernels::{Kernels, run_baseline};
 use super::project::{
     ClipSource, LANES, ProjectedVertex, VertexShader, position_lanes, project_vertices,
 };
@@ -130,7 +130,7 @@ impl Viewport {
 
 /// Clip vertices given whole: each with its position and its colour.
 #[derive(Clone, Copy)]
-struct ClipVertexList<'a>(&'a [ClipVertex]);
+pub(crate) struct ClipVertexList<'a>(pub &'a [ClipVertex]);
 
 impl ClipSource for ClipVertexList<'_> {
     fn len(&self) -> usize {
@@ -151,10 +151,6 @@ impl ClipSource for ClipVertexList<'_> {
 impl VertexShader for ClipVertexList<'_> {
     fn color(&self, k: usize) -> Vec3 {
         self.0[k].color
-    }
-
-    fn colors(&self, group: usize) -> [Vec3; LANES] {
-        std::array::from_fn(|k| self.color(LANES * group + k))
     }
 }
 
@@ -182,7 +178,7 @@ impl ScreenBatch {
     ) -> ScreenBatch {
         match kernels {
             Kernels::Dispatched => build_dispatched(positions, shader, groups, vp),
-            Kernels::Baseline => build_baseline(positions, shader, groups, vp),
+            Kernels::Baseline => run_baseline(|| build_batch(positions, shader, groups, vp)),
         }
     }
 
@@ -290,19 +286,6 @@ fn build_dispatched<P: ClipSource, S: VertexShader>(
     build_batch(positions, shader, groups, vp)
 }
 
-/// [`build_batch`] in the baseline machine code, out of line like the
-/// dispatched copies (so that neither changes how the other's caller is
-/// compiled).
-#[inline(never)]
-fn build_baseline<P: ClipSource, S: VertexShader>(
-    positions: P,
-    shader: S,
-    groups: &[TriangleGroup<'_>],
-    vp: Viewport,
-) -> ScreenBatch {
-    build_batch(positions, shader, groups, vp)
-}
-
 /// The batch of `groups` over the vertices of `positions` coloured by
 /// `shader` (see [`ScreenBatch::build_shaded`]); inlined into each copy of
 /// its callers.
@@ -375,29 +358,19 @@ fn build_batch(
     batch
 }
 
-/// A clip-space position from a world point and a world-to-clip matrix.
 /// Triangles selected at a time before their set-up (a power of two).
 const KEEP_CHUNK: usize = 256;
 
 /// A triangle that may draw: not outside the frustum, and either to be
 /// clipped or with a pixel centre in its box.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct KeptTriangle {
     tri: [u32; 3],
     lanes: SpanLanes,
     clip: bool,
 }
 
-impl Default for KeptTriangle {
-    fn default() -> KeptTriangle {
-        KeptTriangle {
-            tri: [0; 3],
-            lanes: SpanLanes::of(Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, Vec4::ZERO),
-            clip: false,
-        }
-    }
-}
-
+/// A clip-space position from a world point and a world-to-clip matrix.
 #[inline]
 pub(crate) fn to_clip(view_proj: &glam::Mat4, p: glam::Vec3) -> Vec4 {
     *view_proj * p.extend(1.0)

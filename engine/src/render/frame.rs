@@ -11,7 +11,7 @@ use super::Camera;
 use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
 use super::error::RenderError;
 use super::grass::{GrassBlade, GrassLayer};
-use super::kernels::Kernels;
+use super::kernels::{Kernels, run_baseline};
 use super::mesh::MeshInstance;
 use super::raster::{Band, to_u8};
 use super::shading::Lighting;
@@ -196,7 +196,7 @@ impl Renderer {
                 };
                 match self.kernels {
                     Kernels::Dispatched => fill_band_dispatched(band, &batches, &grass, vp),
-                    Kernels::Baseline => fill_band_baseline(band, &batches, &grass, vp),
+                    Kernels::Baseline => run_baseline(|| fill_band(band, &batches, &grass, vp)),
                 }
             });
         let image = RgbaImage::from_raw(self.width, self.height, color)
@@ -258,13 +258,6 @@ fn fill_band_dispatched(
     grass: &GrassLayer,
     vp: Viewport,
 ) {
-    fill_band(job, batches, grass, vp);
-}
-
-/// [`fill_band`] in the baseline machine code, out of line like the
-/// dispatched copies.
-#[inline(never)]
-fn fill_band_baseline(job: BandJob<'_>, batches: &[ScreenBatch], grass: &GrassLayer, vp: Viewport) {
     fill_band(job, batches, grass, vp);
 }
 

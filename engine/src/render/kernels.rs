@@ -20,6 +20,14 @@ pub(crate) enum Kernels {
     Baseline,
 }
 
+/// Runs `kernel` (an `#[inline(always)]` kernel called in a closure) in the
+/// baseline machine code, out of line like the dispatched copies, so that
+/// neither changes how the other's caller is compiled.
+#[inline(never)]
+pub(crate) fn run_baseline<R>(kernel: impl FnOnce() -> R) -> R {
+    kernel()
+}
+
 #[cfg(test)]
 mod tests {
     use glam::{Mat4, Vec2, Vec3};

@@ -181,13 +181,9 @@ fn index_range(triangles: &[[u32; 3]]) -> Option<(u32, u32)> {
 }
 
 /// The smallest and largest of `indices` (`None` when empty), compared as
-/// `i32` with the top bit flipped, which orders them as `u32`.
+/// `u32`: the rare path of [`index_range`].
 fn exact_index_range(indices: &[u32]) -> Option<(u32, u32)> {
-    const FLIP: u32 = 1 << 31;
-    let signed = indices.iter().map(|&v| (v ^ FLIP) as i32);
-    let (lo, hi) = signed.fold((i32::MAX, i32::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
-    let unsigned = |v: i32| v as u32 ^ FLIP;
-    (!indices.is_empty()).then(|| (unsigned(lo), unsigned(hi)))
+    Some((*indices.iter().min()?, *indices.iter().max()?))
 }
 
 #[cfg(test)]

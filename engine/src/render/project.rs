@@ -213,8 +213,11 @@ pub(crate) trait VertexShader {
     /// The colour of vertex `k`.
     fn color(&self, k: usize) -> Vec3;
     /// The colours of vertices `4 * group .. 4 * group + 4` (the same bits as
-    /// [`VertexShader::color`]).
-    fn colors(&self, group: usize) -> [Vec3; LANES];
+    /// [`VertexShader::color`]; by default, that of each).
+    #[inline(always)]
+    fn colors(&self, group: usize) -> [Vec3; LANES] {
+        std::array::from_fn(|k| self.color(LANES * group + k))
+    }
     /// [`VertexShader::colors`] of vertices whose world positions (as given
     /// by [`ClipSource::lanes`]) are `world`, for shaders that need them.
     #[inline(always)]
@@ -349,10 +352,6 @@ mod tests {
     impl VertexShader for ColorTable<'_> {
         fn color(&self, k: usize) -> Vec3 {
             self.0[k]
-        }
-
-        fn colors(&self, group: usize) -> [Vec3; LANES] {
-            std::array::from_fn(|k| self.color(LANES * group + k))
         }
     }
 

@@ -529,10 +529,12 @@ mod tests {
 
     use super::*;
     use crate::render::Camera;
-    use crate::render::batch::{BAND_ROWS, CullMode, ScreenBatch, TriangleGroup, Viewport};
+    use crate::render::batch::{
+        BAND_ROWS, ClipVertexList, CullMode, ScreenBatch, TriangleGroup, Viewport,
+    };
     use crate::render::clip::ClipVertex;
     use crate::render::kernels::Kernels;
-    use crate::render::project::{ClipPositions, LANES, VertexShader};
+    use crate::render::project::ClipPositions;
     use crate::render::small_triangle::SmallTriangle;
     use crate::rng::SplitMix64;
 
@@ -764,16 +766,6 @@ mod tests {
 
     #[test]
     fn shaded_batches_draw_like_eager_ones() {
-        /// Colours from a table, through the four-at-a-time interface.
-        struct Table<'a>(&'a [ClipVertex]);
-        impl VertexShader for Table<'_> {
-            fn color(&self, k: usize) -> Vec3 {
-                self.0[k].color
-            }
-            fn colors(&self, group: usize) -> [Vec3; LANES] {
-                std::array::from_fn(|k| self.color(LANES * group + k))
-            }
-        }
         let mut rng = SplitMix64::new(0x1405_7b7e_f767_814f);
         let (w, h) = (40, 32);
         // 2001 triangles: a vertex count that leaves a remainder of lanes.
@@ -789,8 +781,13 @@ mod tests {
         let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
         let eager = ScreenBatch::build(&verts, &group, vp, Kernels::Baseline);
         for kernels in [Kernels::Baseline, Kernels::Dispatched] {
-            let shaded =
-                ScreenBatch::build_shaded(ClipPositions(&clip), Table(&verts), &group, vp, kernels);
+            let shaded = ScreenBatch::build_shaded(
+                ClipPositions(&clip),
+                ClipVertexList(&verts),
+                &group,
+                vp,
+                kernels,
+            );
             assert!(shaded.len() > 50);
             assert_eq!(shaded.len(), eager.len());
             assert_eq!(draw(&shaded, w, h), draw(&eager, w, h), "{kernels:?}");
