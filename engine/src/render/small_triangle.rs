@@ -7,11 +7,16 @@
 //! attribute planes are the same as the general `i64` set-up's, in a few
 //! vector operations instead of three scalar edges.
 
-use glam::{BVec4A, Vec4, Vec4Swizzles};
+use glam::{BVec4A, IVec4, Vec4, Vec4Swizzles};
 
 use super::raster::{HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenVertex};
 
-/// Boxes of at most this many pixel centres test them one by one.
+/// Boxes at most this many centres wide ...
+const WINDOW_COLUMNS: u32 = 4;
+/// ... and this many tall test a fixed window of centres.
+const WINDOW_ROWS: u32 = 2;
+
+/// Other boxes of at most this many pixel centres test them one by one.
 const CENTRE_BY_CENTRE_MAX: u32 = 4;
 
 /// The three edge functions of a small triangle (clockwise on screen), edge `k`
@@ -41,18 +46,9 @@ impl SmallTriangle {
         let px = span.x0 * ONE as i32 + HALF as i32;
         let py = span.y0 * ONE as i32 + HALF as i32;
         // Lane k holds the edge's first vertex, k + 1 (mod 3).
-        let x = Vec4::new(
-            (v[1].x - px) as f32,
-            (v[2].x - px) as f32,
-            (v[0].x - px) as f32,
-            0.0,
-        );
-        let y = Vec4::new(
-            (v[1].y - py) as f32,
-            (v[2].y - py) as f32,
-            (v[0].y - py) as f32,
-            0.0,
-        );
+        // Converted as whole vectors (lane 3 is `p - p = 0`).
+        let x = (IVec4::new(v[1].x, v[2].x, v[0].x, px) - IVec4::splat(px)).as_vec4();
+        let y = (IVec4::new(v[1].y, v[2].y, v[0].y, py) - IVec4::splat(py)).as_vec4();
         let dx = x.yzxw() - x;
         let dy = y.yzxw() - y;
         // A triangle's extent per axis is the largest of its edges' (lane 3
@@ -85,11 +81,37 @@ impl SmallTriangle {
             (span.x1 - span.x0 + 1) as u32,
             (span.y1 - span.y0 + 1) as u32,
         );
-        if columns * rows <= CENTRE_BY_CENTRE_MAX {
+        if columns <= WINDOW_COLUMNS && rows <= WINDOW_ROWS {
+            self.coverage_in_window(columns, rows)
+        } else if columns * rows <= CENTRE_BY_CENTRE_MAX {
             self.coverage_by_centre(columns, rows)
         } else {
             self.coverage_by_row(columns, rows)
         }
+    }
+
+    /// [`SmallTriangle::coverage`] of a box of at most [`WINDOW_COLUMNS`] x
+    /// [`WINDOW_ROWS`] centres: the whole window is tested, with no branch
+    /// and no loop whose length depends on the box (dense meshes give boxes
+    /// of one to four columns and one or two rows in a data-random order, so
+    /// such branches mispredict), and the centres outside the box are masked
+    /// off.
+    #[inline(always)]
+    fn coverage_in_window(&self, columns: u32, rows: u32) -> u64 {
+        const COLUMN: Vec4 = Vec4::new(0.0, 1.0, 2.0, 3.0);
+        let edge = |start: f32, step_x: f32, step_y: f32| {
+            let first = Vec4::splat(start) + Vec4::splat(step_x) * COLUMN;
+            (first, first + Vec4::splat(step_y))
+        };
+        let (a0, a1) = edge(self.start.x, self.step_x.x, self.step_y.x);
+        let (b0, b1) = edge(self.start.y, self.step_x.y, self.step_y.y);
+        let (c0, c1) = edge(self.start.z, self.step_x.z, self.step_y.z);
+        let first_row = a0.min(b0).min(c0).cmpge(Vec4::ZERO).bitmask();
+        let second_row = a1.min(b1).min(c1).cmpge(Vec4::ZERO).bitmask();
+        let row_bits = (1u32 << columns) - 1;
+        // Rows are one or two: the second row's bits count only for two.
+        let in_box = row_bits | ((row_bits << 8) * (rows - 1));
+        u64::from((first_row | (second_row << 8)) & in_box)
     }
 
     /// [`SmallTriangle::coverage`] testing one centre at a time, its three edge
@@ -161,7 +183,7 @@ mod tests {
     #[test]
     fn both_coverage_tests_agree_with_the_general_edge_walk() {
         let mut rng = SplitMix64::new(0x6a09_e667_f3bc_c908);
-        let mut tested = [0usize; 2];
+        let mut tested = [0usize; 3];
         for _ in 0..20_000 {
             let centre = (rng.next_f32() * 40.0, rng.next_f32() * 40.0);
             let size = 0.2 + 9.0 * rng.next_f32() * rng.next_f32();
@@ -190,6 +212,10 @@ mod tests {
             );
             let by_centre = small.coverage_by_centre(columns, rows);
             assert_eq!(by_centre, small.coverage_by_row(columns, rows));
+            if columns <= WINDOW_COLUMNS && rows <= WINDOW_ROWS {
+                assert_eq!(by_centre, small.coverage_in_window(columns, rows));
+                tested[2] += 1;
+            }
             // The general set-up: i64 edges, walked row by row.
             let mut edges = Vec::new();
             let mut walked = 0u64;
