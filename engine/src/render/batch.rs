@@ -32,6 +32,10 @@ pub(crate) struct TriangleGroup<'a> {
     pub triangles: &'a [[u32; 3]],
     /// Facing to drop.
     pub cull: CullMode,
+    /// The index the triangles give the vertex slice's first vertex
+    /// (subtracted from every index as it is read, so that a batch over a
+    /// run of a mesh's vertices reads the mesh's own indices).
+    pub first_vertex: u32,
 }
 
 /// Rows per band: the unit of parallel rasterization. Fixed, so that the
@@ -320,6 +324,7 @@ fn build_batch(
             // data-random), then their set-up.
             let mut count = 0;
             for &tri in chunk {
+                let tri = tri.map(|k| k - group.first_vertex);
                 let [a, b, c] = tri.map(|k| k as usize);
                 let (pa, pb, pc) = (&projected[a], &projected[b], &projected[c]);
                 let (ca, cb, cc) = (pa.code, pb.code, pc.code);

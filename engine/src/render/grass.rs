@@ -183,6 +183,7 @@ impl GrassLayer {
             &[TriangleGroup {
                 triangles: &clipped_tris,
                 cull: CullMode::None,
+                first_vertex: 0,
             }],
             vp,
             kernels,

@@ -46,17 +46,8 @@ mod tests {
             0.2 * (x * 1.7).sin() * (z * 1.3).cos() + 0.02 * (x * 9.0 + z * 7.0).sin()
         })
         .unwrap();
-        let positions = (0..n * n)
-            .map(|k| grid.sample_position(k % n, k / n))
-            .collect();
-        let triangles = (0..n - 1)
-            .flat_map(|j| (0..n - 1).map(move |i| (j * n + i) as u32))
-            .flat_map(|a| {
-                let (b, c) = (a + 1, a + n as u32);
-                [[a, c + 1, b], [a, c, c + 1]]
-            })
-            .collect();
-        (grid, TriMesh::new(positions, triangles).unwrap())
+        let mesh = grid.to_tri_mesh();
+        (grid, mesh)
     }
 
     #[test]

@@ -124,14 +124,13 @@ impl<'a> MeshInstance<'a> {
                     *lighting,
                     camera.eye,
                 );
-                let local: Vec<[u32; 3]> =
-                    tris.iter().map(|t| t.map(|v| v - first as u32)).collect();
                 Some(ScreenBatch::build_shaded(
                     positions,
                     shader,
                     &[TriangleGroup {
-                        triangles: &local,
+                        triangles: tris,
                         cull: self.cull,
+                        first_vertex: first as u32,
                     }],
                     vp,
                     kernels,

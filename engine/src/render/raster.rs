@@ -680,6 +680,7 @@ mod tests {
             &[TriangleGroup {
                 triangles: tris,
                 cull: CullMode::None,
+                first_vertex: 0,
             }],
             Viewport {
                 width: w,
@@ -773,6 +774,7 @@ mod tests {
         let group = [TriangleGroup {
             triangles: &tris,
             cull: CullMode::Back,
+            first_vertex: 0,
         }];
         let vp = Viewport {
             width: w,

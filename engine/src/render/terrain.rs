@@ -415,10 +415,12 @@ impl TerrainRenderer {
                 TriangleGroup {
                     triangles: surface,
                     cull: CullMode::Back,
+                    first_vertex: 0,
                 },
                 TriangleGroup {
                     triangles: &skirt_tris,
                     cull: CullMode::None,
+                    first_vertex: 0,
                 },
             ],
             vp,

@@ -38,8 +38,9 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
 /// fewer passes the lower that level (see [`SMOOTHING_MIN_LEVEL`]), so the
 /// filter stays on and around the deformed ground. It does not conduct either
 /// if one of its samples is held by a sole this step (the foot occupies the
-/// print; its walls are smoothed once it lifts). The edge between materials of smoothness s_a and
-/// s_b runs `(s_a + s_b) / 2` passes (the last one fractional).
+/// print; its walls are smoothed once it lifts). The edge between materials
+/// of smoothness s_a and s_b runs `(s_a + s_b) / 2` passes (the last one
+/// fractional).
 ///
 /// Only the rectangle of samples that actually changed is marked dirty.
 pub fn smooth(hf: &mut Heightfield, window: GridRect) -> GridRect {
