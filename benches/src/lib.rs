@@ -6,4 +6,4 @@ pub mod raster;
 pub mod raycast;
 mod row;
 
-pub use row::{Row, time_ns};
+pub use row::{Row, time_interleaved_ns, time_ns};

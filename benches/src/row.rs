@@ -60,3 +60,39 @@ pub fn time_ns(budget_ms: u64, mut f: impl FnMut()) -> f64 {
     samples.sort_by(|a, b| a.total_cmp(b));
     samples[samples.len() / 2]
 }
+
+/// Median times in nanoseconds of each of `fs`, measured in rounds until
+/// about `budget_ms` have passed (at least 5 rounds). A round runs every one
+/// of them, in an order that rotates from round to round, as a block: one
+/// untimed warm-up run, then [`RUNS_PER_BLOCK`] timed runs.
+///
+/// Timings on a shared machine drift: a slow spell of seconds would land on
+/// whichever workload [`time_ns`] happens to be timing then, and move the
+/// ratio between two workloads by tens of percent. In short blocks, every
+/// workload sees the same spells, so their ratios hold; the warm-up run keeps
+/// each block's timings free of what the previous workload left in the
+/// caches and the allocator.
+pub fn time_interleaved_ns<const N: usize>(budget_ms: u64, fs: [&mut dyn FnMut(); N]) -> [f64; N] {
+    let mut samples: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
+    let start = Instant::now();
+    let mut round = 0;
+    while round < 5 || (start.elapsed().as_millis() as u64) < budget_ms && round < 10_000 {
+        for k in 0..N {
+            let which = (round + k) % N;
+            fs[which]();
+            for _ in 0..RUNS_PER_BLOCK {
+                let t = Instant::now();
+                fs[which]();
+                samples[which].push(t.elapsed().as_nanos() as f64);
+            }
+        }
+        round += 1;
+    }
+    samples.map(|mut s| {
+        s.sort_by(f64::total_cmp);
+        s[s.len() / 2]
+    })
+}
+
+/// Timed runs per block of [`time_interleaved_ns`].
+pub const RUNS_PER_BLOCK: usize = 4;

@@ -14,7 +14,7 @@ use super::project::{
 use super::raster::{
     Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
 };
-use super::small_triangle::SmallTriangle;
+use super::small_triangle::{SmallSetUp, SmallTriangle};
 
 /// Which triangles to drop by their facing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -240,27 +240,27 @@ impl ScreenBatch {
             &projected[b].screen,
             &projected[c].screen,
         );
-        let area = signed_area(sa, sb, sc);
-        // Counter-clockwise in the world, seen from the front, projects to a
-        // negative area on the y-down screen. (The vertices already looked
-        // up are reordered, not their indices: no second bounds check.)
-        let (v, area) = if area < 0 {
-            ([sa, sc, sb], -area)
-        } else if area > 0 && cull == CullMode::None {
-            ([sa, sb, sc], area)
-        } else {
-            return;
-        };
-        let Some(small) = SmallTriangle::of(v, span) else {
-            let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
-            self.push_triangle(tri, span);
-            return;
+        let (vertices, area, small) = match SmallTriangle::set_up([sa, sb, sc], span, cull) {
+            SmallSetUp::Kept {
+                vertices,
+                area,
+                triangle,
+            } => (vertices, area, triangle),
+            SmallSetUp::Dropped => return,
+            SmallSetUp::TooBig => {
+                let Some((v, area)) = clockwise([sa, sb, sc], cull) else {
+                    return;
+                };
+                let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
+                self.push_triangle(tri, span);
+                return;
+            }
         };
         let mask = small.coverage(span);
         if mask == 0 {
             return;
         }
-        let planes = small.planes(v, area);
+        let planes = small.planes(vertices, area);
         if mask.is_power_of_two() {
             let dot = Dot::in_box(&planes, span, mask);
             self.bands
@@ -276,6 +276,23 @@ impl ScreenBatch {
     fn push_triangle(&mut self, tri: Triangle, span: PixelSpan) {
         self.bands.push(self.tris.len() as u32, (span.y0, span.y1));
         self.tris.push(tri);
+    }
+}
+
+/// The triangle `v` wound clockwise on screen with its positive doubled area,
+/// or `None` when it has no area or `cull` drops its facing.
+#[inline]
+fn clockwise(v: [&ScreenVertex; 3], cull: CullMode) -> Option<([&ScreenVertex; 3], i64)> {
+    let [a, b, c] = v;
+    let area = signed_area(a, b, c);
+    // Counter-clockwise in the world, seen from the front, projects to a
+    // negative area on the y-down screen.
+    if area < 0 {
+        Some(([a, c, b], -area))
+    } else if area > 0 && cull == CullMode::None {
+        Some((v, area))
+    } else {
+        None
     }
 }
 

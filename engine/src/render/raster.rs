@@ -207,7 +207,8 @@ pub(crate) struct Planes {
 }
 
 impl Planes {
-    /// The planes of triangle `v` (positive [`signed_area`] `area`) from the
+    /// The planes of triangle `v` (positive [`signed_area`] `area`, exact in
+    /// `f32` for small triangles) from the
     /// values of its edges 1 and 2 (the weights of vertices 1 and 2, times the
     /// area) in lanes 1 and 2 of `start` (at the box's first centre, top-left
     /// bias included: at most 1 unit, negligible in the weights), `step_x`
@@ -215,12 +216,12 @@ impl Planes {
     #[inline(always)]
     pub fn from_edge_weights(
         v: [&ScreenVertex; 3],
-        area: i64,
+        area: f32,
         start: Vec4,
         step_x: Vec4,
         step_y: Vec4,
     ) -> Planes {
-        let inv_area = 1.0 / area as f32;
+        let inv_area = 1.0 / area;
         let a0 = v[0].attributes();
         let (d1, d2) = (v[1].attributes() - a0, v[2].attributes() - a0);
         let weights = |e: Vec4| {
@@ -313,7 +314,7 @@ impl BigTriangle {
         };
         let planes = Planes::from_edge_weights(
             v,
-            area,
+            area as f32,
             lanes(|e| e.start),
             lanes(|e| e.step_x),
             lanes(|e| e.step_y),
@@ -561,7 +562,7 @@ mod tests {
         match SmallTriangle::of(v, span).filter(|_| !big_only) {
             Some(small) => {
                 let mask = small.coverage(span);
-                (mask != 0).then(|| Triangle::masked(small.planes(v, area), span, mask))
+                (mask != 0).then(|| Triangle::masked(small.planes(v, area as f32), span, mask))
             }
             None => Some(BigTriangle::of(v, span).triangle(v, area, edges)),
         }

@@ -7,8 +7,9 @@
 //! attribute planes are the same as the general `i64` set-up's, in a few
 //! vector operations instead of three scalar edges.
 
-use glam::{BVec4A, IVec4, Vec4, Vec4Swizzles};
+use glam::{BVec4A, Vec4, Vec4Swizzles};
 
+use super::batch::CullMode;
 use super::raster::{HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenVertex};
 
 /// Boxes at most this many centres wide ...
@@ -32,49 +33,112 @@ pub(crate) struct SmallTriangle {
     step_y: Vec4,
 }
 
+/// What the small set-up makes of a submitted triangle.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum SmallSetUp<'v> {
+    /// The box or the triangle is too big for exact `f32` edges: the general
+    /// set-up applies.
+    TooBig,
+    /// Zero area, or a back face that its cull mode drops.
+    Dropped,
+    /// A triangle to draw.
+    Kept {
+        /// The vertices, clockwise on screen.
+        vertices: [&'v ScreenVertex; 3],
+        /// Twice the area in fixed point squared (positive, exact).
+        area: f32,
+        /// The edge functions of `vertices`.
+        triangle: SmallTriangle,
+    },
+}
+
 impl SmallTriangle {
-    /// The edge functions of the triangle `v` (clockwise on screen) over its
-    /// non-empty pixel box `span`, or `None` when the box or the triangle is
-    /// too big for exact `f32` edges (then the general set-up applies).
+    /// Culls, orients and sets up the triangle `v` (in submitted order) over
+    /// its non-empty pixel box `span`, all in `f32` lanes: its signed area is
+    /// a cross product of two edge lanes (exact below `2^24`, see
+    /// [`MASK_EXTENT`]), and turning it clockwise negates and swaps lanes
+    /// instead of building them again.
     #[inline(always)]
-    pub fn of(v: [&ScreenVertex; 3], span: PixelSpan) -> Option<SmallTriangle> {
+    pub fn set_up<'v>(v: [&'v ScreenVertex; 3], span: PixelSpan, cull: CullMode) -> SmallSetUp<'v> {
         if span.x1 - span.x0 >= MASK_SIDE || span.y1 - span.y0 >= MASK_SIDE {
-            return None;
+            return SmallSetUp::TooBig;
         }
         // Vertices relative to the first centre, which lies inside the
-        // vertices' box: offsets below MASK_EXTENT, exact in `f32`.
-        let px = span.x0 * ONE as i32 + HALF as i32;
-        let py = span.y0 * ONE as i32 + HALF as i32;
-        // Lane k holds the edge's first vertex, k + 1 (mod 3).
-        // Converted as whole vectors (lane 3 is `p - p = 0`).
-        let x = (IVec4::new(v[1].x, v[2].x, v[0].x, px) - IVec4::splat(px)).as_vec4();
-        let y = (IVec4::new(v[1].y, v[2].y, v[0].y, py) - IVec4::splat(py)).as_vec4();
+        // vertices' box. The coordinates of a triangle that reaches here lie
+        // within the guard band, below `2^24`: exact in `f32`, and so are
+        // their offsets below MASK_EXTENT (a vertex converted inexactly lies
+        // far beyond it).
+        let px = (span.x0 * ONE as i32 + HALF as i32) as f32;
+        let py = (span.y0 * ONE as i32 + HALF as i32) as f32;
+        // Lane k holds the first vertex of edge k (opposite vertex k): k + 1 (mod 3).
+        let x = Vec4::new(v[1].x as f32, v[2].x as f32, v[0].x as f32, px) - Vec4::splat(px);
+        let y = Vec4::new(v[1].y as f32, v[2].y as f32, v[0].y as f32, py) - Vec4::splat(py);
         let dx = x.yzxw() - x;
         let dy = y.yzxw() - y;
         // A triangle's extent per axis is the largest of its edges' (lane 3
-        // is zero). The first centre lies inside the vertices' box, so the
-        // offsets are at most the extent: exact below `2^24`, and a larger
-        // extent cannot round below MASK_EXTENT.
+        // is zero). A larger extent cannot round below MASK_EXTENT.
         let extent = dx.abs().max(dy.abs());
         if extent.cmpge(Vec4::splat(MASK_EXTENT as f32)).any() {
-            return None;
+            return SmallSetUp::TooBig;
         }
+        // E(p) = dx (py - ay) - dy (px - ax) at p = the first centre.
+        let edge_values = dy * x - dx * y;
+        // signed_area(v0, v1, v2) from edges 2 (v0 to v1) and 1 (v2 to v0).
+        let area = dy.z * dx.y - dx.z * dy.y;
+        // Counter-clockwise in the world, seen from the front, projects to a
+        // negative area on the y-down screen.
+        if area < 0.0 {
+            // Clockwise order v0, v2, v1: each edge reverses (values and
+            // steps negate) and edges 1 and 2 trade places. Subtracted from
+            // zero, not negated, so that zeros stay +0 as the integers'.
+            let turn = |lanes: Vec4| Vec4::ZERO - lanes.xzyw();
+            SmallSetUp::Kept {
+                vertices: [v[0], v[2], v[1]],
+                area: -area,
+                triangle: SmallTriangle::from_edges(turn(edge_values), turn(dx), turn(dy)),
+            }
+        } else if area > 0.0 && cull == CullMode::None {
+            SmallSetUp::Kept {
+                vertices: v,
+                area,
+                triangle: SmallTriangle::from_edges(edge_values, dx, dy),
+            }
+        } else {
+            SmallSetUp::Dropped
+        }
+    }
+
+    /// The edge functions of a clockwise triangle whose edges (lane `k`
+    /// opposite vertex `k`) change by `dx`, `dy` along themselves and have
+    /// the values `edge_values` at the box's first centre.
+    #[inline(always)]
+    fn from_edges(edge_values: Vec4, dx: Vec4, dy: Vec4) -> SmallTriangle {
         // Pixels exactly on an edge belong to it only when it is a top edge
         // (horizontal, going right) or a left edge (going up).
         let top_left: BVec4A = dy.cmplt(Vec4::ZERO) | (dy.cmpeq(Vec4::ZERO) & dx.cmpgt(Vec4::ZERO));
         let bias = Vec4::select(top_left, Vec4::ZERO, Vec4::NEG_ONE);
         let one = ONE as f32;
-        Some(SmallTriangle {
-            // E(p) = dx (py - ay) - dy (px - ax) at p = the first centre.
-            start: dy * x - dx * y + bias,
+        SmallTriangle {
+            start: edge_values + bias,
             // Subtracted from zero, not negated, so a zero step is +0 as in integers.
             step_x: Vec4::ZERO - dy * one,
             step_y: dx * one,
-        })
+        }
+    }
+
+    /// The edge functions of the triangle `v`, already clockwise on screen,
+    /// over its non-empty pixel box `span`, or `None` when the box or the
+    /// triangle is too big for exact `f32` edges.
+    #[cfg(test)]
+    pub fn of(v: [&ScreenVertex; 3], span: PixelSpan) -> Option<SmallTriangle> {
+        match SmallTriangle::set_up(v, span, CullMode::None) {
+            SmallSetUp::Kept { triangle, .. } => Some(triangle),
+            SmallSetUp::TooBig | SmallSetUp::Dropped => None,
+        }
     }
 
     /// Bit `8 * row + column` (relative to the box corner) per pixel centre of
-    /// `span` (the box given to [`SmallTriangle::of`]) that the triangle covers.
+    /// `span` (the box given to [`SmallTriangle::set_up`]) that the triangle covers.
     #[inline(always)]
     pub fn coverage(&self, span: PixelSpan) -> u64 {
         let (columns, rows) = (
@@ -164,10 +228,10 @@ impl SmallTriangle {
         mask
     }
 
-    /// The attribute planes of the triangle `v` (the vertices given to
-    /// [`SmallTriangle::of`], with positive doubled area `area`).
+    /// The attribute planes of the triangle `v` (the clockwise vertices it
+    /// was set up from, with positive doubled area `area`).
     #[inline(always)]
-    pub fn planes(&self, v: [&ScreenVertex; 3], area: i64) -> Planes {
+    pub fn planes(&self, v: [&ScreenVertex; 3], area: f32) -> Planes {
         Planes::from_edge_weights(v, area, self.start, self.step_x, self.step_y)
     }
 }
@@ -206,6 +270,29 @@ mod tests {
             let Some(small) = SmallTriangle::of(v, span) else {
                 continue;
             };
+            // Set up in the submitted order, turned clockwise in lanes: the
+            // same bits as set up clockwise; culled by the submitted winding.
+            let submitted = [&a, &b, &c];
+            let clockwise_first = signed_area(&a, &b, &c) > 0;
+            for cull in [CullMode::None, CullMode::Back] {
+                match SmallTriangle::set_up(submitted, span, cull) {
+                    SmallSetUp::Kept {
+                        vertices,
+                        area: kept_area,
+                        triangle,
+                    } => {
+                        assert!(cull == CullMode::None || !clockwise_first);
+                        assert_eq!(vertices, v);
+                        assert_eq!(kept_area, area as f32);
+                        let bits = |t: &SmallTriangle| {
+                            [t.start, t.step_x, t.step_y].map(|l| l.to_array().map(f32::to_bits))
+                        };
+                        assert_eq!(bits(&triangle), bits(&small));
+                    }
+                    SmallSetUp::Dropped => assert!(cull == CullMode::Back && clockwise_first),
+                    SmallSetUp::TooBig => panic!("{span:?} fits the small set-up"),
+                }
+            }
             let (columns, rows) = (
                 (span.x1 - span.x0 + 1) as u32,
                 (span.y1 - span.y0 + 1) as u32,
