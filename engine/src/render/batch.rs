@@ -58,6 +58,9 @@ pub(crate) struct ScreenBatch {
     edges: Vec<Edges>,
     /// The kept triangles of each band, in submission order.
     bands: BandEntries,
+    /// The projected vertices of the last build: not needed once the
+    /// triangles are set up, kept for their capacity.
+    vertices: Vec<ProjectedVertex>,
 }
 
 /// Items binned by the bands of rows they touch (band `k`: rows
@@ -71,8 +74,17 @@ pub(crate) struct BandEntries(Vec<Vec<u32>>);
 impl BandEntries {
     /// No entries in the bands of a screen `height` pixels tall.
     pub(crate) fn new(height: i32) -> BandEntries {
+        let mut entries = BandEntries::default();
+        entries.reset(height);
+        entries
+    }
+
+    /// Empties the entries, now for the bands of a screen `height` pixels
+    /// tall, keeping what the lists have allocated.
+    pub(crate) fn reset(&mut self, height: i32) {
         let bands = (height.max(0) + BAND_ROWS - 1) >> BAND_SHIFT;
-        BandEntries(vec![Vec::new(); bands as usize])
+        self.0.resize_with(bands as usize, Vec::new);
+        self.0.iter_mut().for_each(Vec::clear);
     }
 
     /// Appends `entry` to the bands of pixel rows `y0..=y1` (`0 <= y0 <= y1 <
@@ -166,23 +178,39 @@ impl ScreenBatch {
         vp: Viewport,
         kernels: Kernels,
     ) -> ScreenBatch {
+        let mut batch = ScreenBatch::default();
+        batch.rebuild(verts, groups, vp, kernels);
+        batch
+    }
+
+    /// [`ScreenBatch::build`] into this batch, replacing what it held and
+    /// keeping what its buffers have allocated (a renderer reuses its batches
+    /// from frame to frame).
+    pub fn rebuild(
+        &mut self,
+        verts: &[ClipVertex],
+        groups: &[TriangleGroup<'_>],
+        vp: Viewport,
+        kernels: Kernels,
+    ) {
         let verts = ClipVertexList(verts);
-        ScreenBatch::build_shaded(verts, verts, groups, vp, kernels)
+        self.rebuild_shaded(verts, verts, groups, vp, kernels);
     }
 
     /// Projects the vertices of `positions`, colours them four at a time
     /// with `shader` and sets up every triangle of `groups`, with the machine
-    /// code `kernels` selects.
-    pub fn build_shaded<P: ClipSource, S: VertexShader>(
+    /// code `kernels` selects, into this batch (as [`ScreenBatch::rebuild`]).
+    pub fn rebuild_shaded<P: ClipSource, S: VertexShader>(
+        &mut self,
         positions: P,
         shader: S,
         groups: &[TriangleGroup<'_>],
         vp: Viewport,
         kernels: Kernels,
-    ) -> ScreenBatch {
+    ) {
         match kernels {
-            Kernels::Dispatched => build_dispatched(positions, shader, groups, vp),
-            Kernels::Baseline => run_baseline(|| build_batch(positions, shader, groups, vp)),
+            Kernels::Dispatched => build_dispatched(self, positions, shader, groups, vp),
+            Kernels::Baseline => run_baseline(|| build_batch(self, positions, shader, groups, vp)),
         }
     }
 
@@ -299,25 +327,28 @@ fn clockwise(v: [&ScreenVertex; 3], cull: CullMode) -> Option<([&ScreenVertex; 3
 /// [`build_batch`] in the best machine code for the CPU (see [`Kernels`]).
 #[multiversion(targets("x86_64+avx2"))]
 fn build_dispatched<P: ClipSource, S: VertexShader>(
+    batch: &mut ScreenBatch,
     positions: P,
     shader: S,
     groups: &[TriangleGroup<'_>],
     vp: Viewport,
-) -> ScreenBatch {
-    build_batch(positions, shader, groups, vp)
+) {
+    build_batch(batch, positions, shader, groups, vp);
 }
 
-/// The batch of `groups` over the vertices of `positions` coloured by
-/// `shader` (see [`ScreenBatch::build_shaded`]); inlined into each copy of
+/// Fills `batch` with `groups` over the vertices of `positions` coloured by
+/// `shader` (see [`ScreenBatch::rebuild_shaded`]); inlined into each copy of
 /// its callers.
 #[inline(always)]
 fn build_batch(
+    batch: &mut ScreenBatch,
     positions: impl ClipSource,
     shader: impl VertexShader,
     groups: &[TriangleGroup<'_>],
     vp: Viewport,
-) -> ScreenBatch {
-    let mut projected = project_vertices(&positions, &shader, vp);
+) {
+    let mut projected = std::mem::take(&mut batch.vertices);
+    project_vertices(&positions, &shader, vp, &mut projected);
     // What clipping needs of a vertex (the projected ones keep neither).
     let clip_vertex = |k: usize| ClipVertex {
         pos: positions.clip(k),
@@ -325,12 +356,12 @@ fn build_batch(
     };
     let submitted = groups.iter().map(|g| g.triangles.len()).sum();
     // Growing these would copy them; untouched capacity costs nothing.
-    let mut batch = ScreenBatch {
-        tris: Vec::with_capacity(submitted),
-        dots: Vec::with_capacity(submitted),
-        edges: Vec::new(),
-        bands: BandEntries::new(vp.height),
-    };
+    batch.tris.clear();
+    batch.tris.reserve(submitted);
+    batch.dots.clear();
+    batch.dots.reserve(submitted);
+    batch.edges.clear();
+    batch.bands.reset(vp.height);
     let mut polygon = Vec::with_capacity(9);
     let limits = screen_limits(vp.width, vp.height);
     let mut kept = [KeptTriangle::default(); KEEP_CHUNK];
@@ -377,7 +408,7 @@ fn build_batch(
             }
         }
     }
-    batch
+    batch.vertices = projected;
 }
 
 /// Triangles selected at a time before their set-up (a power of two).

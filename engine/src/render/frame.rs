@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
+use super::batch_pool::BatchPool;
 use super::error::RenderError;
 use super::grass::{GrassBlade, GrassLayer};
 use super::kernels::{Kernels, run_baseline};
@@ -65,6 +66,11 @@ pub struct FrameStats {
 /// in parallel; then the screen is cut into fixed bands of rows, rasterized in
 /// parallel, each band drawing the batches in scene order. The image is
 /// bit-identical whatever the number of threads.
+///
+/// A renderer keeps its per-frame buffers (the depth buffer and the screen
+/// batches, with their projected vertices, set-up triangles and band lists)
+/// from frame to frame: render many frames with one renderer. Clones share
+/// them.
 #[derive(Debug, Clone)]
 pub struct Renderer {
     width: u32,
@@ -73,6 +79,8 @@ pub struct Renderer {
     /// The depth buffer kept between frames (saves allocating and faulting in
     /// a fresh one per frame); a frame that finds it busy allocates its own.
     depth: Arc<Mutex<Vec<f32>>>,
+    /// The screen batches kept between frames, for the same reason.
+    batches: Arc<BatchPool>,
     /// The machine code of the hot kernels.
     kernels: Kernels,
 }
@@ -92,6 +100,7 @@ impl Renderer {
             height,
             pool: None,
             depth: Arc::default(),
+            batches: Arc::default(),
             kernels: Kernels::default(),
         })
     }
@@ -199,6 +208,7 @@ impl Renderer {
                     Kernels::Baseline => run_baseline(|| fill_band(band, &batches, &grass, vp)),
                 }
             });
+        self.batches.give_back(batches);
         let image = RgbaImage::from_raw(self.width, self.height, color)
             .expect("the colour buffer has width * height * 4 bytes");
         (image, stats)
@@ -209,14 +219,14 @@ impl Renderer {
         let lighting = &scene.lighting;
         let (mut batches, meshes) = rayon::join(
             || match scene.terrain {
-                Some(t) => t.batches(camera, lighting, vp, self.kernels),
+                Some(t) => t.batches(camera, lighting, vp, self.kernels, &self.batches),
                 None => Vec::new(),
             },
             || -> Vec<Vec<ScreenBatch>> {
                 scene
                     .meshes
                     .par_iter()
-                    .map(|m| m.batches(camera, lighting, vp, self.kernels))
+                    .map(|m| m.batches(camera, lighting, vp, self.kernels, &self.batches))
                     .collect()
             },
         );
@@ -309,7 +319,71 @@ fn fill_row(row: &mut [u8], px: [u8; 4]) {
 
 #[cfg(test)]
 mod tests {
-    use super::fill_row;
+    use glam::{Mat4, Vec2, Vec3};
+
+    use super::{Renderer, fill_row};
+    use crate::geom::HeightGrid;
+    use crate::render::{
+        Camera, CullMode, FrameScene, Lighting, MeshInstance, TerrainRenderer, TerrainStyle,
+        UniformColor,
+    };
+
+    #[test]
+    fn a_renderer_reusing_its_batches_draws_what_a_new_one_draws() {
+        let grid = HeightGrid::from_fn(Vec2::splat(-2.0), 4.0 / 96.0, 97, 97, |x, z| {
+            0.2 * (x * 1.7).sin() * (z * 1.3).cos()
+        })
+        .unwrap();
+        let lighting = Lighting::default();
+        let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
+        terrain
+            .update(&grid, &UniformColor(Vec3::new(0.6, 0.5, 0.35)), &lighting)
+            .unwrap();
+        let mesh = grid.to_tri_mesh();
+        let mut instance =
+            MeshInstance::new(&mesh, Mat4::from_translation(Vec3::Y * 0.2), Vec3::ONE);
+        instance.cull = CullMode::None;
+        let meshes = [instance];
+        // Frames of different sizes in turn: terrain and mesh from afar, the
+        // mesh alone up close (more triangles per batch, some clipped).
+        let both = FrameScene {
+            terrain: Some(&terrain),
+            meshes: &meshes,
+            lighting,
+            ..FrameScene::new()
+        };
+        let mesh_only = FrameScene {
+            meshes: &meshes,
+            lighting,
+            ..FrameScene::new()
+        };
+        let camera = |eye: Vec3| {
+            Camera::perspective(1.0, 160, 90, 0.05, 50.0)
+                .unwrap()
+                .look_at(eye, Vec3::ZERO, Vec3::Y)
+        };
+        let frames = [
+            (&both, camera(Vec3::new(0.0, 2.5, -4.0))),
+            (&mesh_only, camera(Vec3::new(0.3, 0.5, -0.6))),
+        ];
+        for threads in [1, 2] {
+            let new = || {
+                Renderer::new(160, 90)
+                    .unwrap()
+                    .with_threads(threads)
+                    .unwrap()
+            };
+            let reused = new();
+            for _ in 0..2 {
+                for (scene, camera) in &frames {
+                    let (image, stats) = reused.render_with_stats(scene, camera);
+                    assert!(stats.triangles > 1000, "{stats:?}");
+                    assert!(image == new().render(scene, camera), "{threads} threads");
+                }
+            }
+            assert!(reused.batches.len() > 1);
+        }
+    }
 
     #[test]
     fn fill_row_writes_every_pixel() {

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
+use super::batch_pool::BatchPool;
 use super::kernels::Kernels;
 use super::mesh_shader::MeshShader;
 use super::project::TransformedPoints;
@@ -82,13 +83,14 @@ impl<'a> MeshInstance<'a> {
     }
 
     /// Screen batches of at most [`TRIANGLES_PER_BATCH`] triangles per part,
-    /// projected in parallel, in part order.
+    /// projected in parallel, in part order, rebuilt from `pool`'s spares.
     pub(crate) fn batches(
         &self,
         camera: &Camera,
         lighting: &Lighting,
         vp: Viewport,
         kernels: Kernels,
+        pool: &BatchPool,
     ) -> Vec<ScreenBatch> {
         let view_proj = camera.view_proj();
         let mesh = self.mesh;
@@ -124,7 +126,8 @@ impl<'a> MeshInstance<'a> {
                     *lighting,
                     camera.eye,
                 );
-                Some(ScreenBatch::build_shaded(
+                let mut batch = pool.take();
+                batch.rebuild_shaded(
                     positions,
                     shader,
                     &[TriangleGroup {
@@ -134,7 +137,8 @@ impl<'a> MeshInstance<'a> {
                     }],
                     vp,
                     kernels,
-                ))
+                );
+                Some(batch)
             })
             .collect()
     }

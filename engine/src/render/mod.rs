@@ -24,6 +24,7 @@
 //! assert_eq!(image.dimensions(), (64, 48));
 //! ```
 mod batch;
+mod batch_pool;
 mod blade_span;
 mod camera;
 mod centre_box;

@@ -54,9 +54,6 @@ impl ProjectedVertex {
     }
 }
 
-/// Spare room for the vertices of a few clipped polygons.
-const SPARE: usize = 16;
-
 /// Where the clip positions of a batch's vertices come from.
 pub(crate) trait ClipSource {
     /// Number of vertices.
@@ -227,19 +224,22 @@ pub(crate) trait VertexShader {
     }
 }
 
-/// The projected vertices of the clip positions of `source`, in order, with
-/// the colours of `shader` (each times the vertex's `1/w`). Inlined into each
-/// copy of the batch build ([`super::kernels::Kernels`]).
+/// Replaces the contents of `vertices` with the projected vertices of the
+/// clip positions of `source`, in order, with the colours of `shader` (each
+/// times the vertex's `1/w`); the vector's capacity is kept. Inlined into
+/// each copy of the batch build ([`super::kernels::Kernels`]).
 #[inline(always)]
 pub(crate) fn project_vertices(
     source: &impl ClipSource,
     shader: &impl VertexShader,
     vp: Viewport,
-) -> Vec<ProjectedVertex> {
+    vertices: &mut Vec<ProjectedVertex>,
+) {
     let count = source.len();
     // Records are pushed one by one, built in place (arrays of four built
     // elsewhere and copied in cost block copies; zeroing first costs a pass).
-    let mut vertices = Vec::with_capacity(count + SPARE);
+    vertices.clear();
+    vertices.reserve(count);
     let scalar = |k: usize| {
         let mut v = ProjectedVertex::scalar(source.clip(k), vp);
         v.screen.color_w = shader.color(k) * v.screen.inv_w;
@@ -248,12 +248,11 @@ pub(crate) fn project_vertices(
     for group in 0..count / LANES {
         let (clip, world) = source.lanes(group);
         let colors = shader.colors_at(group, &world);
-        if !project_four(clip, colors, vp, &mut vertices) {
+        if !project_four(clip, colors, vp, vertices) {
             vertices.extend((LANES * group..LANES * group + LANES).map(scalar));
         }
     }
     vertices.extend((count - count % LANES..count).map(scalar));
-    vertices
 }
 
 /// Appends to `out` the screen vertices (with `colors` times their `1/w`),
@@ -461,13 +460,15 @@ mod tests {
             width: 64,
             height: 48,
         };
-        // Lengths that leave every remainder.
-        for count in [0, 1, 3, 4, 7, 20_000, 20_003] {
+        // Lengths that leave every remainder; one vector reused for all (as
+        // a renderer reuses its batches), longest first.
+        let mut out = Vec::new();
+        for count in [20_003, 20_000, 7, 4, 3, 1, 0] {
             let clip = awkward_positions(&mut rng, count);
             let colors: Vec<Vec3> = (0..count)
                 .map(|_| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()))
                 .collect();
-            let out = project_vertices(&ClipPositions(&clip), &ColorTable(&colors), vp);
+            project_vertices(&ClipPositions(&clip), &ColorTable(&colors), vp, &mut out);
             assert_eq!(out.len(), count);
             for ((got, &p), &color) in out.iter().zip(&clip).zip(&colors) {
                 let expected = vp.project(&ClipVertex { pos: p, color });

@@ -783,8 +783,10 @@ mod tests {
         };
         let clip: Vec<Vec4> = verts.iter().map(|v| v.pos).collect();
         let eager = ScreenBatch::build(&verts, &group, vp, Kernels::Baseline);
+        // One batch rebuilt for both: nothing of the first build may remain.
+        let mut shaded = ScreenBatch::default();
         for kernels in [Kernels::Baseline, Kernels::Dispatched] {
-            let shaded = ScreenBatch::build_shaded(
+            shaded.rebuild_shaded(
                 ClipPositions(&clip),
                 ClipVertexList(&verts),
                 &group,

@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::batch_pool::BatchPool;
 use super::clip::ClipVertex;
 use super::error::{RenderError, positive};
 use super::kernels::Kernels;
@@ -308,13 +309,15 @@ impl TerrainRenderer {
             .collect()
     }
 
-    /// Projects every visible patch into screen batches (one per patch, in patch order).
+    /// Projects every visible patch into screen batches (one per patch, in
+    /// patch order), rebuilt from `pool`'s spares.
     pub(crate) fn batches(
         &self,
         camera: &Camera,
         lighting: &Lighting,
         vp: Viewport,
         kernels: Kernels,
+        pool: &BatchPool,
     ) -> Vec<ScreenBatch> {
         let levels = self.choose_levels(camera);
         let view_proj = camera.view_proj();
@@ -343,16 +346,21 @@ impl TerrainRenderer {
                     neighbour(-1, 0),
                     neighbour(1, 0),
                 ];
-                self.patch_batch(
-                    k, level, skirts, &view_proj, camera.eye, lighting, vp, kernels,
-                )
+                let mut batch = pool.take();
+                self.build_patch(
+                    &mut batch, k, level, skirts, &view_proj, camera.eye, lighting, vp, kernels,
+                );
+                batch
             })
             .collect()
     }
 
+    /// Rebuilds `batch` with patch `k` at level `level`, with skirts where
+    /// `skirts` gives a neighbour's coarser error.
     #[allow(clippy::too_many_arguments)]
-    fn patch_batch(
+    fn build_patch(
         &self,
+        batch: &mut ScreenBatch,
         k: usize,
         level: usize,
         skirts: [Option<f32>; 4],
@@ -361,7 +369,7 @@ impl TerrainRenderer {
         lighting: &Lighting,
         vp: Viewport,
         kernels: Kernels,
-    ) -> ScreenBatch {
+    ) {
         let patch = &self.patches[k];
         let lod = &patch.levels[level];
         let (m, n) = (lod.cols.len(), lod.rows.len());
@@ -409,7 +417,7 @@ impl TerrainRenderer {
             }
         }
         let surface = &self.indices[&(m, n)];
-        ScreenBatch::build(
+        batch.rebuild(
             &verts,
             &[
                 TriangleGroup {
@@ -425,7 +433,7 @@ impl TerrainRenderer {
             ],
             vp,
             kernels,
-        )
+        );
     }
 }
 
