@@ -17,7 +17,9 @@
 //!
 //! `euc` (without its `par` feature) draws on one thread, so `ours_ns` is ours on
 //! a one-thread pool: the like-for-like figure. `ours_2_threads_ns` is ours on
-//! two threads, for reference.
+//! two threads, for reference. The workloads are timed interleaved
+//! ([`crate::time_interleaved_ns`]), so that all see the machine in the same
+//! state.
 
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};
