@@ -64,7 +64,7 @@ pub fn time_ns(budget_ms: u64, mut f: impl FnMut()) -> f64 {
 /// Median times in nanoseconds of each of `fs`, measured in rounds until
 /// about `budget_ms` have passed (at least 5 rounds). A round runs every one
 /// of them, in an order that rotates from round to round, as a block: one
-/// untimed warm-up run, then [`RUNS_PER_BLOCK`] timed runs.
+/// untimed warm-up run, then `RUNS_PER_BLOCK` (four) timed runs.
 ///
 /// Timings on a shared machine drift: a slow spell of seconds would land on
 /// whichever workload [`time_ns`] happens to be timing then, and move the
@@ -95,4 +95,4 @@ pub fn time_interleaved_ns<const N: usize>(budget_ms: u64, fs: [&mut dyn FnMut()
 }
 
 /// Timed runs per block of [`time_interleaved_ns`].
-pub const RUNS_PER_BLOCK: usize = 4;
+const RUNS_PER_BLOCK: usize = 4;
