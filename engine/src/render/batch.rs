@@ -314,7 +314,9 @@ fn clockwise(v: [&ScreenVertex; 3], cull: CullMode) -> Option<([&ScreenVertex; 3
     let [a, b, c] = v;
     let area = signed_area(a, b, c);
     // Counter-clockwise in the world, seen from the front, projects to a
-    // negative area on the y-down screen.
+    // negative area on the y-down screen. (`SmallTriangle::set_up` applies
+    // the same rule to its exact `f32` area; shared through one function, the
+    // rule cost the hot loop 1.5 % more instructions, so it is written twice.)
     if area < 0 {
         Some(([a, c, b], -area))
     } else if area > 0 && cull == CullMode::None {
@@ -394,7 +396,7 @@ fn build_batch(
                     continue;
                 }
                 // Clipped polygons append their (already shaded) vertices,
-                // dropped with the batch's.
+                // cleared with the others by the batch's next build.
                 let base = projected.len() as u32;
                 // Not clipped again: no outcode needed.
                 let vertices = polygon

@@ -319,10 +319,10 @@ fn fill_row(row: &mut [u8], px: [u8; 4]) {
 
 #[cfg(test)]
 mod tests {
-    use glam::{Mat4, Vec2, Vec3};
+    use glam::{Mat4, Vec3};
 
     use super::{Renderer, fill_row};
-    use crate::geom::HeightGrid;
+    use crate::render::test_ground::ground;
     use crate::render::{
         Camera, CullMode, FrameScene, Lighting, MeshInstance, TerrainRenderer, TerrainStyle,
         UniformColor,
@@ -330,16 +330,12 @@ mod tests {
 
     #[test]
     fn a_renderer_reusing_its_batches_draws_what_a_new_one_draws() {
-        let grid = HeightGrid::from_fn(Vec2::splat(-2.0), 4.0 / 96.0, 97, 97, |x, z| {
-            0.2 * (x * 1.7).sin() * (z * 1.3).cos()
-        })
-        .unwrap();
+        let (grid, mesh) = ground(97);
         let lighting = Lighting::default();
         let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
         terrain
             .update(&grid, &UniformColor(Vec3::new(0.6, 0.5, 0.35)), &lighting)
             .unwrap();
-        let mesh = grid.to_tri_mesh();
         let mut instance =
             MeshInstance::new(&mesh, Mat4::from_translation(Vec3::Y * 0.2), Vec3::ONE);
         instance.cull = CullMode::None;

@@ -30,25 +30,15 @@ pub(crate) fn run_baseline<R>(kernel: impl FnOnce() -> R) -> R {
 
 #[cfg(test)]
 mod tests {
-    use glam::{Mat4, Vec2, Vec3};
+    use glam::{Mat4, Vec3};
 
     use super::Kernels;
-    use crate::geom::{HeightGrid, TriMesh};
+    use crate::render::test_ground::ground;
     use crate::render::{
         Camera, CullMode, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer,
         TerrainRenderer, TerrainStyle, UniformColor,
     };
     use crate::rng::SplitMix64;
-
-    /// A bumpy `n` x `n` grid and the same heights as one dense mesh.
-    fn ground(n: usize) -> (HeightGrid, TriMesh) {
-        let grid = HeightGrid::from_fn(Vec2::splat(-2.0), 4.0 / (n - 1) as f32, n, n, |x, z| {
-            0.2 * (x * 1.7).sin() * (z * 1.3).cos() + 0.02 * (x * 9.0 + z * 7.0).sin()
-        })
-        .unwrap();
-        let mesh = grid.to_tri_mesh();
-        (grid, mesh)
-    }
 
     #[test]
     fn baseline_and_dispatched_kernels_draw_the_same_bytes() {

@@ -43,6 +43,8 @@ mod small_triangle;
 mod terrain;
 mod terrain_colors;
 mod terrain_light;
+#[cfg(test)]
+mod test_ground;
 
 pub use batch::CullMode;
 pub use camera::Camera;

@@ -208,11 +208,11 @@ pub(crate) struct Planes {
 
 impl Planes {
     /// The planes of triangle `v` (positive [`signed_area`] `area`, exact in
-    /// `f32` for small triangles) from the
-    /// values of its edges 1 and 2 (the weights of vertices 1 and 2, times the
-    /// area) in lanes 1 and 2 of `start` (at the box's first centre, top-left
-    /// bias included: at most 1 unit, negligible in the weights), `step_x`
-    /// (per pixel right) and `step_y` (per pixel down).
+    /// `f32` for small triangles) from the values of its edges 1 and 2 (the
+    /// weights of vertices 1 and 2, times the area) in lanes 1 and 2 of
+    /// `start` (at the box's first centre, top-left bias included: at most 1
+    /// unit, negligible in the weights), `step_x` (per pixel right) and
+    /// `step_y` (per pixel down).
     #[inline(always)]
     pub fn from_edge_weights(
         v: [&ScreenVertex; 3],

@@ -86,7 +86,8 @@ impl SmallTriangle {
         // signed_area(v0, v1, v2) from edges 2 (v0 to v1) and 1 (v2 to v0).
         let area = dy.z * dx.y - dx.z * dy.y;
         // Counter-clockwise in the world, seen from the front, projects to a
-        // negative area on the y-down screen.
+        // negative area on the y-down screen (the rule of `batch::clockwise`
+        // for big triangles).
         if area < 0.0 {
             // Clockwise order v0, v2, v1: each edge reverses (values and
             // steps negate) and edges 1 and 2 trade places. Subtracted from
