@@ -323,19 +323,12 @@ mod tests {
 
     use super::{Renderer, fill_row};
     use crate::render::test_ground::ground;
-    use crate::render::{
-        Camera, CullMode, FrameScene, Lighting, MeshInstance, TerrainRenderer, TerrainStyle,
-        UniformColor,
-    };
+    use crate::render::{Camera, CullMode, FrameScene, Lighting, MeshInstance};
 
     #[test]
     fn a_renderer_reusing_its_batches_draws_what_a_new_one_draws() {
-        let (grid, mesh) = ground(97);
+        let (terrain, mesh) = ground(97);
         let lighting = Lighting::default();
-        let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
-        terrain
-            .update(&grid, &UniformColor(Vec3::new(0.6, 0.5, 0.35)), &lighting)
-            .unwrap();
         let mut instance =
             MeshInstance::new(&mesh, Mat4::from_translation(Vec3::Y * 0.2), Vec3::ONE);
         instance.cull = CullMode::None;

@@ -36,18 +36,13 @@ mod tests {
     use crate::render::test_ground::ground;
     use crate::render::{
         Camera, CullMode, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer,
-        TerrainRenderer, TerrainStyle, UniformColor,
     };
     use crate::rng::SplitMix64;
 
     #[test]
     fn baseline_and_dispatched_kernels_draw_the_same_bytes() {
-        let (grid, mesh) = ground(129);
+        let (terrain, mesh) = ground(129);
         let lighting = Lighting::default();
-        let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
-        terrain
-            .update(&grid, &UniformColor(Vec3::new(0.6, 0.5, 0.35)), &lighting)
-            .unwrap();
         // The dense mesh above the terrain, both sides drawn, lit each frame
         // (fog included); a pre-lit copy of it lower down.
         let mut lit = MeshInstance::new(
