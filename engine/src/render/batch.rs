@@ -7,12 +7,13 @@ use multiversion::multiversion;
 
 use super::centre_box::{SpanLanes, screen_limits, triangle_span};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
+use super::four_small_triangles::{FourSetUp, FourSmallTriangles, FourSpans};
 use super::kernels::{Kernels, run_baseline};
 use super::project::{
     ClipSource, LANES, ProjectedVertex, VertexShader, position_lanes, project_vertices,
 };
 use super::raster::{
-    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle, signed_area,
+    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, Planes, ScreenVertex, Triangle, signed_area,
 };
 use super::small_triangle::{SmallSetUp, SmallTriangle};
 
@@ -249,25 +250,14 @@ impl ScreenBatch {
         let Some(span) = triangle_span(pa.centre_box, pb.centre_box, pc.centre_box, limits) else {
             return;
         };
-        self.push_in_span(projected, tri, cull, span);
+        self.push_in_span([&pa.screen, &pb.screen, &pc.screen], cull, span);
     }
 
     /// [`ScreenBatch::push`] for a triangle whose pixel span `span` is known
     /// to hold a pixel centre.
     #[inline(always)]
-    fn push_in_span(
-        &mut self,
-        projected: &[ProjectedVertex],
-        tri: [u32; 3],
-        cull: CullMode,
-        span: PixelSpan,
-    ) {
-        let [a, b, c] = tri.map(|k| k as usize);
-        let (sa, sb, sc) = (
-            &projected[a].screen,
-            &projected[b].screen,
-            &projected[c].screen,
-        );
+    fn push_in_span(&mut self, v: [&ScreenVertex; 3], cull: CullMode, span: PixelSpan) {
+        let [sa, sb, sc] = v;
         let (vertices, area, small) = match SmallTriangle::set_up([sa, sb, sc], span, cull) {
             SmallSetUp::Kept {
                 vertices,
@@ -285,10 +275,49 @@ impl ScreenBatch {
             }
         };
         let mask = small.coverage(span);
-        if mask == 0 {
+        if mask != 0 {
+            self.push_covered(small.planes(vertices, area), span, mask);
+        }
+    }
+
+    /// Sets up four triangles that need no clipping, whose pixel spans hold
+    /// a pixel centre, together where they are small enough
+    /// ([`FourSmallTriangles`]), and keeps them in order.
+    #[inline(always)]
+    fn push_four<'v>(&mut self, kept: &[KeptTriangle<'v>; 4], cull: CullMode) {
+        let screen = |k: &KeptTriangle<'v>| k.vertices.map(|v| &v.screen);
+        let spans = FourSpans::of(kept.map(|k| k.lanes));
+        if spans.in_window().count_ones() < FOUR_AT_A_TIME_MIN {
+            for k in kept {
+                self.push_in_span(screen(k), cull, k.lanes.span());
+            }
             return;
         }
-        let planes = small.planes(vertices, area);
+        let four = FourSmallTriangles::set_up(kept.map(|k| screen(&k)), &spans, cull);
+        // Each triangle's vertices read again from `kept` (keeping the twelve
+        // in registers for the loop costs more).
+        for (t, k) in kept.iter().enumerate() {
+            match four.lane(t, screen(k)) {
+                FourSetUp::OneAtATime => self.push_in_span(screen(k), cull, k.lanes.span()),
+                FourSetUp::Empty => {}
+                FourSetUp::Covered {
+                    vertices,
+                    weights,
+                    mask,
+                } => self.push_covered(
+                    Planes::from_weights(vertices, weights),
+                    k.lanes.span(),
+                    mask,
+                ),
+            }
+        }
+    }
+
+    /// Keeps a small triangle with attribute planes `planes` over box `span`
+    /// that covers the centres of `mask` (not empty; see
+    /// [`Triangle::masked`]): as a [`Dot`] when that is a single centre.
+    #[inline(always)]
+    fn push_covered(&mut self, planes: Planes, span: PixelSpan, mask: u64) {
         if mask.is_power_of_two() {
             let dot = Dot::in_box(&planes, span, mask);
             self.bands
@@ -351,10 +380,16 @@ fn build_batch(
 ) {
     let mut projected = std::mem::take(&mut batch.vertices);
     project_vertices(&positions, &shader, vp, &mut projected);
-    // What clipping needs of a vertex (the projected ones keep neither).
-    let clip_vertex = |k: usize| ClipVertex {
-        pos: positions.clip(k),
-        color: shader.color(k),
+    // What clipping needs of a vertex (the projected ones keep neither):
+    // vertex k of the sources is projected vertex k.
+    let first_projected = projected.as_ptr() as usize;
+    let clip_vertex = |v: &ProjectedVertex| {
+        let k = (v as *const ProjectedVertex as usize - first_projected)
+            / std::mem::size_of::<ProjectedVertex>();
+        ClipVertex {
+            pos: positions.clip(k),
+            color: shader.color(k),
+        }
     };
     let submitted = groups.iter().map(|g| g.triangles.len()).sum();
     // Growing these would copy them; untouched capacity costs nothing.
@@ -366,7 +401,31 @@ fn build_batch(
     batch.bands.reset(vp.height);
     let mut polygon = Vec::with_capacity(9);
     let limits = screen_limits(vp.width, vp.height);
-    let mut kept = [KeptTriangle::default(); KEEP_CHUNK];
+    // The vertices of the polygon being clipped.
+    let mut clipped = Vec::with_capacity(9);
+    // One selected triangle on its own: set up, or clipped first.
+    let mut push_kept = |batch: &mut ScreenBatch, kept: &KeptTriangle<'_>, cull: CullMode| {
+        if !kept.clip {
+            let [a, b, c] = kept.vertices;
+            batch.push_in_span([&a.screen, &b.screen, &c.screen], cull, kept.lanes.span());
+            return;
+        }
+        clip_triangle(kept.vertices.map(clip_vertex), &mut polygon);
+        if polygon.is_empty() {
+            return;
+        }
+        // Not clipped again: no outcode needed.
+        clipped.clear();
+        clipped.extend(
+            polygon
+                .iter()
+                .map(|v| ProjectedVertex::new(vp.project(v), 0)),
+        );
+        for k in 1..clipped.len() as u32 - 1 {
+            batch.push(&clipped, [0, k, k + 1], cull, limits);
+        }
+    };
+    let mut kept = [KeptTriangle::UNUSED; KEEP_CHUNK];
     for group in groups {
         for chunk in group.triangles.chunks(KEEP_CHUNK) {
             // First the triangles that may draw, in order, selected without
@@ -374,55 +433,67 @@ fn build_batch(
             // data-random), then their set-up.
             let mut count = 0;
             for &tri in chunk {
-                let tri = tri.map(|k| k - group.first_vertex);
-                let [a, b, c] = tri.map(|k| k as usize);
-                let (pa, pb, pc) = (&projected[a], &projected[b], &projected[c]);
+                let vertices = tri.map(|k| &projected[(k - group.first_vertex) as usize]);
+                let [pa, pb, pc] = vertices;
                 let (ca, cb, cc) = (pa.code, pb.code, pc.code);
                 let lanes = SpanLanes::of(pa.centre_box, pb.centre_box, pc.centre_box, limits);
                 let clip = (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) != 0;
                 let visible = ca & cb & cc & OUT_FRUSTUM == 0;
                 // `count` is below the chunk's length: the mask only spares
                 // the bounds check.
-                kept[count & (KEEP_CHUNK - 1)] = KeptTriangle { tri, lanes, clip };
+                kept[count & (KEEP_CHUNK - 1)] = KeptTriangle {
+                    vertices,
+                    lanes,
+                    clip,
+                };
                 count += usize::from(visible & (clip | !lanes.is_empty()));
             }
-            for &KeptTriangle { tri, lanes, clip } in &kept[..count] {
-                if !clip {
-                    batch.push_in_span(&projected, tri, group.cull, lanes.span());
-                    continue;
+            // Four at a time where none needs clipping, in order.
+            let (fours, rest) = kept[..count].as_chunks::<4>();
+            for four in fours {
+                if four.iter().any(|k| k.clip) {
+                    for k in four {
+                        push_kept(batch, k, group.cull);
+                    }
+                } else {
+                    batch.push_four(four, group.cull);
                 }
-                clip_triangle(tri.map(|k| clip_vertex(k as usize)), &mut polygon);
-                if polygon.is_empty() {
-                    continue;
-                }
-                // Clipped polygons append their (already shaded) vertices,
-                // cleared with the others by the batch's next build.
-                let base = projected.len() as u32;
-                // Not clipped again: no outcode needed.
-                let vertices = polygon
-                    .iter()
-                    .map(|v| ProjectedVertex::new(vp.project(v), 0));
-                projected.extend(vertices);
-                for k in 1..polygon.len() as u32 - 1 {
-                    let tri = [base, base + k, base + k + 1];
-                    batch.push(&projected, tri, group.cull, limits);
-                }
+            }
+            for k in rest {
+                push_kept(batch, k, group.cull);
             }
         }
     }
     batch.vertices = projected;
 }
 
+/// Of four triangles, at least this many must fit the window of
+/// [`FourSmallTriangles`] for the four to be set up together (the others are
+/// set up again one at a time).
+const FOUR_AT_A_TIME_MIN: u32 = 2;
+
 /// Triangles selected at a time before their set-up (a power of two).
 const KEEP_CHUNK: usize = 256;
 
 /// A triangle that may draw: not outside the frustum, and either to be
 /// clipped or with a pixel centre in its box.
-#[derive(Debug, Clone, Copy, Default)]
-struct KeptTriangle {
-    tri: [u32; 3],
+#[derive(Debug, Clone, Copy)]
+struct KeptTriangle<'a> {
+    /// Its projected vertices.
+    vertices: [&'a ProjectedVertex; 3],
+    /// Its pixel span.
     lanes: SpanLanes,
+    /// Whether it crosses the near plane or the guard band.
     clip: bool,
+}
+
+impl KeptTriangle<'_> {
+    /// A placeholder for the slots of a chunk not yet selected.
+    const UNUSED: KeptTriangle<'static> = KeptTriangle {
+        vertices: [&ProjectedVertex::UNUSED; 3],
+        lanes: SpanLanes::EMPTY,
+        clip: false,
+    };
 }
 
 /// A clip-space position from a world point and a world-to-clip matrix.

@@ -55,6 +55,15 @@ pub(crate) fn triangle_span(a: Vec4, b: Vec4, c: Vec4, limits: Vec4) -> Option<P
 pub(crate) struct SpanLanes(Vec4);
 
 impl SpanLanes {
+    /// A span with no pixel centre.
+    pub const EMPTY: SpanLanes = SpanLanes(Vec4::new(1.0, 0.0, 1.0, 0.0));
+
+    /// The lanes `(x0, -x1, y0, -y1)`.
+    #[inline(always)]
+    pub fn lanes(self) -> Vec4 {
+        self.0
+    }
+
     /// The span lanes of a triangle whose vertices have centre boxes `a`,
     /// `b` and `c`, clipped to the screen of `limits` ([`screen_limits`]).
     #[inline(always)]

@@ -31,6 +31,7 @@ mod centre_box;
 mod clip;
 mod error;
 mod follow;
+mod four_small_triangles;
 mod frame;
 mod grass;
 mod kernels;

@@ -37,6 +37,18 @@ pub(crate) struct ProjectedVertex {
 }
 
 impl ProjectedVertex {
+    /// A placeholder vertex (at the origin, behind the near plane).
+    pub const UNUSED: ProjectedVertex = ProjectedVertex {
+        centre_box: Vec4::ZERO,
+        screen: ScreenVertex {
+            x: 0,
+            y: 0,
+            inv_w: 0.0,
+            color_w: Vec3::ZERO,
+        },
+        code: OUT_NEAR,
+    };
+
     /// The projected vertex of screen vertex `screen`, whose clip outcode is
     /// `code`.
     #[inline]

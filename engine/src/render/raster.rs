@@ -194,6 +194,40 @@ fn edge_value(dx: i64, dy: i64, a: &ScreenVertex, px: i64, py: i64) -> i64 {
     dx * (py - a.y as i64) - dy * (px - a.x as i64) + bias
 }
 
+/// The barycentric weights of a triangle's vertices 1 and 2 (edge values
+/// over twice the area) at its box's first pixel centre, and their change per
+/// pixel right and down.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct VertexWeights {
+    /// At the first centre.
+    pub start: [f32; 2],
+    /// Per pixel to the right.
+    pub step_x: [f32; 2],
+    /// Per pixel down.
+    pub step_y: [f32; 2],
+}
+
+impl VertexWeights {
+    /// The weights of a triangle with positive [`signed_area`] `area` (exact
+    /// in `f32` for small triangles) from the values of its edges 1 and 2
+    /// (opposite vertices 1 and 2) in lanes 1 and 2 of `start` (at the box's
+    /// first centre, top-left bias included: at most 1 unit, negligible in
+    /// the weights), `step_x` (per pixel right) and `step_y` (per pixel down).
+    #[inline(always)]
+    pub fn from_edges(area: f32, start: Vec4, step_x: Vec4, step_y: Vec4) -> VertexWeights {
+        let inv_area = 1.0 / area;
+        let weights = |e: Vec4| {
+            let w = e * inv_area;
+            [w.y, w.z]
+        };
+        VertexWeights {
+            start: weights(start),
+            step_x: weights(step_x),
+            step_y: weights(step_y),
+        }
+    }
+}
+
 /// The planes of a triangle's attributes (`1/w`, colour / w) over the pixel
 /// centres.
 #[derive(Debug, Clone, Copy)]
@@ -207,31 +241,16 @@ pub(crate) struct Planes {
 }
 
 impl Planes {
-    /// The planes of triangle `v` (positive [`signed_area`] `area`, exact in
-    /// `f32` for small triangles) from the values of its edges 1 and 2 (the
-    /// weights of vertices 1 and 2, times the area) in lanes 1 and 2 of
-    /// `start` (at the box's first centre, top-left bias included: at most 1
-    /// unit, negligible in the weights), `step_x` (per pixel right) and
-    /// `step_y` (per pixel down).
+    /// The planes of triangle `v` from the weights of its vertices 1 and 2.
     #[inline(always)]
-    pub fn from_edge_weights(
-        v: [&ScreenVertex; 3],
-        area: f32,
-        start: Vec4,
-        step_x: Vec4,
-        step_y: Vec4,
-    ) -> Planes {
-        let inv_area = 1.0 / area;
+    pub fn from_weights(v: [&ScreenVertex; 3], weights: VertexWeights) -> Planes {
         let a0 = v[0].attributes();
         let (d1, d2) = (v[1].attributes() - a0, v[2].attributes() - a0);
-        let weights = |e: Vec4| {
-            let w = e * inv_area;
-            d1 * w.y + d2 * w.z
-        };
+        let blend = |[w1, w2]: [f32; 2]| d1 * w1 + d2 * w2;
         Planes {
-            base: a0 + weights(start),
-            step_x: weights(step_x),
-            step_y: weights(step_y),
+            base: a0 + blend(weights.start),
+            step_x: blend(weights.step_x),
+            step_y: blend(weights.step_y),
         }
     }
 
@@ -312,13 +331,13 @@ impl BigTriangle {
             let e = &self.edges;
             Vec4::new(0.0, f(&e[1]) as f32, f(&e[2]) as f32, 0.0)
         };
-        let planes = Planes::from_edge_weights(
-            v,
+        let weights = VertexWeights::from_edges(
             area as f32,
             lanes(|e| e.start),
             lanes(|e| e.step_x),
             lanes(|e| e.step_y),
         );
+        let planes = Planes::from_weights(v, weights);
         edges.push(Edges(self.edges));
         Triangle {
             planes,

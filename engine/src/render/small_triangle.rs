@@ -10,12 +10,14 @@
 use glam::{BVec4A, Vec4, Vec4Swizzles};
 
 use super::batch::CullMode;
-use super::raster::{HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenVertex};
+use super::raster::{
+    HALF, MASK_EXTENT, MASK_SIDE, ONE, PixelSpan, Planes, ScreenVertex, VertexWeights,
+};
 
 /// Boxes at most this many centres wide ...
-const WINDOW_COLUMNS: u32 = 4;
+pub(crate) const WINDOW_COLUMNS: u32 = 4;
 /// ... and this many tall test a fixed window of centres.
-const WINDOW_ROWS: u32 = 2;
+pub(crate) const WINDOW_ROWS: u32 = 2;
 
 /// Other boxes of at most this many pixel centres test them one by one.
 const CENTRE_BY_CENTRE_MAX: u32 = 4;
@@ -233,7 +235,14 @@ impl SmallTriangle {
     /// was set up from, with positive doubled area `area`).
     #[inline(always)]
     pub fn planes(&self, v: [&ScreenVertex; 3], area: f32) -> Planes {
-        Planes::from_edge_weights(v, area, self.start, self.step_x, self.step_y)
+        Planes::from_weights(v, self.weights(area))
+    }
+
+    /// The weights of the vertices 1 and 2 of the triangle set up with
+    /// positive doubled area `area`.
+    #[inline(always)]
+    pub fn weights(&self, area: f32) -> VertexWeights {
+        VertexWeights::from_edges(area, self.start, self.step_x, self.step_y)
     }
 }
 
