@@ -119,8 +119,9 @@ pub(crate) struct TransformedPoints<'a> {
     model: Mat4,
     /// World-to-clip transform.
     view_proj: Mat4,
-    /// The rows of `model` and `view_proj` (their transposes' columns).
-    rows: [Mat4; 2],
+    /// The rows of `model` and `view_proj` ([`SplatRow`]s), ready for the
+    /// lanes.
+    rows: [[SplatRow; 4]; 2],
     /// `model == Mat4::IDENTITY`: then the model transform is skipped, which
     /// changes at most the sign of a zero coordinate (`-0 + 0` is `+0`).
     identity: bool,
@@ -134,7 +135,10 @@ impl<'a> TransformedPoints<'a> {
             points,
             model,
             view_proj,
-            rows: [model.transpose(), view_proj.transpose()],
+            rows: [model, view_proj].map(|m| {
+                let t = m.transpose();
+                [t.x_axis, t.y_axis, t.z_axis, t.w_axis].map(SplatRow::new)
+            }),
             identity: model == Mat4::IDENTITY,
         }
     }
@@ -164,12 +168,8 @@ impl<'a> TransformedPoints<'a> {
             return [x, y, z];
         }
         // transform_point3: ((x_axis x + y_axis y) + z_axis z) + w_axis.
-        let m = &self.rows[0];
-        [
-            row_times(m.x_axis, x, y, z),
-            row_times(m.y_axis, x, y, z),
-            row_times(m.z_axis, x, y, z),
-        ]
+        let [rx, ry, rz, _] = &self.rows[0];
+        [rx.times(x, y, z), ry.times(x, y, z), rz.times(x, y, z)]
     }
 }
 
@@ -184,12 +184,26 @@ pub(crate) fn vec3_lanes(p: &[Vec3]) -> [Vec4; 3] {
     ]
 }
 
-/// Row `row` of a matrix applied to four points `(x, y, z, 1)` given as
-/// lanes: `((row.x x + row.y y) + row.z z) + row.w`, the sums of glam's
-/// matrix products in their order.
-#[inline(always)]
-pub(crate) fn row_times(row: Vec4, x: Vec4, y: Vec4, z: Vec4) -> Vec4 {
-    x * row.x + y * row.y + z * row.z + Vec4::splat(row.w)
+/// A matrix row with each of its four coefficients in all four lanes, so
+/// that applying it to four points (a loop's work per step) needs no
+/// broadcasts.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SplatRow([Vec4; 4]);
+
+impl SplatRow {
+    /// The row `row` splatted.
+    pub fn new(row: Vec4) -> SplatRow {
+        SplatRow(row.to_array().map(Vec4::splat))
+    }
+
+    /// The row applied to four points `(x, y, z, 1)` given as lanes:
+    /// `((row.x x + row.y y) + row.z z) + row.w`, the sums of glam's matrix
+    /// products in their order.
+    #[inline(always)]
+    pub fn times(&self, x: Vec4, y: Vec4, z: Vec4) -> Vec4 {
+        let [a, b, c, d] = &self.0;
+        x * *a + y * *b + z * *c + *d
+    }
 }
 
 impl ClipSource for TransformedPoints<'_> {
@@ -206,13 +220,7 @@ impl ClipSource for TransformedPoints<'_> {
     fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]) {
         let [wx, wy, wz] = self.world_lanes(group);
         // Mat4 * Vec4 with w = 1: ((x_axis x + y_axis y) + z_axis z) + w_axis * 1.
-        let v = &self.rows[1];
-        let clip = [
-            row_times(v.x_axis, wx, wy, wz),
-            row_times(v.y_axis, wx, wy, wz),
-            row_times(v.z_axis, wx, wy, wz),
-            row_times(v.w_axis, wx, wy, wz),
-        ];
+        let clip = self.rows[1].each_ref().map(|row| row.times(wx, wy, wz));
         (clip, [wx, wy, wz])
     }
 }
