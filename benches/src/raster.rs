@@ -15,8 +15,9 @@
 //!   (patch culling and level of detail; lit when the grid changes, fog per
 //!   frame); `euc` is the pre-lit full mesh of the row above.
 //!
-//! `euc` (without its `par` feature) draws on one thread, so `ours_ns` is ours on
-//! a one-thread pool: the like-for-like figure. `ours_2_threads_ns` is ours on
+//! `euc` (0.5 has no threading) draws on one thread, so `ours_ns` is ours on
+//! a one-thread pool: the like-for-like figure. Each draws into buffers it keeps
+//! from frame to frame (ours through [`Renderer::render_into`]). `ours_2_threads_ns` is ours on
 //! two threads, for reference. The workloads are timed interleaved
 //! ([`crate::time_interleaved_ns`]), so that all see the machine in the same
 //! state.
@@ -28,6 +29,7 @@ use engine::render::{
     UniformColor, encode_display,
 };
 use euc::{Pipeline, buffer::Buffer2d, rasterizer};
+use image::RgbaImage;
 
 use crate::{Row, time_interleaved_ns};
 
@@ -165,6 +167,22 @@ impl<'a> EucFrame<'a> {
     }
 }
 
+/// Ours drawing `scene` into its own image, frame after frame (as `euc`
+/// draws into its own buffers).
+fn ours<'a>(
+    renderer: &'a Renderer,
+    scene: &'a FrameScene<'a>,
+    cam: &'a Camera,
+) -> impl FnMut() + 'a {
+    let mut image = RgbaImage::new(WIDTH, HEIGHT);
+    move || {
+        renderer
+            .render_into(scene, cam, &mut image)
+            .expect("an image of the renderer's size");
+        std::hint::black_box(&image);
+    }
+}
+
 /// Time per timed workload (ours on one thread, ours on two, `euc`): their
 /// frames are interleaved, so all see the machine in the same state.
 const BUDGET_PER_WORKLOAD_MS: u64 = 3000;
@@ -181,9 +199,6 @@ pub fn run() -> Vec<Row> {
             .expect("renderer")
     });
     let [one_thread, two_threads] = &threads;
-    let draw = |renderer: &Renderer, scene: &FrameScene<'_>| {
-        std::hint::black_box(renderer.render(scene, &cam));
-    };
 
     // Lit each frame by both.
     let mut euc_lit = EucFrame::new(
@@ -206,8 +221,8 @@ pub fn run() -> Vec<Row> {
     let [ours_lit, ours_lit_2, euc_lit_ns] = time_interleaved_ns(
         3 * BUDGET_PER_WORKLOAD_MS,
         [
-            &mut || draw(one_thread, &lit_scene),
-            &mut || draw(two_threads, &lit_scene),
+            &mut ours(one_thread, &lit_scene, &cam),
+            &mut ours(two_threads, &lit_scene, &cam),
             &mut || euc_lit.draw(),
         ],
     );
@@ -246,11 +261,11 @@ pub fn run() -> Vec<Row> {
     ] = time_interleaved_ns(
         5 * BUDGET_PER_WORKLOAD_MS,
         [
-            &mut || draw(one_thread, &prelit),
-            &mut || draw(two_threads, &prelit),
+            &mut ours(one_thread, &prelit, &cam),
+            &mut ours(two_threads, &prelit, &cam),
             &mut || euc_baked.draw(),
-            &mut || draw(one_thread, &terrain_scene),
-            &mut || draw(two_threads, &terrain_scene),
+            &mut ours(one_thread, &terrain_scene, &cam),
+            &mut ours(two_threads, &terrain_scene, &cam),
         ],
     );
     let (_, stats) = one_thread.render_with_stats(&terrain_scene, &cam);

@@ -153,13 +153,49 @@ impl Renderer {
         scene: &FrameScene<'_>,
         camera: &Camera,
     ) -> (RgbaImage, FrameStats) {
+        let mut image = RgbaImage::new(self.width, self.height);
+        let stats = self.draw(scene, camera, &mut image);
+        (image, stats)
+    }
+
+    /// Renders one frame into `image`, which must have the renderer's size,
+    /// overwriting every pixel: a loop drawing frame after frame into one
+    /// image allocates no image per frame. Says how much geometry reached
+    /// the rasterizer.
+    pub fn render_into(
+        &self,
+        scene: &FrameScene<'_>,
+        camera: &Camera,
+        image: &mut RgbaImage,
+    ) -> Result<FrameStats, RenderError> {
+        if image.dimensions() != (self.width, self.height) {
+            let (w, h) = image.dimensions();
+            return Err(RenderError::InvalidParameter {
+                name: "image",
+                reason: format!(
+                    "a {w} x {h} image for a {} x {} renderer",
+                    self.width, self.height
+                ),
+            });
+        }
+        Ok(self.draw(scene, camera, image))
+    }
+
+    /// Draws a frame into `image` (of the renderer's size), on the
+    /// renderer's pool if it has one.
+    fn draw(&self, scene: &FrameScene<'_>, camera: &Camera, image: &mut RgbaImage) -> FrameStats {
         match &self.pool {
-            Some(pool) => pool.install(|| self.render_here(scene, camera)),
-            None => self.render_here(scene, camera),
+            Some(pool) => pool.install(|| self.render_here(scene, camera, image)),
+            None => self.render_here(scene, camera, image),
         }
     }
 
-    fn render_here(&self, scene: &FrameScene<'_>, camera: &Camera) -> (RgbaImage, FrameStats) {
+    fn render_here(
+        &self,
+        scene: &FrameScene<'_>,
+        camera: &Camera,
+        image: &mut RgbaImage,
+    ) -> FrameStats {
         let vp = Viewport {
             width: self.width as i32,
             height: self.height as i32,
@@ -182,11 +218,12 @@ impl Renderer {
             triangles: batches.iter().map(ScreenBatch::len).sum::<usize>() + grass.len(),
         };
         let (w, h) = (self.width as usize, self.height as usize);
-        let mut color = vec![0u8; w * h * 4];
+        let color: &mut [u8] = image;
         let mut cached = self.depth.try_lock().ok();
         let mut own = Vec::new();
         let depth = cached.as_deref_mut().unwrap_or(&mut own);
-        // Every band clears its own rows below, while they are in cache.
+        // Every band clears its own rows below (colour and depth), while they
+        // are in cache.
         depth.resize(w * h, 0.0);
         let band_rows = BAND_ROWS as usize;
         color
@@ -209,9 +246,7 @@ impl Renderer {
                 }
             });
         self.batches.give_back(batches);
-        let image = RgbaImage::from_raw(self.width, self.height, color)
-            .expect("the colour buffer has width * height * 4 bytes");
-        (image, stats)
+        stats
     }
 
     /// All screen batches in drawing order: terrain, meshes (grass is drawn after them).
@@ -321,12 +356,15 @@ fn fill_row(row: &mut [u8], px: [u8; 4]) {
 mod tests {
     use glam::{Mat4, Vec3};
 
+    use image::{Rgba, RgbaImage};
+
     use super::{Renderer, fill_row};
+    use crate::render::RenderError;
     use crate::render::test_ground::ground;
     use crate::render::{Camera, CullMode, FrameScene, Lighting, MeshInstance};
 
     #[test]
-    fn a_renderer_reusing_its_batches_draws_what_a_new_one_draws() {
+    fn a_renderer_reusing_its_batches_and_images_draws_what_a_new_one_draws() {
         let (terrain, mesh) = ground(97);
         let lighting = Lighting::default();
         let mut instance =
@@ -363,14 +401,25 @@ mod tests {
                     .unwrap()
             };
             let reused = new();
+            // One image drawn into frame after frame, garbage at first.
+            let mut into = RgbaImage::from_pixel(160, 90, Rgba([7, 99, 201, 13]));
             for _ in 0..2 {
                 for (scene, camera) in &frames {
                     let (image, stats) = reused.render_with_stats(scene, camera);
                     assert!(stats.triangles > 1000, "{stats:?}");
-                    assert!(image == new().render(scene, camera), "{threads} threads");
+                    let want = new().render(scene, camera);
+                    assert!(image == want, "{threads} threads");
+                    assert_eq!(reused.render_into(scene, camera, &mut into), Ok(stats));
+                    assert!(into == want, "{threads} threads, into one image");
                 }
             }
             assert!(reused.batches.len() > 1);
+            let (scene, camera) = &frames[0];
+            let mut wrong = RgbaImage::new(90, 160);
+            assert!(matches!(
+                reused.render_into(scene, camera, &mut wrong),
+                Err(RenderError::InvalidParameter { name: "image", .. })
+            ));
         }
     }
 
