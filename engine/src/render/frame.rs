@@ -162,6 +162,25 @@ impl Renderer {
     /// overwriting every pixel: a loop drawing frame after frame into one
     /// image allocates no image per frame. Says how much geometry reached
     /// the rasterizer.
+    ///
+    /// ```
+    /// use engine::glam::Vec3;
+    /// use engine::render::{Camera, FrameScene, RenderError, Renderer};
+    /// use image::RgbaImage;
+    ///
+    /// let renderer = Renderer::new(64, 48).unwrap();
+    /// let camera = Camera::perspective(1.0, 64, 48, 0.05, 100.0)
+    ///     .unwrap()
+    ///     .look_at(Vec3::new(0.0, 1.0, -3.0), Vec3::ZERO, Vec3::Y);
+    /// let mut image = RgbaImage::new(64, 48);
+    /// for _ in 0..3 {
+    ///     renderer.render_into(&FrameScene::new(), &camera, &mut image).unwrap();
+    /// }
+    /// assert_eq!(image, renderer.render(&FrameScene::new(), &camera));
+    /// let mut wrong = RgbaImage::new(48, 64);
+    /// let refused = renderer.render_into(&FrameScene::new(), &camera, &mut wrong);
+    /// assert!(matches!(refused, Err(RenderError::InvalidParameter { name: "image", .. })));
+    /// ```
     pub fn render_into(
         &self,
         scene: &FrameScene<'_>,
