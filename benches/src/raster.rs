@@ -16,11 +16,11 @@
 //!   frame); `euc` is the pre-lit full mesh of the row above.
 //!
 //! `euc` (0.5 has no threading) draws on one thread, so `ours_ns` is ours on
-//! a one-thread pool: the like-for-like figure. Each draws into buffers it keeps
-//! from frame to frame (ours through [`Renderer::render_into`]). `ours_2_threads_ns` is ours on
-//! two threads, for reference. The workloads are timed interleaved
-//! ([`crate::time_interleaved_ns`]), so that all see the machine in the same
-//! state.
+//! a one-thread pool: the like-for-like figure. `ours_2_threads_ns` is ours on
+//! two threads, for reference. Each draws into buffers it keeps from frame to
+//! frame (ours through [`Renderer::render_into`]). The workloads are timed
+//! interleaved ([`crate::time_interleaved_ns`]), so that all see the machine
+//! in the same state.
 
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};

@@ -50,14 +50,19 @@ pub fn time_ns(budget_ms: u64, mut f: impl FnMut()) -> f64 {
     f();
     let one = start.elapsed().as_nanos().max(1) as u64;
     let runs = ((budget_ms * 1_000_000) / one).clamp(5, 10_000);
-    let mut samples: Vec<f64> = (0..runs)
+    let samples = (0..runs)
         .map(|_| {
             let t = Instant::now();
             f();
             t.elapsed().as_nanos() as f64
         })
         .collect();
-    samples.sort_by(|a, b| a.total_cmp(b));
+    median(samples)
+}
+
+/// The median of `samples` (not empty).
+fn median(mut samples: Vec<f64>) -> f64 {
+    samples.sort_by(f64::total_cmp);
     samples[samples.len() / 2]
 }
 
@@ -88,10 +93,7 @@ pub fn time_interleaved_ns<const N: usize>(budget_ms: u64, fs: [&mut dyn FnMut()
         }
         round += 1;
     }
-    samples.map(|mut s| {
-        s.sort_by(f64::total_cmp);
-        s[s.len() / 2]
-    })
+    samples.map(median)
 }
 
 /// Timed runs per block of [`time_interleaved_ns`].

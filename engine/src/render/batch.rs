@@ -257,8 +257,7 @@ impl ScreenBatch {
     /// to hold a pixel centre.
     #[inline(always)]
     fn push_in_span(&mut self, v: [&ScreenVertex; 3], cull: CullMode, span: PixelSpan) {
-        let [sa, sb, sc] = v;
-        let (vertices, area, small) = match SmallTriangle::set_up([sa, sb, sc], span, cull) {
+        let (vertices, area, small) = match SmallTriangle::set_up(v, span, cull) {
             SmallSetUp::Kept {
                 vertices,
                 area,
@@ -266,7 +265,7 @@ impl ScreenBatch {
             } => (vertices, area, triangle),
             SmallSetUp::Dropped => return,
             SmallSetUp::TooBig => {
-                let Some((v, area)) = clockwise([sa, sb, sc], cull) else {
+                let Some((v, area)) = clockwise(v, cull) else {
                     return;
                 };
                 let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
@@ -284,21 +283,20 @@ impl ScreenBatch {
     /// a pixel centre, together where they are small enough
     /// ([`FourSmallTriangles`]), and keeps them in order.
     #[inline(always)]
-    fn push_four<'v>(&mut self, kept: &[KeptTriangle<'v>; 4], cull: CullMode) {
-        let screen = |k: &KeptTriangle<'v>| k.vertices.map(|v| &v.screen);
+    fn push_four(&mut self, kept: &[KeptTriangle<'_>; 4], cull: CullMode) {
         let spans = FourSpans::of(kept.map(|k| k.lanes));
         if spans.in_window().count_ones() < FOUR_AT_A_TIME_MIN {
             for k in kept {
-                self.push_in_span(screen(k), cull, k.lanes.span());
+                self.push_in_span(k.screen(), cull, k.lanes.span());
             }
             return;
         }
-        let four = FourSmallTriangles::set_up(kept.map(|k| screen(&k)), &spans, cull);
+        let four = FourSmallTriangles::set_up(kept.map(|k| k.screen()), &spans, cull);
         // Each triangle's vertices read again from `kept` (keeping the twelve
         // in registers for the loop costs more).
         for (t, k) in kept.iter().enumerate() {
-            match four.lane(t, screen(k)) {
-                FourSetUp::OneAtATime => self.push_in_span(screen(k), cull, k.lanes.span()),
+            match four.lane(t, k.screen()) {
+                FourSetUp::OneAtATime => self.push_in_span(k.screen(), cull, k.lanes.span()),
                 FourSetUp::Empty => {}
                 FourSetUp::Covered {
                     vertices,
@@ -406,8 +404,7 @@ fn build_batch(
     // One selected triangle on its own: set up, or clipped first.
     let mut push_kept = |batch: &mut ScreenBatch, kept: &KeptTriangle<'_>, cull: CullMode| {
         if !kept.clip {
-            let [a, b, c] = kept.vertices;
-            batch.push_in_span([&a.screen, &b.screen, &c.screen], cull, kept.lanes.span());
+            batch.push_in_span(kept.screen(), cull, kept.lanes.span());
             return;
         }
         clip_triangle(kept.vertices.map(clip_vertex), &mut polygon);
@@ -487,13 +484,19 @@ struct KeptTriangle<'a> {
     clip: bool,
 }
 
-impl KeptTriangle<'_> {
+impl<'a> KeptTriangle<'a> {
     /// A placeholder for the slots of a chunk not yet selected.
     const UNUSED: KeptTriangle<'static> = KeptTriangle {
         vertices: [&ProjectedVertex::UNUSED; 3],
         lanes: SpanLanes::EMPTY,
         clip: false,
     };
+
+    /// The screen vertices of its projected vertices.
+    #[inline(always)]
+    fn screen(&self) -> [&'a ScreenVertex; 3] {
+        self.vertices.map(|v| &v.screen)
+    }
 }
 
 /// A clip-space position from a world point and a world-to-clip matrix.

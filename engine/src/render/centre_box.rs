@@ -51,7 +51,7 @@ pub(crate) fn triangle_span(a: Vec4, b: Vec4, c: Vec4, limits: Vec4) -> Option<P
 /// A triangle's pixel span in centre-box lanes, `(x0, -x1, y0, -y1)`, clipped
 /// to the screen: [`triangle_span`] in two steps, so that the emptiness test
 /// can feed a branch-free selection.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct SpanLanes(Vec4);
 
 impl SpanLanes {

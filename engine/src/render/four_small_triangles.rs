@@ -15,12 +15,13 @@
 //! [`SmallTriangle`]: super::small_triangle::SmallTriangle
 //! [`SmallTriangle::set_up`]: super::small_triangle::SmallTriangle::set_up
 
-use glam::{BVec4A, IVec4, Mat4, Vec4};
+use glam::{BVec4A, IVec4, Vec4};
 
 use super::batch::CullMode;
 use super::centre_box::{SpanLanes, whole_numbers};
+use super::project::transpose_lanes;
 use super::raster::{HALF, MASK_EXTENT, ONE, ScreenVertex, VertexWeights};
-use super::small_triangle::{WINDOW_COLUMNS, WINDOW_ROWS};
+use super::small_triangle::{WINDOW_COLUMNS, WINDOW_ROWS, edge_lanes};
 
 /// Four triangles set up together (lane `t` is triangle `t`).
 #[derive(Debug, Clone, Copy)]
@@ -48,6 +49,8 @@ pub(crate) struct FourSpans {
     y0: Vec4,
     columns: Vec4,
     rows: Vec4,
+    /// Bit `t` set: triangle `t`'s box fits the window.
+    in_window: u32,
 }
 
 impl FourSpans {
@@ -56,14 +59,18 @@ impl FourSpans {
     #[inline(always)]
     pub fn of(spans: [SpanLanes; 4]) -> FourSpans {
         // Span lanes (x0, -x1, y0, -y1) per triangle, as lanes per coordinate.
-        let [a, b, c, d] = spans.map(SpanLanes::lanes);
-        let m = Mat4::from_cols(a, b, c, d).transpose();
-        let [x0, minus_x1, y0, minus_y1] = [m.x_axis, m.y_axis, m.z_axis, m.w_axis];
+        let [x0, minus_x1, y0, minus_y1] = transpose_lanes(spans.map(SpanLanes::lanes));
+        let columns = Vec4::ONE - (minus_x1 + x0);
+        let rows = Vec4::ONE - (minus_y1 + y0);
+        // `fits_window`, per lane.
+        let fits = columns.cmple(Vec4::splat(WINDOW_COLUMNS as f32))
+            & rows.cmple(Vec4::splat(WINDOW_ROWS as f32));
         FourSpans {
             x0,
             y0,
-            columns: Vec4::ONE - (minus_x1 + x0),
-            rows: Vec4::ONE - (minus_y1 + y0),
+            columns,
+            rows,
+            in_window: fits.bitmask(),
         }
     }
 
@@ -71,9 +78,7 @@ impl FourSpans {
     /// [`FourSmallTriangles`].
     #[inline(always)]
     pub fn in_window(&self) -> u32 {
-        let fits = self.columns.cmple(Vec4::splat(WINDOW_COLUMNS as f32))
-            & self.rows.cmple(Vec4::splat(WINDOW_ROWS as f32));
-        fits.bitmask()
+        self.in_window
     }
 }
 
@@ -116,6 +121,7 @@ impl FourSmallTriangles {
             y0,
             columns,
             rows,
+            ..
         } = *spans;
         // The first centre, and the vertices relative to it (exact: see
         // `SmallTriangle::set_up`); edge k runs from vertex k + 1 to k + 2.
@@ -135,18 +141,14 @@ impl FourSmallTriangles {
         let sign = Vec4::select(turn, Vec4::NEG_ONE, Vec4::ONE);
         let (dx, dy) = (dx.map(|d| d * sign), dy.map(|d| d * sign));
         let area = area * sign;
-        // `SmallTriangle::from_edges` per edge: value at the first centre
-        // with the top-left bias, and steps. (Turning also trades edges 1
-        // and 2, which neither the coverage nor these values depend on: the
-        // weights are traded with the vertices in `lane`.)
-        let start: [Vec4; 3] = std::array::from_fn(|k| {
-            let top_left =
-                dy[k].cmplt(Vec4::ZERO) | (dy[k].cmpeq(Vec4::ZERO) & dx[k].cmpgt(Vec4::ZERO));
-            let bias = Vec4::select(top_left, Vec4::ZERO, Vec4::NEG_ONE);
-            dy[k] * x[k] - dx[k] * y[k] + bias
-        });
-        let step_x = dy.map(|d| Vec4::ZERO - d * one);
-        let step_y = dx.map(|d| d * one);
+        // Each edge's value at the first centre with the top-left bias, and
+        // its steps: `edge_lanes` with one edge of four triangles in the
+        // lanes. (Turning also trades edges 1 and 2, which neither the
+        // coverage nor these values depend on: the weights are traded with
+        // the vertices in `lane`.)
+        let edges: [[Vec4; 3]; 3] =
+            std::array::from_fn(|k| edge_lanes(dy[k] * x[k] - dx[k] * y[k], dx[k], dy[k]));
+        let [start, step_x, step_y] = [0, 1, 2].map(|part| edges.map(|edge| edge[part]));
         // Window coverage: centre (column c, row r) is covered when all
         // three edge values there are >= 0 (exact inside the box) and it
         // lies in the box.
@@ -169,7 +171,7 @@ impl FourSmallTriangles {
         ]
         .map(|e| (e * inv_area).to_array());
         FourSmallTriangles {
-            one_at_a_time: !(spans.in_window() & exact.bitmask()) & 0b1111,
+            one_at_a_time: !(spans.in_window & exact.bitmask()) & 0b1111,
             turned: turn.bitmask(),
             coverage: whole_numbers(coverage),
             weights,
@@ -218,7 +220,7 @@ mod tests {
 
     use super::*;
     use crate::render::centre_box::{centre_box, screen_limits};
-    use crate::render::small_triangle::{SmallSetUp, SmallTriangle};
+    use crate::render::small_triangle::{SmallSetUp, SmallTriangle, fits_window};
     use crate::rng::SplitMix64;
 
     /// Random small triangles, four at a time, against the one-at-a-time
@@ -258,8 +260,8 @@ mod tests {
             let four = FourSmallTriangles::set_up(vertices, &FourSpans::of(lanes), cull);
             for t in 0..4 {
                 let span = lanes[t].span();
-                let fits = span.x1 - span.x0 < WINDOW_COLUMNS as i32
-                    && span.y1 - span.y0 < WINDOW_ROWS as i32;
+                let (columns, rows) = span.size();
+                let fits = fits_window(columns, rows);
                 let one = SmallTriangle::set_up(vertices[t], span, cull);
                 match (four.lane(t, vertices[t]), one) {
                     (FourSetUp::OneAtATime, one) => {

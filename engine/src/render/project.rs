@@ -79,12 +79,20 @@ pub(crate) trait ClipSource {
     fn lanes(&self, group: usize) -> ([Vec4; LANES], [Vec4; 3]);
 }
 
+/// Four vectors turned into four lanes: lane `k` of output `j` is lane `j`
+/// of input `k` (a 4 x 4 transpose, between one item per vector and one
+/// item per lane).
+#[inline(always)]
+pub(crate) fn transpose_lanes([a, b, c, d]: [Vec4; 4]) -> [Vec4; 4] {
+    let rows = Mat4::from_cols(a, b, c, d).transpose();
+    [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis]
+}
+
 /// Four clip positions as lanes (all x, all y, all z, all w), and as the
 /// world lanes of a source without world space (x, y, z).
 #[inline(always)]
 pub(crate) fn position_lanes(p: [Vec4; LANES]) -> ([Vec4; LANES], [Vec4; 3]) {
-    let rows = Mat4::from_cols(p[0], p[1], p[2], p[3]).transpose();
-    let [x, y, z, w] = [rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis];
+    let [x, y, z, w] = transpose_lanes(p);
     ([x, y, z, w], [x, y, z])
 }
 
@@ -337,8 +345,7 @@ fn centre_boxes(x: Vec4, y: Vec4) -> [Vec4; LANES] {
     let first = |v: Vec4| (v - 0.5) * INV_ONE + MAGIC;
     let last = |v: Vec4| (v - 255.5) * INV_ONE + MAGIC;
     let (fx, lx, fy, ly) = (first(x), last(x), first(y), last(y));
-    let rows = Mat4::from_cols(fx - MAGIC, MAGIC - lx, fy - MAGIC, MAGIC - ly).transpose();
-    rows.to_cols_array_2d().map(Vec4::from_array)
+    transpose_lanes([fx - MAGIC, MAGIC - lx, fy - MAGIC, MAGIC - ly])
 }
 
 /// [`outcode`] of four clip positions given by their coordinates in lanes: the

@@ -111,6 +111,15 @@ impl ScreenBox {
 }
 
 impl PixelSpan {
+    /// Its numbers of columns and rows (of a span holding a pixel centre).
+    #[inline(always)]
+    pub fn size(&self) -> (u32, u32) {
+        (
+            (self.x1 - self.x0 + 1) as u32,
+            (self.y1 - self.y0 + 1) as u32,
+        )
+    }
+
     /// True when no pixel centre is covered.
     #[cfg(test)]
     pub fn is_empty(&self) -> bool {

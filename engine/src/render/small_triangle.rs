@@ -22,6 +22,35 @@ pub(crate) const WINDOW_ROWS: u32 = 2;
 /// Other boxes of at most this many pixel centres test them one by one.
 const CENTRE_BY_CENTRE_MAX: u32 = 4;
 
+/// Edge functions in `f32` lanes, every lane on its own: the value at the
+/// box's first centre with the top-left bias (covered when `>= 0`), then the
+/// change per pixel right and per pixel down, of edges (clockwise on screen)
+/// that change by `dx`, `dy` along themselves and have the values
+/// `edge_values` at that centre. The lanes hold the three edges of one
+/// triangle ([`SmallTriangle`]) or one edge of four triangles
+/// ([`super::four_small_triangles`]).
+#[inline(always)]
+pub(crate) fn edge_lanes(edge_values: Vec4, dx: Vec4, dy: Vec4) -> [Vec4; 3] {
+    // Pixels exactly on an edge belong to it only when it is a top edge
+    // (horizontal, going right) or a left edge (going up).
+    let top_left: BVec4A = dy.cmplt(Vec4::ZERO) | (dy.cmpeq(Vec4::ZERO) & dx.cmpgt(Vec4::ZERO));
+    let bias = Vec4::select(top_left, Vec4::ZERO, Vec4::NEG_ONE);
+    let one = ONE as f32;
+    [
+        edge_values + bias,
+        // Subtracted from zero, not negated, so a zero step is +0 as in integers.
+        Vec4::ZERO - dy * one,
+        dx * one,
+    ]
+}
+
+/// Whether a box of `columns` x `rows` pixel centres fits the fixed window
+/// ([`WINDOW_COLUMNS`] x [`WINDOW_ROWS`]) whose coverage is tested whole.
+#[inline(always)]
+pub(crate) fn fits_window(columns: u32, rows: u32) -> bool {
+    columns <= WINDOW_COLUMNS && rows <= WINDOW_ROWS
+}
+
 /// The three edge functions of a small triangle (clockwise on screen), edge `k`
 /// (opposite vertex `k`) in lane `k`; lane 3 is unused.
 #[derive(Debug, Clone, Copy)]
@@ -116,16 +145,11 @@ impl SmallTriangle {
     /// the values `edge_values` at the box's first centre.
     #[inline(always)]
     fn from_edges(edge_values: Vec4, dx: Vec4, dy: Vec4) -> SmallTriangle {
-        // Pixels exactly on an edge belong to it only when it is a top edge
-        // (horizontal, going right) or a left edge (going up).
-        let top_left: BVec4A = dy.cmplt(Vec4::ZERO) | (dy.cmpeq(Vec4::ZERO) & dx.cmpgt(Vec4::ZERO));
-        let bias = Vec4::select(top_left, Vec4::ZERO, Vec4::NEG_ONE);
-        let one = ONE as f32;
+        let [start, step_x, step_y] = edge_lanes(edge_values, dx, dy);
         SmallTriangle {
-            start: edge_values + bias,
-            // Subtracted from zero, not negated, so a zero step is +0 as in integers.
-            step_x: Vec4::ZERO - dy * one,
-            step_y: dx * one,
+            start,
+            step_x,
+            step_y,
         }
     }
 
@@ -144,11 +168,8 @@ impl SmallTriangle {
     /// `span` (the box given to [`SmallTriangle::set_up`]) that the triangle covers.
     #[inline(always)]
     pub fn coverage(&self, span: PixelSpan) -> u64 {
-        let (columns, rows) = (
-            (span.x1 - span.x0 + 1) as u32,
-            (span.y1 - span.y0 + 1) as u32,
-        );
-        if columns <= WINDOW_COLUMNS && rows <= WINDOW_ROWS {
+        let (columns, rows) = span.size();
+        if fits_window(columns, rows) {
             self.coverage_in_window(columns, rows)
         } else if columns * rows <= CENTRE_BY_CENTRE_MAX {
             self.coverage_by_centre(columns, rows)
@@ -303,13 +324,10 @@ mod tests {
                     SmallSetUp::TooBig => panic!("{span:?} fits the small set-up"),
                 }
             }
-            let (columns, rows) = (
-                (span.x1 - span.x0 + 1) as u32,
-                (span.y1 - span.y0 + 1) as u32,
-            );
+            let (columns, rows) = span.size();
             let by_centre = small.coverage_by_centre(columns, rows);
             assert_eq!(by_centre, small.coverage_by_row(columns, rows));
-            if columns <= WINDOW_COLUMNS && rows <= WINDOW_ROWS {
+            if fits_window(columns, rows) {
                 assert_eq!(by_centre, small.coverage_in_window(columns, rows));
                 tested[2] += 1;
             }
