@@ -3,19 +3,13 @@
 //! least one pixel centre), binned by bands, which the bands then fill.
 
 use glam::{Vec3, Vec4};
-use multiversion::multiversion;
 
-use super::centre_box::{SpanLanes, screen_limits, triangle_span};
-use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle};
-use super::four_small_triangles::{FourSetUp, FourSmallTriangles, FourSpans};
-use super::kernels::{Kernels, run_baseline};
-use super::project::{
-    ClipSource, LANES, ProjectedVertex, VertexShader, position_lanes, project_vertices,
-};
-use super::raster::{
-    Band, BigTriangle, Dot, Edges, ONE, PixelSpan, Planes, ScreenVertex, Triangle, signed_area,
-};
-use super::small_triangle::{SmallSetUp, SmallTriangle};
+use super::at_once::DrawnAtOnce;
+use super::clip::ClipVertex;
+use super::kernels::Kernels;
+use super::project::{ClipSource, LANES, ProjectedVertex, VertexShader, position_lanes};
+use super::raster::{Band, Dot, Edges, ONE, PixelSpan, ScreenVertex, Triangle};
+use super::set_up::{TriangleSink, set_up};
 
 /// Which triangles to drop by their facing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -209,10 +203,47 @@ impl ScreenBatch {
         vp: Viewport,
         kernels: Kernels,
     ) {
-        match kernels {
-            Kernels::Dispatched => build_dispatched(self, positions, shader, groups, vp),
-            Kernels::Baseline => run_baseline(|| build_batch(self, positions, shader, groups, vp)),
-        }
+        let submitted = groups.iter().map(|g| g.triangles.len()).sum();
+        // Growing these would copy them; untouched capacity costs nothing.
+        self.tris.clear();
+        self.tris.reserve(submitted);
+        self.dots.clear();
+        self.dots.reserve(submitted);
+        self.edges.clear();
+        self.bands.reset(vp.height);
+        let mut projected = std::mem::take(&mut self.vertices);
+        set_up(self, &mut projected, positions, shader, groups, vp, kernels);
+        self.vertices = projected;
+    }
+
+    /// Sets up the triangles as [`ScreenBatch::rebuild_shaded`] does, but
+    /// draws each into `frame` at once instead of keeping it (see
+    /// [`DrawnAtOnce`]); this batch lends its buffers and is left empty.
+    /// Returns how many triangles were drawn (as [`ScreenBatch::len`] counts
+    /// them).
+    pub fn draw_shaded<P: ClipSource, S: VertexShader>(
+        &mut self,
+        frame: &mut Band<'_>,
+        positions: P,
+        shader: S,
+        groups: &[TriangleGroup<'_>],
+        vp: Viewport,
+        kernels: Kernels,
+    ) -> usize {
+        self.tris.clear();
+        self.dots.clear();
+        self.bands.reset(vp.height);
+        let mut sink = DrawnAtOnce::new(frame, &mut self.edges);
+        set_up(
+            &mut sink,
+            &mut self.vertices,
+            positions,
+            shader,
+            groups,
+            vp,
+            kernels,
+        );
+        sink.drawn()
     }
 
     /// How many kept triangles became dots, and how many are full triangles.
@@ -238,264 +269,76 @@ impl ScreenBatch {
             }
         }
     }
+}
 
-    /// Culls, orients, sets up and keeps one triangle if it covers a pixel
-    /// centre.
+impl TriangleSink for ScreenBatch {
     #[inline(always)]
-    fn push(&mut self, projected: &[ProjectedVertex], tri: [u32; 3], cull: CullMode, limits: Vec4) {
-        let [a, b, c] = tri.map(|k| k as usize);
-        // Most sub-pixel triangles have no pixel centre in their box: drop them
-        // first (the box does not depend on the winding).
-        let (pa, pb, pc) = (&projected[a], &projected[b], &projected[c]);
-        let Some(span) = triangle_span(pa.centre_box, pb.centre_box, pc.centre_box, limits) else {
-            return;
-        };
-        self.push_in_span([&pa.screen, &pb.screen, &pc.screen], cull, span);
+    fn edges(&mut self) -> &mut Vec<Edges> {
+        &mut self.edges
     }
 
-    /// [`ScreenBatch::push`] for a triangle whose pixel span `span` is known
-    /// to hold a pixel centre.
     #[inline(always)]
-    fn push_in_span(&mut self, v: [&ScreenVertex; 3], cull: CullMode, span: PixelSpan) {
-        let (vertices, area, small) = match SmallTriangle::set_up(v, span, cull) {
-            SmallSetUp::Kept {
-                vertices,
-                area,
-                triangle,
-            } => (vertices, area, triangle),
-            SmallSetUp::Dropped => return,
-            SmallSetUp::TooBig => {
-                let Some((v, area)) = clockwise(v, cull) else {
-                    return;
-                };
-                let tri = BigTriangle::of(v, span).triangle(v, area, &mut self.edges);
-                self.push_triangle(tri, span);
-                return;
-            }
-        };
-        let mask = small.coverage(span);
-        if mask != 0 {
-            self.push_covered(small.planes(vertices, area), span, mask);
-        }
-    }
-
-    /// Sets up four triangles that need no clipping, whose pixel spans hold
-    /// a pixel centre, together where they are small enough
-    /// ([`FourSmallTriangles`]), and keeps them in order.
-    #[inline(always)]
-    fn push_four(&mut self, kept: &[KeptTriangle<'_>; 4], cull: CullMode) {
-        let spans = FourSpans::of(kept.map(|k| k.lanes));
-        if spans.in_window().count_ones() < FOUR_AT_A_TIME_MIN {
-            for k in kept {
-                self.push_in_span(k.screen(), cull, k.lanes.span());
-            }
-            return;
-        }
-        let four = FourSmallTriangles::set_up(kept.map(|k| k.screen()), &spans, cull);
-        // Each triangle's vertices read again from `kept` (keeping the twelve
-        // in registers for the loop costs more).
-        for (t, k) in kept.iter().enumerate() {
-            match four.lane(t, k.screen()) {
-                FourSetUp::OneAtATime => self.push_in_span(k.screen(), cull, k.lanes.span()),
-                FourSetUp::Empty => {}
-                FourSetUp::Covered {
-                    vertices,
-                    weights,
-                    mask,
-                } => self.push_covered(
-                    Planes::from_weights(vertices, weights),
-                    k.lanes.span(),
-                    mask,
-                ),
-            }
-        }
-    }
-
-    /// Keeps a small triangle with attribute planes `planes` over box `span`
-    /// that covers the centres of `mask` (not empty; see
-    /// [`Triangle::masked`]): as a [`Dot`] when that is a single centre.
-    #[inline(always)]
-    fn push_covered(&mut self, planes: Planes, span: PixelSpan, mask: u64) {
-        if mask.is_power_of_two() {
-            let dot = Dot::in_box(&planes, span, mask);
-            self.bands
-                .push(self.dots.len() as u32 | DOT_ENTRY, (dot.row(), dot.row()));
-            self.dots.push(dot);
-        } else {
-            self.push_triangle(Triangle::masked(planes, span, mask), span);
-        }
-    }
-
-    /// Keeps a set-up triangle whose box is `span`.
-    #[inline]
-    fn push_triangle(&mut self, tri: Triangle, span: PixelSpan) {
+    fn triangle(&mut self, tri: Triangle, span: PixelSpan) {
         self.bands.push(self.tris.len() as u32, (span.y0, span.y1));
         self.tris.push(tri);
     }
-}
 
-/// The triangle `v` wound clockwise on screen with its positive doubled area,
-/// or `None` when it has no area or `cull` drops its facing.
-#[inline]
-fn clockwise(v: [&ScreenVertex; 3], cull: CullMode) -> Option<([&ScreenVertex; 3], i64)> {
-    let [a, b, c] = v;
-    let area = signed_area(a, b, c);
-    // Counter-clockwise in the world, seen from the front, projects to a
-    // negative area on the y-down screen. (`SmallTriangle::set_up` applies
-    // the same rule to its exact `f32` area; shared through one function, the
-    // rule cost the hot loop 1.5 % more instructions, so it is written twice.)
-    if area < 0 {
-        Some(([a, c, b], -area))
-    } else if area > 0 && cull == CullMode::None {
-        Some((v, area))
-    } else {
-        None
-    }
-}
-
-/// [`build_batch`] in the best machine code for the CPU (see [`Kernels`]).
-#[multiversion(targets("x86_64+avx2"))]
-fn build_dispatched<P: ClipSource, S: VertexShader>(
-    batch: &mut ScreenBatch,
-    positions: P,
-    shader: S,
-    groups: &[TriangleGroup<'_>],
-    vp: Viewport,
-) {
-    build_batch(batch, positions, shader, groups, vp);
-}
-
-/// Fills `batch` with `groups` over the vertices of `positions` coloured by
-/// `shader` (see [`ScreenBatch::rebuild_shaded`]); inlined into each copy of
-/// its callers.
-#[inline(always)]
-fn build_batch(
-    batch: &mut ScreenBatch,
-    positions: impl ClipSource,
-    shader: impl VertexShader,
-    groups: &[TriangleGroup<'_>],
-    vp: Viewport,
-) {
-    let mut projected = std::mem::take(&mut batch.vertices);
-    project_vertices(&positions, &shader, vp, &mut projected);
-    // What clipping needs of a vertex (the projected ones keep neither):
-    // vertex k of the sources is projected vertex k.
-    let first_projected = projected.as_ptr() as usize;
-    let clip_vertex = |v: &ProjectedVertex| {
-        let k = (v as *const ProjectedVertex as usize - first_projected)
-            / std::mem::size_of::<ProjectedVertex>();
-        ClipVertex {
-            pos: positions.clip(k),
-            color: shader.color(k),
-        }
-    };
-    let submitted = groups.iter().map(|g| g.triangles.len()).sum();
-    // Growing these would copy them; untouched capacity costs nothing.
-    batch.tris.clear();
-    batch.tris.reserve(submitted);
-    batch.dots.clear();
-    batch.dots.reserve(submitted);
-    batch.edges.clear();
-    batch.bands.reset(vp.height);
-    let mut polygon = Vec::with_capacity(9);
-    let limits = screen_limits(vp.width, vp.height);
-    // The vertices of the polygon being clipped.
-    let mut clipped = Vec::with_capacity(9);
-    // One selected triangle on its own: set up, or clipped first.
-    let mut push_kept = |batch: &mut ScreenBatch, kept: &KeptTriangle<'_>, cull: CullMode| {
-        if !kept.clip {
-            batch.push_in_span(kept.screen(), cull, kept.lanes.span());
-            return;
-        }
-        clip_triangle(kept.vertices.map(clip_vertex), &mut polygon);
-        if polygon.is_empty() {
-            return;
-        }
-        // Not clipped again: no outcode needed.
-        clipped.clear();
-        clipped.extend(
-            polygon
-                .iter()
-                .map(|v| ProjectedVertex::new(vp.project(v), 0)),
-        );
-        for k in 1..clipped.len() as u32 - 1 {
-            batch.push(&clipped, [0, k, k + 1], cull, limits);
-        }
-    };
-    let mut kept = [KeptTriangle::UNUSED; KEEP_CHUNK];
-    for group in groups {
-        for chunk in group.triangles.chunks(KEEP_CHUNK) {
-            // First the triangles that may draw, in order, selected without
-            // branches (whether a small triangle's box holds a pixel centre is
-            // data-random), then their set-up.
-            let mut count = 0;
-            for &tri in chunk {
-                let vertices = tri.map(|k| &projected[(k - group.first_vertex) as usize]);
-                let [pa, pb, pc] = vertices;
-                let (ca, cb, cc) = (pa.code, pb.code, pc.code);
-                let lanes = SpanLanes::of(pa.centre_box, pb.centre_box, pc.centre_box, limits);
-                let clip = (ca | cb | cc) & (OUT_NEAR | OUT_GUARD) != 0;
-                let visible = ca & cb & cc & OUT_FRUSTUM == 0;
-                // `count` is below the chunk's length: the mask only spares
-                // the bounds check.
-                kept[count & (KEEP_CHUNK - 1)] = KeptTriangle {
-                    vertices,
-                    lanes,
-                    clip,
-                };
-                count += usize::from(visible & (clip | !lanes.is_empty()));
-            }
-            // Four at a time where none needs clipping, in order.
-            let (fours, rest) = kept[..count].as_chunks::<4>();
-            for four in fours {
-                if four.iter().any(|k| k.clip) {
-                    for k in four {
-                        push_kept(batch, k, group.cull);
-                    }
-                } else {
-                    batch.push_four(four, group.cull);
-                }
-            }
-            for k in rest {
-                push_kept(batch, k, group.cull);
-            }
-        }
-    }
-    batch.vertices = projected;
-}
-
-/// Of four triangles, at least this many must fit the window of
-/// [`FourSmallTriangles`] for the four to be set up together (the others are
-/// set up again one at a time).
-const FOUR_AT_A_TIME_MIN: u32 = 2;
-
-/// Triangles selected at a time before their set-up (a power of two).
-const KEEP_CHUNK: usize = 256;
-
-/// A triangle that may draw: not outside the frustum, and either to be
-/// clipped or with a pixel centre in its box.
-#[derive(Debug, Clone, Copy)]
-struct KeptTriangle<'a> {
-    /// Its projected vertices.
-    vertices: [&'a ProjectedVertex; 3],
-    /// Its pixel span.
-    lanes: SpanLanes,
-    /// Whether it crosses the near plane or the guard band.
-    clip: bool,
-}
-
-impl<'a> KeptTriangle<'a> {
-    /// A placeholder for the slots of a chunk not yet selected.
-    const UNUSED: KeptTriangle<'static> = KeptTriangle {
-        vertices: [&ProjectedVertex::UNUSED; 3],
-        lanes: SpanLanes::EMPTY,
-        clip: false,
-    };
-
-    /// The screen vertices of its projected vertices.
     #[inline(always)]
-    fn screen(&self) -> [&'a ScreenVertex; 3] {
-        self.vertices.map(|v| &v.screen)
+    fn dot(&mut self, dot: Dot) {
+        self.bands
+            .push(self.dots.len() as u32 | DOT_ENTRY, (dot.row(), dot.row()));
+        self.dots.push(dot);
+    }
+}
+
+/// Where one batch of geometry goes once set up.
+pub(crate) enum BatchTarget<'t, 'f> {
+    /// Kept in a screen batch, binned by bands, to be drawn band by band
+    /// (the bands in parallel).
+    Binned(&'t mut ScreenBatch),
+    /// Drawn at once into a whole frame drawn on one thread, a screen batch
+    /// lending its buffers.
+    AtOnce {
+        /// The batch whose buffers the set-up uses.
+        scratch: &'t mut ScreenBatch,
+        /// The frame, already cleared.
+        frame: &'t mut Band<'f>,
+    },
+}
+
+impl BatchTarget<'_, '_> {
+    /// Sets up every triangle of `groups` over `verts` into the target.
+    /// Returns how many triangles were kept or drawn.
+    pub fn build(
+        self,
+        verts: &[ClipVertex],
+        groups: &[TriangleGroup<'_>],
+        vp: Viewport,
+        kernels: Kernels,
+    ) -> usize {
+        let verts = ClipVertexList(verts);
+        self.build_shaded(verts, verts, groups, vp, kernels)
+    }
+
+    /// [`BatchTarget::build`] with the vertices of `positions` coloured by
+    /// `shader` (see [`ScreenBatch::rebuild_shaded`]).
+    pub fn build_shaded<P: ClipSource, S: VertexShader>(
+        self,
+        positions: P,
+        shader: S,
+        groups: &[TriangleGroup<'_>],
+        vp: Viewport,
+        kernels: Kernels,
+    ) -> usize {
+        match self {
+            BatchTarget::Binned(batch) => {
+                batch.rebuild_shaded(positions, shader, groups, vp, kernels);
+                batch.len()
+            }
+            BatchTarget::AtOnce { scratch, frame } => {
+                scratch.draw_shaded(frame, positions, shader, groups, vp, kernels)
+            }
+        }
     }
 }
 

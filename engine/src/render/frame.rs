@@ -219,6 +219,9 @@ impl Renderer {
             width: self.width as i32,
             height: self.height as i32,
         };
+        if rayon::current_num_threads() == 1 {
+            return self.render_at_once(scene, camera, image, vp);
+        }
         // Terrain and meshes project while the grass layer builds (its blade
         // sort and binning are serial), and the sky rows beside them: one
         // barrier instead of three before the bands.
@@ -236,36 +239,129 @@ impl Renderer {
             batches: batches.len(),
             triangles: batches.iter().map(ScreenBatch::len).sum::<usize>() + grass.len(),
         };
-        let (w, h) = (self.width as usize, self.height as usize);
-        let color: &mut [u8] = image;
-        let mut cached = self.depth.try_lock().ok();
-        let mut own = Vec::new();
-        let depth = cached.as_deref_mut().unwrap_or(&mut own);
-        // Every band clears its own rows below (colour and depth), while they
-        // are in cache.
-        depth.resize(w * h, 0.0);
+        let w = self.width as usize;
         let band_rows = BAND_ROWS as usize;
-        color
-            .par_chunks_mut(w * 4 * band_rows)
-            .zip(depth.par_chunks_mut(w * band_rows))
-            .enumerate()
-            // One band per job: a thread that runs out of bands steals a single
-            // band, not half of a run of them, so both finish together.
-            .with_max_len(1)
-            .for_each(|(b, (color, depth))| {
+        self.with_depth(|depth| {
+            // Every band clears its own rows (colour and depth), while they
+            // are in cache.
+            image
+                .par_chunks_mut(w * 4 * band_rows)
+                .zip(depth.par_chunks_mut(w * band_rows))
+                .enumerate()
+                // One band per job: a thread that runs out of bands steals a
+                // single band, not half of a run of them, so both finish
+                // together.
+                .with_max_len(1)
+                .for_each(|(b, (color, depth))| {
+                    let band = BandJob {
+                        index: b as i32,
+                        color,
+                        depth,
+                        sky_rows: Some(&sky_rows),
+                    };
+                    self.fill_band(band, &batches, &grass, vp);
+                });
+        });
+        self.batches.give_back(batches);
+        stats
+    }
+
+    /// [`Renderer::render_here`] on one thread: the frame is cleared, then
+    /// terrain and meshes are drawn as they are set up ([`DrawnAtOnce`]),
+    /// then the grass band by band. No band would run in parallel with
+    /// another, so nothing is kept to draw later; every pixel meets the same
+    /// triangles in the same order, so the image is the same.
+    ///
+    /// [`DrawnAtOnce`]: super::at_once::DrawnAtOnce
+    fn render_at_once(
+        &self,
+        scene: &FrameScene<'_>,
+        camera: &Camera,
+        image: &mut RgbaImage,
+        vp: Viewport,
+    ) -> FrameStats {
+        let lighting = &scene.lighting;
+        let sky_rows = self.sky_rows(camera, lighting);
+        let grass = GrassLayer::build(scene.blades, camera, lighting, vp, self.kernels);
+        let mut scratch = self.batches.take();
+        let mut stats = FrameStats {
+            batches: 0,
+            triangles: grass.len(),
+        };
+        let mut add = |drawn: FrameStats| {
+            stats.batches += drawn.batches;
+            stats.triangles += drawn.triangles;
+        };
+        let w = self.width as usize;
+        self.with_depth(|depth| {
+            clear_to_sky(image, depth, &sky_rows, w);
+            let mut frame = Band {
+                color: image,
+                depth,
+                width: vp.width,
+                y0: 0,
+                y1: vp.height,
+            };
+            if let Some(terrain) = scene.terrain {
+                add(terrain.draw_at_once(
+                    camera,
+                    lighting,
+                    vp,
+                    self.kernels,
+                    &mut scratch,
+                    &mut frame,
+                ));
+            }
+            for mesh in scene.meshes {
+                add(mesh.draw_at_once(
+                    camera,
+                    lighting,
+                    vp,
+                    self.kernels,
+                    &mut scratch,
+                    &mut frame,
+                ));
+            }
+            let band_rows = BAND_ROWS as usize;
+            let bands = image
+                .chunks_mut(w * 4 * band_rows)
+                .zip(depth.chunks_mut(w * band_rows));
+            for (b, (color, depth)) in bands.enumerate() {
                 let band = BandJob {
                     index: b as i32,
                     color,
                     depth,
-                    sky_rows: &sky_rows,
+                    sky_rows: None,
                 };
-                match self.kernels {
-                    Kernels::Dispatched => fill_band_dispatched(band, &batches, &grass, vp),
-                    Kernels::Baseline => run_baseline(|| fill_band(band, &batches, &grass, vp)),
-                }
-            });
-        self.batches.give_back(batches);
+                self.fill_band(band, &[], &grass, vp);
+            }
+        });
+        self.batches.give_back(vec![scratch]);
         stats
+    }
+
+    /// Runs `draw` with the frame's depth buffer (the kept one, unless
+    /// another frame holds it), sized for the frame, its contents stale.
+    fn with_depth<R>(&self, draw: impl FnOnce(&mut [f32]) -> R) -> R {
+        let mut cached = self.depth.try_lock().ok();
+        let mut own = Vec::new();
+        let depth = cached.as_deref_mut().unwrap_or(&mut own);
+        depth.resize(self.width as usize * self.height as usize, 0.0);
+        draw(depth)
+    }
+
+    /// Fills a band ([`fill_band`]) in the renderer's machine code.
+    fn fill_band(
+        &self,
+        band: BandJob<'_>,
+        batches: &[ScreenBatch],
+        grass: &GrassLayer,
+        vp: Viewport,
+    ) {
+        match self.kernels {
+            Kernels::Dispatched => fill_band_dispatched(band, batches, grass, vp),
+            Kernels::Baseline => run_baseline(|| fill_band(band, batches, grass, vp)),
+        }
     }
 
     /// All screen batches in drawing order: terrain, meshes (grass is drawn after them).
@@ -310,8 +406,9 @@ struct BandJob<'a> {
     color: &'a mut [u8],
     /// The band's depth rows.
     depth: &'a mut [f32],
-    /// The sky colour of every row of the frame.
-    sky_rows: &'a [Vec3],
+    /// The sky colour of every row of the frame, to clear the band to
+    /// first; `None` when it is cleared already.
+    sky_rows: Option<&'a [Vec3]>,
 }
 
 /// [`fill_band`] in the best machine code for the CPU (see [`Kernels`]).
@@ -325,8 +422,8 @@ fn fill_band_dispatched(
     fill_band(job, batches, grass, vp);
 }
 
-/// Clears a band to the sky and empty depth, then draws the batches and the
-/// grass touching it, in scene order.
+/// Clears a band to the sky and empty depth (unless it is cleared already),
+/// then draws the batches and the grass touching it, in scene order.
 #[inline(always)]
 fn fill_band(job: BandJob<'_>, batches: &[ScreenBatch], grass: &GrassLayer, vp: Viewport) {
     let BandJob {
@@ -338,10 +435,8 @@ fn fill_band(job: BandJob<'_>, batches: &[ScreenBatch], grass: &GrassLayer, vp: 
     let w = vp.width as usize;
     let y0 = index * BAND_ROWS;
     let y1 = y0 + (depth.len() / w) as i32;
-    depth.fill(0.0);
-    for (row, sky) in color.chunks_mut(w * 4).zip(&sky_rows[y0 as usize..]) {
-        let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
-        fill_row(row, px);
+    if let Some(sky_rows) = sky_rows {
+        clear_to_sky(color, depth, &sky_rows[y0 as usize..], w);
     }
     let mut band = Band {
         color,
@@ -354,6 +449,16 @@ fn fill_band(job: BandJob<'_>, batches: &[ScreenBatch], grass: &GrassLayer, vp: 
         batch.draw_band(index, &mut band);
     }
     grass.draw_band(index, &mut band);
+}
+
+/// Clears rows of a frame `width` pixels wide to empty depth and to the sky
+/// colour of each (`sky_rows` from the first row on).
+fn clear_to_sky(color: &mut [u8], depth: &mut [f32], sky_rows: &[Vec3], width: usize) {
+    depth.fill(0.0);
+    for (row, sky) in color.chunks_mut(width * 4).zip(sky_rows) {
+        let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
+        fill_row(row, px);
+    }
 }
 
 /// Fills an RGBA8 row with one pixel value: the first pixel, then doubling
@@ -432,7 +537,10 @@ mod tests {
                     assert!(into == want, "{threads} threads, into one image");
                 }
             }
-            assert!(reused.batches.len() > 1);
+            // One thread draws at once with one scratch batch; more keep a
+            // batch per patch and per mesh run.
+            let kept = reused.batches.len();
+            assert!(if threads == 1 { kept == 1 } else { kept > 1 }, "{kept}");
             let (scene, camera) = &frames[0];
             let mut wrong = RgbaImage::new(90, 160);
             assert!(matches!(

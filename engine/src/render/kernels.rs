@@ -91,9 +91,13 @@ mod tests {
         assert!(stats.triangles > 20_000, "{stats:?}");
         let sky = *baseline.get_pixel(160, 0);
         assert!(baseline.pixels().filter(|&&p| p != sky).count() > 30_000);
+        // One thread draws triangles as they are set up, two bin them by
+        // bands first: the same pixels and counts.
         for threads in [1, 2] {
-            let (dispatched, _) = render(Kernels::Dispatched, threads);
+            let (dispatched, dispatched_stats) = render(Kernels::Dispatched, threads);
             assert!(dispatched == baseline, "{threads} threads");
+            assert_eq!(dispatched_stats, stats, "{threads} threads");
         }
+        assert!(render(Kernels::Baseline, 2) == (baseline, stats));
     }
 }

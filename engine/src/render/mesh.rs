@@ -7,9 +7,11 @@ use rayon::prelude::*;
 use super::Camera;
 use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
 use super::batch_pool::BatchPool;
+use super::frame::FrameStats;
 use super::kernels::Kernels;
 use super::mesh_shader::MeshShader;
 use super::project::TransformedPoints;
+use super::raster::Band;
 use super::shading::Lighting;
 use crate::geom::TriMesh;
 
@@ -92,10 +94,45 @@ impl<'a> MeshInstance<'a> {
         kernels: Kernels,
         pool: &BatchPool,
     ) -> Vec<ScreenBatch> {
-        let view_proj = camera.view_proj();
-        let mesh = self.mesh;
-        let chunks: Vec<(std::ops::Range<usize>, Mat4)> = self
-            .parts()
+        self.runs()
+            .into_par_iter()
+            .filter_map(|run| {
+                let (positions, shader, group) = self.run_sources(run, camera, lighting)?;
+                let mut batch = pool.take();
+                batch.rebuild_shaded(positions, shader, &[group], vp, kernels);
+                Some(batch)
+            })
+            .collect()
+    }
+
+    /// Draws the instance into `frame` at once, run after run (see
+    /// [`ScreenBatch::draw_shaded`]), with `scratch`'s buffers. Returns how many
+    /// batches and triangles that was (as [`MeshInstance::batches`] would
+    /// have made).
+    pub(crate) fn draw_at_once(
+        &self,
+        camera: &Camera,
+        lighting: &Lighting,
+        vp: Viewport,
+        kernels: Kernels,
+        scratch: &mut ScreenBatch,
+        frame: &mut Band<'_>,
+    ) -> FrameStats {
+        let mut stats = FrameStats::default();
+        for run in self.runs() {
+            if let Some((positions, shader, group)) = self.run_sources(run, camera, lighting) {
+                stats.batches += 1;
+                stats.triangles +=
+                    scratch.draw_shaded(frame, positions, shader, &[group], vp, kernels);
+            }
+        }
+        stats
+    }
+
+    /// Runs of at most [`TRIANGLES_PER_BATCH`] triangles of each part, in
+    /// part order, with the part's transform: a batch each.
+    fn runs(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {
+        self.parts()
             .into_iter()
             .flat_map(|(range, model)| {
                 range
@@ -103,44 +140,44 @@ impl<'a> MeshInstance<'a> {
                     .step_by(TRIANGLES_PER_BATCH)
                     .map(move |start| (start..(start + TRIANGLES_PER_BATCH).min(range.end), model))
             })
-            .collect();
-        chunks
-            .into_par_iter()
-            .filter_map(|(range, model)| {
-                let tris = mesh.triangles.get(range)?;
-                let (first, last) = index_range(tris)?;
-                let (first, last) = (first as usize, last as usize);
-                if last >= mesh.positions.len() {
-                    return None;
-                }
-                // The batch's run of a per-vertex slice (shorter when the
-                // slice ends inside the run).
-                let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
-                let positions =
-                    TransformedPoints::new(&mesh.positions[first..=last], model, view_proj);
-                let shader = MeshShader::new(
-                    positions,
-                    run(&mesh.normals),
-                    self.vertex_colors.map(run),
-                    self.color,
-                    *lighting,
-                    camera.eye,
-                );
-                let mut batch = pool.take();
-                batch.rebuild_shaded(
-                    positions,
-                    shader,
-                    &[TriangleGroup {
-                        triangles: tris,
-                        cull: self.cull,
-                        first_vertex: first as u32,
-                    }],
-                    vp,
-                    kernels,
-                );
-                Some(batch)
-            })
             .collect()
+    }
+
+    /// What a run's batch is built from: its vertices placed and lit, and
+    /// its triangles; `None` when it has no triangles or indexes past the
+    /// mesh's vertices.
+    fn run_sources(
+        &self,
+        (range, model): (std::ops::Range<usize>, Mat4),
+        camera: &Camera,
+        lighting: &Lighting,
+    ) -> Option<(TransformedPoints<'a>, MeshShader<'a>, TriangleGroup<'a>)> {
+        let mesh = self.mesh;
+        let tris = mesh.triangles.get(range)?;
+        let (first, last) = index_range(tris)?;
+        let (first, last) = (first as usize, last as usize);
+        if last >= mesh.positions.len() {
+            return None;
+        }
+        // The batch's run of a per-vertex slice (shorter when the slice ends
+        // inside the run).
+        let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
+        let positions =
+            TransformedPoints::new(&mesh.positions[first..=last], model, camera.view_proj());
+        let shader = MeshShader::new(
+            positions,
+            run(&mesh.normals),
+            self.vertex_colors.map(run),
+            self.color,
+            *lighting,
+            camera.eye,
+        );
+        let group = TriangleGroup {
+            triangles: tris,
+            cull: self.cull,
+            first_vertex: first as u32,
+        };
+        Some((positions, shader, group))
     }
 }
 

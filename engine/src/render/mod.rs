@@ -23,6 +23,7 @@
 //! let image = Renderer::new(64, 48).unwrap().render(&scene, &camera);
 //! assert_eq!(image.dimensions(), (64, 48));
 //! ```
+mod at_once;
 mod batch;
 mod batch_pool;
 mod blade_span;
@@ -39,6 +40,7 @@ mod mesh;
 mod mesh_shader;
 mod project;
 mod raster;
+mod set_up;
 mod shading;
 mod small_triangle;
 mod terrain;

@@ -10,11 +10,13 @@ use glam::{Mat4, Vec3};
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::batch::{BatchTarget, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::batch_pool::BatchPool;
 use super::clip::ClipVertex;
 use super::error::{RenderError, positive};
+use super::frame::FrameStats;
 use super::kernels::Kernels;
+use super::raster::Band;
 use super::shading::{Lighting, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
@@ -319,17 +321,54 @@ impl TerrainRenderer {
         kernels: Kernels,
         pool: &BatchPool,
     ) -> Vec<ScreenBatch> {
-        let levels = self.choose_levels(camera);
         let view_proj = camera.view_proj();
-        let pz = self.patches.len() / self.patches_x;
-        let visible: Vec<usize> = (0..self.patches.len())
-            .filter(|&k| levels[k].is_some())
-            .collect();
-        visible
+        self.visible_patches(camera)
             .par_iter()
-            .map(|&k| {
+            .map(|drawn| {
+                let mut batch = pool.take();
+                let target = BatchTarget::Binned(&mut batch);
+                self.build_patch(target, drawn, &view_proj, camera.eye, lighting, vp, kernels);
+                batch
+            })
+            .collect()
+    }
+
+    /// Draws every visible patch into `frame` at once, in patch order (see
+    /// [`BatchTarget::AtOnce`]), with `scratch`'s buffers. Returns how many
+    /// batches and triangles that was (as [`TerrainRenderer::batches`] would
+    /// have made).
+    pub(crate) fn draw_at_once(
+        &self,
+        camera: &Camera,
+        lighting: &Lighting,
+        vp: Viewport,
+        kernels: Kernels,
+        scratch: &mut ScreenBatch,
+        frame: &mut Band<'_>,
+    ) -> FrameStats {
+        let view_proj = camera.view_proj();
+        let mut stats = FrameStats::default();
+        for drawn in &self.visible_patches(camera) {
+            let target = BatchTarget::AtOnce {
+                scratch: &mut *scratch,
+                frame: &mut *frame,
+            };
+            stats.batches += 1;
+            stats.triangles +=
+                self.build_patch(target, drawn, &view_proj, camera.eye, lighting, vp, kernels);
+        }
+        stats
+    }
+
+    /// The patches `camera` sees, in patch order, each with the level and
+    /// the skirts it is drawn with.
+    fn visible_patches(&self, camera: &Camera) -> Vec<DrawnPatch> {
+        let levels = self.choose_levels(camera);
+        let pz = self.patches.len() / self.patches_x;
+        (0..self.patches.len())
+            .filter_map(|k| {
+                let level = levels[k]?;
                 let (pi, pj) = (k % self.patches_x, k / self.patches_x);
-                let level = levels[k].unwrap_or(0);
                 let neighbour = |di: isize, dj: isize| -> Option<f32> {
                     let (ni, nj) = (pi as isize + di, pj as isize + dj);
                     if ni < 0 || nj < 0 || ni >= self.patches_x as isize || nj >= pz as isize {
@@ -346,30 +385,34 @@ impl TerrainRenderer {
                     neighbour(-1, 0),
                     neighbour(1, 0),
                 ];
-                let mut batch = pool.take();
-                self.build_patch(
-                    &mut batch, k, level, skirts, &view_proj, camera.eye, lighting, vp, kernels,
-                );
-                batch
+                Some(DrawnPatch {
+                    index: k,
+                    level,
+                    skirts,
+                })
             })
             .collect()
     }
 
-    /// Rebuilds `batch` with patch `k` at level `level`, with skirts where
-    /// `skirts` gives a neighbour's coarser error.
+    /// Sets up patch `drawn.index` at its level, with skirts where a
+    /// neighbour is drawn coarser, into `target`. Returns how many
+    /// triangles were kept or drawn.
     #[allow(clippy::too_many_arguments)]
     fn build_patch(
         &self,
-        batch: &mut ScreenBatch,
-        k: usize,
-        level: usize,
-        skirts: [Option<f32>; 4],
+        target: BatchTarget<'_, '_>,
+        drawn: &DrawnPatch,
         view_proj: &Mat4,
         eye: Vec3,
         lighting: &Lighting,
         vp: Viewport,
         kernels: Kernels,
-    ) {
+    ) -> usize {
+        let DrawnPatch {
+            index: k,
+            level,
+            skirts,
+        } = *drawn;
         let patch = &self.patches[k];
         let lod = &patch.levels[level];
         let (m, n) = (lod.cols.len(), lod.rows.len());
@@ -417,7 +460,7 @@ impl TerrainRenderer {
             }
         }
         let surface = &self.indices[&(m, n)];
-        batch.rebuild(
+        target.build(
             &verts,
             &[
                 TriangleGroup {
@@ -433,8 +476,20 @@ impl TerrainRenderer {
             ],
             vp,
             kernels,
-        );
+        )
     }
+}
+
+/// A visible patch as a frame draws it.
+#[derive(Debug, Clone, Copy)]
+struct DrawnPatch {
+    /// Its index in the renderer's patches.
+    index: usize,
+    /// Its level of detail.
+    level: usize,
+    /// Per side (-Z, +Z, -X, +X), the coarser error of a neighbour drawn at
+    /// another level: a skirt hangs there.
+    skirts: [Option<f32>; 4],
 }
 
 impl Patch {
