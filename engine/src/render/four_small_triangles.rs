@@ -165,11 +165,18 @@ impl FourSmallTriangles {
             first = std::array::from_fn(|k| first[k] + step_x[k]);
         }
         // `VertexWeights::from_edges`: edge values over the doubled area.
+        // (Written out: `array::map` here stayed out of line, in baseline
+        // code.)
         let inv_area = Vec4::ONE / area;
+        let weight = |e: Vec4| (e * inv_area).to_array();
         let weights = [
-            start[1], start[2], step_x[1], step_x[2], step_y[1], step_y[2],
-        ]
-        .map(|e| (e * inv_area).to_array());
+            weight(start[1]),
+            weight(start[2]),
+            weight(step_x[1]),
+            weight(step_x[2]),
+            weight(step_y[1]),
+            weight(step_y[2]),
+        ];
         FourSmallTriangles {
             one_at_a_time: !(spans.in_window & exact.bitmask()) & 0b1111,
             turned: turn.bitmask(),

@@ -1,7 +1,8 @@
 //! Triangle-mesh instances: one transform for the whole mesh, optionally one
 //! more per named part (rigid-part characters: a capsule per bone).
 
-use glam::{IVec4, Mat4, Vec3, Vec4};
+use glam::{Mat4, Vec3};
+use multiversion::multiversion;
 use rayon::prelude::*;
 
 use super::Camera;
@@ -183,47 +184,21 @@ impl<'a> MeshInstance<'a> {
 
 /// The smallest and largest vertex index of `triangles` (`None` when empty).
 ///
-/// Indices below `2^24` (every mesh that fits in memory in practice) are
-/// exact as `f32`, and SSE2 has `f32` minimum and maximum (not `u32` ones):
-/// four indices per step, converted as `i32`. A mesh with a larger index
-/// (which would round, or turn negative as `i32`) takes [`exact_index_range`].
-#[inline(never)]
+/// Compiled for AVX2 too (picked at run time), whose `u32` minimum and
+/// maximum take eight indices per instruction; baseline SSE2 has none.
+#[multiversion(targets("x86_64+avx2"))]
 fn index_range(triangles: &[[u32; 3]]) -> Option<(u32, u32)> {
-    /// Indices from here on may round as `f32`.
-    const EXACT_MAX: f32 = (1 << f32::MANTISSA_DIGITS) as f32;
     let indices = triangles.as_flattened();
-    if indices.is_empty() {
-        return None;
+    let first = *indices.first()?;
+    // A plain loop, which the compiler turns into vector minima and maxima
+    // (an iterator adapter such as `fold` would stay out of line, in
+    // baseline code).
+    let (mut min, mut max) = (first, first);
+    for &index in indices {
+        min = min.min(index);
+        max = max.max(index);
     }
-    let mut lo = Vec4::splat(f32::INFINITY);
-    let mut hi = Vec4::splat(f32::NEG_INFINITY);
-    let mut fours = indices.chunks_exact(4);
-    for four in &mut fours {
-        let v = IVec4::new(
-            four[0] as i32,
-            four[1] as i32,
-            four[2] as i32,
-            four[3] as i32,
-        );
-        let v = v.as_vec4();
-        (lo, hi) = (lo.min(v), hi.max(v));
-    }
-    for &index in fours.remainder() {
-        let v = Vec4::splat(index as i32 as f32);
-        (lo, hi) = (lo.min(v), hi.max(v));
-    }
-    let (lo, hi) = (lo.min_element(), hi.max_element());
-    if lo >= 0.0 && hi < EXACT_MAX {
-        Some((lo as u32, hi as u32))
-    } else {
-        exact_index_range(indices)
-    }
-}
-
-/// The smallest and largest of `indices` (`None` when empty), compared as
-/// `u32`: the rare path of [`index_range`].
-fn exact_index_range(indices: &[u32]) -> Option<(u32, u32)> {
-    Some((*indices.iter().min()?, *indices.iter().max()?))
+    Some((min, max))
 }
 
 #[cfg(test)]
