@@ -16,7 +16,8 @@
 //!   frame); `euc` is the pre-lit full mesh of the row above.
 //!
 //! `euc` (0.5 has no threading) draws on one thread, so `ours_ns` is ours on
-//! a one-thread pool: the like-for-like figure. `ours_2_threads_ns` is ours on
+//! a one-thread pool (where it draws each triangle as it sets it up): the
+//! like-for-like figure. `ours_2_threads_ns` is ours on
 //! two threads, for reference. Each draws into buffers it keeps from frame to
 //! frame (ours through [`Renderer::render_into`]). The workloads are timed
 //! interleaved ([`crate::time_interleaved_ns`]), so that all see the machine
