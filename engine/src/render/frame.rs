@@ -15,6 +15,7 @@ use super::grass::{GrassBlade, GrassLayer};
 use super::kernels::{Kernels, run_baseline};
 use super::mesh::MeshInstance;
 use super::raster::{Band, to_u8};
+use super::scene_geometry::{FrameView, SceneGeometry};
 use super::shading::Lighting;
 use super::terrain::TerrainRenderer;
 
@@ -219,8 +220,9 @@ impl Renderer {
             width: self.width as i32,
             height: self.height as i32,
         };
+        let view = FrameView::new(camera, &scene.lighting, vp, self.kernels);
         if rayon::current_num_threads() == 1 {
-            return self.render_at_once(scene, camera, image, vp);
+            return self.render_at_once(&view, scene, image);
         }
         // Terrain and meshes project while the grass layer builds (its blade
         // sort and binning are serial), and the sky rows beside them: one
@@ -228,7 +230,7 @@ impl Renderer {
         let ((batches, sky_rows), grass) = rayon::join(
             || {
                 rayon::join(
-                    || self.project(scene, camera, vp),
+                    || self.project(&view, scene),
                     || self.sky_rows(camera, &scene.lighting),
                 )
             },
@@ -275,14 +277,19 @@ impl Renderer {
     /// [`DrawnAtOnce`]: super::at_once::DrawnAtOnce
     fn render_at_once(
         &self,
+        view: &FrameView<'_>,
         scene: &FrameScene<'_>,
-        camera: &Camera,
         image: &mut RgbaImage,
-        vp: Viewport,
     ) -> FrameStats {
-        let lighting = &scene.lighting;
+        let FrameView {
+            camera,
+            lighting,
+            vp,
+            kernels,
+            ..
+        } = *view;
         let sky_rows = self.sky_rows(camera, lighting);
-        let grass = GrassLayer::build(scene.blades, camera, lighting, vp, self.kernels);
+        let grass = GrassLayer::build(scene.blades, camera, lighting, vp, kernels);
         let mut scratch = self.batches.take();
         let mut stats = FrameStats {
             batches: 0,
@@ -302,25 +309,10 @@ impl Renderer {
                 y0: 0,
                 y1: vp.height,
             };
-            if let Some(terrain) = scene.terrain {
-                add(terrain.draw_at_once(
-                    camera,
-                    lighting,
-                    vp,
-                    self.kernels,
-                    &mut scratch,
-                    &mut frame,
-                ));
-            }
-            for mesh in scene.meshes {
-                add(mesh.draw_at_once(
-                    camera,
-                    lighting,
-                    vp,
-                    self.kernels,
-                    &mut scratch,
-                    &mut frame,
-                ));
+            let terrain = scene.terrain.map(|t| t as &dyn SceneGeometry);
+            let meshes = scene.meshes.iter().map(|m| m as &dyn SceneGeometry);
+            for geometry in terrain.into_iter().chain(meshes) {
+                add(geometry.draw_at_once(view, &mut scratch, &mut frame));
             }
             let band_rows = BAND_ROWS as usize;
             let bands = image
@@ -365,18 +357,17 @@ impl Renderer {
     }
 
     /// All screen batches in drawing order: terrain, meshes (grass is drawn after them).
-    fn project(&self, scene: &FrameScene<'_>, camera: &Camera, vp: Viewport) -> Vec<ScreenBatch> {
-        let lighting = &scene.lighting;
+    fn project(&self, view: &FrameView<'_>, scene: &FrameScene<'_>) -> Vec<ScreenBatch> {
         let (mut batches, meshes) = rayon::join(
             || match scene.terrain {
-                Some(t) => t.batches(camera, lighting, vp, self.kernels, &self.batches),
+                Some(t) => t.batches(view, &self.batches),
                 None => Vec::new(),
             },
             || -> Vec<Vec<ScreenBatch>> {
                 scene
                     .meshes
                     .par_iter()
-                    .map(|m| m.batches(camera, lighting, vp, self.kernels, &self.batches))
+                    .map(|m| m.batches(view, &self.batches))
                     .collect()
             },
         );

@@ -5,15 +5,13 @@ use glam::{Mat4, Vec3};
 use multiversion::multiversion;
 use rayon::prelude::*;
 
-use super::Camera;
-use super::batch::{CullMode, ScreenBatch, TriangleGroup, Viewport};
+use super::batch::{CullMode, ScreenBatch, TriangleGroup};
 use super::batch_pool::BatchPool;
 use super::frame::FrameStats;
-use super::kernels::Kernels;
 use super::mesh_shader::MeshShader;
 use super::project::TransformedPoints;
 use super::raster::Band;
-use super::shading::Lighting;
+use super::scene_geometry::{FrameView, SceneGeometry};
 use crate::geom::TriMesh;
 
 /// Triangles per screen batch: the unit of parallel vertex work for big meshes.
@@ -85,51 +83,6 @@ impl<'a> MeshInstance<'a> {
             .collect()
     }
 
-    /// Screen batches of at most [`TRIANGLES_PER_BATCH`] triangles per part,
-    /// projected in parallel, in part order, rebuilt from `pool`'s spares.
-    pub(crate) fn batches(
-        &self,
-        camera: &Camera,
-        lighting: &Lighting,
-        vp: Viewport,
-        kernels: Kernels,
-        pool: &BatchPool,
-    ) -> Vec<ScreenBatch> {
-        self.runs()
-            .into_par_iter()
-            .filter_map(|run| {
-                let (positions, shader, group) = self.run_sources(run, camera, lighting)?;
-                let mut batch = pool.take();
-                batch.rebuild_shaded(positions, shader, &[group], vp, kernels);
-                Some(batch)
-            })
-            .collect()
-    }
-
-    /// Draws the instance into `frame` at once, run after run (see
-    /// [`ScreenBatch::draw_shaded`]), with `scratch`'s buffers. Returns how many
-    /// batches and triangles that was (as [`MeshInstance::batches`] would
-    /// have made).
-    pub(crate) fn draw_at_once(
-        &self,
-        camera: &Camera,
-        lighting: &Lighting,
-        vp: Viewport,
-        kernels: Kernels,
-        scratch: &mut ScreenBatch,
-        frame: &mut Band<'_>,
-    ) -> FrameStats {
-        let mut stats = FrameStats::default();
-        for run in self.runs() {
-            if let Some((positions, shader, group)) = self.run_sources(run, camera, lighting) {
-                stats.batches += 1;
-                stats.triangles +=
-                    scratch.draw_shaded(frame, positions, shader, &[group], vp, kernels);
-            }
-        }
-        stats
-    }
-
     /// Runs of at most [`TRIANGLES_PER_BATCH`] triangles of each part, in
     /// part order, with the part's transform: a batch each.
     fn runs(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {
@@ -150,8 +103,7 @@ impl<'a> MeshInstance<'a> {
     fn run_sources(
         &self,
         (range, model): (std::ops::Range<usize>, Mat4),
-        camera: &Camera,
-        lighting: &Lighting,
+        view: &FrameView<'_>,
     ) -> Option<(TransformedPoints<'a>, MeshShader<'a>, TriangleGroup<'a>)> {
         let mesh = self.mesh;
         let tris = mesh.triangles.get(range)?;
@@ -164,14 +116,14 @@ impl<'a> MeshInstance<'a> {
         // inside the run).
         let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
         let positions =
-            TransformedPoints::new(&mesh.positions[first..=last], model, camera.view_proj());
+            TransformedPoints::new(&mesh.positions[first..=last], model, view.view_proj);
         let shader = MeshShader::new(
             positions,
             run(&mesh.normals),
             self.vertex_colors.map(run),
             self.color,
-            *lighting,
-            camera.eye,
+            *view.lighting,
+            view.camera.eye,
         );
         let group = TriangleGroup {
             triangles: tris,
@@ -179,6 +131,39 @@ impl<'a> MeshInstance<'a> {
             first_vertex: first as u32,
         };
         Some((positions, shader, group))
+    }
+}
+
+/// Batches of at most [`TRIANGLES_PER_BATCH`] triangles per part, in part
+/// order.
+impl SceneGeometry for MeshInstance<'_> {
+    fn batches(&self, view: &FrameView<'_>, pool: &BatchPool) -> Vec<ScreenBatch> {
+        self.runs()
+            .into_par_iter()
+            .filter_map(|run| {
+                let (positions, shader, group) = self.run_sources(run, view)?;
+                let mut batch = pool.take();
+                batch.rebuild_shaded(positions, shader, &[group], view.vp, view.kernels);
+                Some(batch)
+            })
+            .collect()
+    }
+
+    fn draw_at_once(
+        &self,
+        view: &FrameView<'_>,
+        scratch: &mut ScreenBatch,
+        frame: &mut Band<'_>,
+    ) -> FrameStats {
+        let mut stats = FrameStats::default();
+        for run in self.runs() {
+            if let Some((positions, shader, group)) = self.run_sources(run, view) {
+                stats.batches += 1;
+                stats.triangles +=
+                    scratch.draw_shaded(frame, positions, shader, &[group], view.vp, view.kernels);
+            }
+        }
+        stats
     }
 }
 

@@ -40,6 +40,7 @@ mod mesh;
 mod mesh_shader;
 mod project;
 mod raster;
+mod scene_geometry;
 mod set_up;
 mod shading;
 mod small_triangle;

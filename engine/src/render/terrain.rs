@@ -6,17 +6,17 @@
 
 use std::collections::BTreeMap;
 
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{BatchTarget, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
+use super::batch::{BatchTarget, CullMode, ScreenBatch, TriangleGroup, to_clip};
 use super::batch_pool::BatchPool;
 use super::clip::ClipVertex;
 use super::error::{RenderError, positive};
 use super::frame::FrameStats;
-use super::kernels::Kernels;
 use super::raster::Band;
+use super::scene_geometry::{FrameView, SceneGeometry};
 use super::shading::{Lighting, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
@@ -311,55 +311,6 @@ impl TerrainRenderer {
             .collect()
     }
 
-    /// Projects every visible patch into screen batches (one per patch, in
-    /// patch order), rebuilt from `pool`'s spares.
-    pub(crate) fn batches(
-        &self,
-        camera: &Camera,
-        lighting: &Lighting,
-        vp: Viewport,
-        kernels: Kernels,
-        pool: &BatchPool,
-    ) -> Vec<ScreenBatch> {
-        let view_proj = camera.view_proj();
-        self.visible_patches(camera)
-            .par_iter()
-            .map(|drawn| {
-                let mut batch = pool.take();
-                let target = BatchTarget::Binned(&mut batch);
-                self.build_patch(target, drawn, &view_proj, camera.eye, lighting, vp, kernels);
-                batch
-            })
-            .collect()
-    }
-
-    /// Draws every visible patch into `frame` at once, in patch order (see
-    /// [`BatchTarget::AtOnce`]), with `scratch`'s buffers. Returns how many
-    /// batches and triangles that was (as [`TerrainRenderer::batches`] would
-    /// have made).
-    pub(crate) fn draw_at_once(
-        &self,
-        camera: &Camera,
-        lighting: &Lighting,
-        vp: Viewport,
-        kernels: Kernels,
-        scratch: &mut ScreenBatch,
-        frame: &mut Band<'_>,
-    ) -> FrameStats {
-        let view_proj = camera.view_proj();
-        let mut stats = FrameStats::default();
-        for drawn in &self.visible_patches(camera) {
-            let target = BatchTarget::AtOnce {
-                scratch: &mut *scratch,
-                frame: &mut *frame,
-            };
-            stats.batches += 1;
-            stats.triangles +=
-                self.build_patch(target, drawn, &view_proj, camera.eye, lighting, vp, kernels);
-        }
-        stats
-    }
-
     /// The patches `camera` sees, in patch order, each with the level and
     /// the skirts it is drawn with.
     fn visible_patches(&self, camera: &Camera) -> Vec<DrawnPatch> {
@@ -397,16 +348,11 @@ impl TerrainRenderer {
     /// Sets up patch `drawn.index` at its level, with skirts where a
     /// neighbour is drawn coarser, into `target`. Returns how many
     /// triangles were kept or drawn.
-    #[allow(clippy::too_many_arguments)]
     fn build_patch(
         &self,
         target: BatchTarget<'_, '_>,
         drawn: &DrawnPatch,
-        view_proj: &Mat4,
-        eye: Vec3,
-        lighting: &Lighting,
-        vp: Viewport,
-        kernels: Kernels,
+        view: &FrameView<'_>,
     ) -> usize {
         let DrawnPatch {
             index: k,
@@ -424,9 +370,10 @@ impl TerrainRenderer {
                 self.origin.y + (patch.j0 + lod.rows[r]) as f32 * self.cell,
             )
         };
+        let eye = view.camera.eye;
         let vertex = |p: Vec3, color: Vec3| ClipVertex {
-            pos: to_clip(view_proj, p),
-            color: lighting.apply_fog(color, (p - eye).length()),
+            pos: to_clip(&view.view_proj, p),
+            color: view.lighting.apply_fog(color, (p - eye).length()),
         };
         for r in 0..n {
             for c in 0..m {
@@ -474,9 +421,41 @@ impl TerrainRenderer {
                     first_vertex: 0,
                 },
             ],
-            vp,
-            kernels,
+            view.vp,
+            view.kernels,
         )
+    }
+}
+
+/// One batch per visible patch, in patch order.
+impl SceneGeometry for TerrainRenderer {
+    fn batches(&self, view: &FrameView<'_>, pool: &BatchPool) -> Vec<ScreenBatch> {
+        self.visible_patches(view.camera)
+            .par_iter()
+            .map(|drawn| {
+                let mut batch = pool.take();
+                self.build_patch(BatchTarget::Binned(&mut batch), drawn, view);
+                batch
+            })
+            .collect()
+    }
+
+    fn draw_at_once(
+        &self,
+        view: &FrameView<'_>,
+        scratch: &mut ScreenBatch,
+        frame: &mut Band<'_>,
+    ) -> FrameStats {
+        let mut stats = FrameStats::default();
+        for drawn in &self.visible_patches(view.camera) {
+            let target = BatchTarget::AtOnce {
+                scratch: &mut *scratch,
+                frame: &mut *frame,
+            };
+            stats.batches += 1;
+            stats.triangles += self.build_patch(target, drawn, view);
+        }
+        stats
     }
 }
 
