@@ -216,36 +216,6 @@ impl ScreenBatch {
         self.vertices = projected;
     }
 
-    /// Sets up the triangles as [`ScreenBatch::rebuild_shaded`] does, but
-    /// draws each into `frame` at once instead of keeping it (see
-    /// [`DrawnAtOnce`]); this batch lends its buffers and is left empty.
-    /// Returns how many triangles were drawn (as [`ScreenBatch::len`] counts
-    /// them).
-    pub fn draw_shaded<P: ClipSource, S: VertexShader>(
-        &mut self,
-        frame: &mut Band<'_>,
-        positions: P,
-        shader: S,
-        groups: &[TriangleGroup<'_>],
-        vp: Viewport,
-        kernels: Kernels,
-    ) -> usize {
-        self.tris.clear();
-        self.dots.clear();
-        self.bands.reset(vp.height);
-        let mut sink = DrawnAtOnce::new(frame, &mut self.edges);
-        set_up(
-            &mut sink,
-            &mut self.vertices,
-            positions,
-            shader,
-            groups,
-            vp,
-            kernels,
-        );
-        sink.drawn()
-    }
-
     /// How many kept triangles became dots, and how many are full triangles.
     #[cfg(test)]
     pub fn kinds(&self) -> (usize, usize) {
@@ -296,8 +266,8 @@ pub(crate) enum BatchTarget<'t, 'f> {
     /// Kept in a screen batch, binned by bands, to be drawn band by band
     /// (the bands in parallel).
     Binned(&'t mut ScreenBatch),
-    /// Drawn at once into a whole frame drawn on one thread, a screen batch
-    /// lending its buffers.
+    /// Drawn at once into a whole frame drawn on one thread (see
+    /// [`DrawnAtOnce`]), a screen batch lending its buffers.
     AtOnce {
         /// The batch whose buffers the set-up uses.
         scratch: &'t mut ScreenBatch,
@@ -336,7 +306,14 @@ impl BatchTarget<'_, '_> {
                 batch.len()
             }
             BatchTarget::AtOnce { scratch, frame } => {
-                scratch.draw_shaded(frame, positions, shader, groups, vp, kernels)
+                // The batch lends its buffers and is left empty.
+                scratch.tris.clear();
+                scratch.dots.clear();
+                scratch.bands.reset(vp.height);
+                let mut sink = DrawnAtOnce::new(frame, &mut scratch.edges);
+                let projected = &mut scratch.vertices;
+                set_up(&mut sink, projected, positions, shader, groups, vp, kernels);
+                sink.drawn()
             }
         }
     }

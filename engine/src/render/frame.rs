@@ -65,8 +65,10 @@ pub struct FrameStats {
 ///
 /// Geometry is projected per batch (terrain patch, mesh part, group of blades)
 /// in parallel; then the screen is cut into fixed bands of rows, rasterized in
-/// parallel, each band drawing the batches in scene order. The image is
-/// bit-identical whatever the number of threads.
+/// parallel, each band drawing the batches in scene order. On a one-thread
+/// pool, terrain and mesh triangles are instead drawn as they are set up,
+/// with nothing kept to draw later. The image is bit-identical whatever the
+/// number of threads.
 ///
 /// A renderer keeps its per-frame buffers (the depth buffer and the screen
 /// batches, with their projected vertices, set-up triangles and band lists)
@@ -228,14 +230,9 @@ impl Renderer {
         // sort and binning are serial), and the sky rows beside them: one
         // barrier instead of three before the bands.
         let ((batches, sky_rows), grass) = rayon::join(
-            || {
-                rayon::join(
-                    || self.project(&view, scene),
-                    || self.sky_rows(camera, &scene.lighting),
-                )
-            },
+            || rayon::join(|| self.project(&view, scene), || sky_rows(&view)),
             // Grass: its own pass per band, after terrain and meshes.
-            || GrassLayer::build(scene.blades, camera, &scene.lighting, vp, self.kernels),
+            || grass_layer(&view, scene),
         );
         let stats = FrameStats {
             batches: batches.len(),
@@ -281,23 +278,13 @@ impl Renderer {
         scene: &FrameScene<'_>,
         image: &mut RgbaImage,
     ) -> FrameStats {
-        let FrameView {
-            camera,
-            lighting,
-            vp,
-            kernels,
-            ..
-        } = *view;
-        let sky_rows = self.sky_rows(camera, lighting);
-        let grass = GrassLayer::build(scene.blades, camera, lighting, vp, kernels);
+        let vp = view.vp;
+        let sky_rows = sky_rows(view);
+        let grass = grass_layer(view, scene);
         let mut scratch = self.batches.take();
         let mut stats = FrameStats {
             batches: 0,
             triangles: grass.len(),
-        };
-        let mut add = |drawn: FrameStats| {
-            stats.batches += drawn.batches;
-            stats.triangles += drawn.triangles;
         };
         let w = self.width as usize;
         self.with_depth(|depth| {
@@ -309,10 +296,11 @@ impl Renderer {
                 y0: 0,
                 y1: vp.height,
             };
-            let terrain = scene.terrain.map(|t| t as &dyn SceneGeometry);
-            let meshes = scene.meshes.iter().map(|m| m as &dyn SceneGeometry);
-            for geometry in terrain.into_iter().chain(meshes) {
-                add(geometry.draw_at_once(view, &mut scratch, &mut frame));
+            if let Some(terrain) = scene.terrain {
+                terrain.draw_at_once(view, &mut scratch, &mut frame, &mut stats);
+            }
+            for mesh in scene.meshes {
+                mesh.draw_at_once(view, &mut scratch, &mut frame, &mut stats);
             }
             let band_rows = BAND_ROWS as usize;
             let bands = image
@@ -374,19 +362,31 @@ impl Renderer {
         batches.extend(meshes.into_iter().flatten());
         batches
     }
+}
 
-    /// Sky colour per row, from the view direction through the row's centre.
-    fn sky_rows(&self, camera: &Camera, lighting: &Lighting) -> Vec<Vec3> {
-        let inv = camera.view_proj().inverse();
-        (0..self.height)
-            .map(|y| {
-                let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / self.height as f32;
-                let far = inv.project_point3(Vec3::new(0.0, ndc_y, 1.0));
-                let dir = (far - camera.eye).normalize_or_zero();
-                lighting.sky(dir.y)
-            })
-            .collect()
-    }
+/// Sky colour per row, from the view direction through the row's centre.
+fn sky_rows(view: &FrameView<'_>) -> Vec<Vec3> {
+    let inv = view.view_proj.inverse();
+    let height = view.vp.height;
+    (0..height)
+        .map(|y| {
+            let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / height as f32;
+            let far = inv.project_point3(Vec3::new(0.0, ndc_y, 1.0));
+            let dir = (far - view.camera.eye).normalize_or_zero();
+            view.lighting.sky(dir.y)
+        })
+        .collect()
+}
+
+/// The scene's blades as seen by `view`, binned by bands.
+fn grass_layer(view: &FrameView<'_>, scene: &FrameScene<'_>) -> GrassLayer {
+    GrassLayer::build(
+        scene.blades,
+        view.camera,
+        view.lighting,
+        view.vp,
+        view.kernels,
+    )
 }
 
 /// One band's share of the frame buffers.

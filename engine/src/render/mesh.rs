@@ -3,14 +3,10 @@
 
 use glam::{Mat4, Vec3};
 use multiversion::multiversion;
-use rayon::prelude::*;
 
-use super::batch::{CullMode, ScreenBatch, TriangleGroup};
-use super::batch_pool::BatchPool;
-use super::frame::FrameStats;
+use super::batch::{BatchTarget, CullMode, TriangleGroup};
 use super::mesh_shader::MeshShader;
 use super::project::TransformedPoints;
-use super::raster::Band;
 use super::scene_geometry::{FrameView, SceneGeometry};
 use crate::geom::TriMesh;
 
@@ -102,11 +98,11 @@ impl<'a> MeshInstance<'a> {
     /// mesh's vertices.
     fn run_sources(
         &self,
-        (range, model): (std::ops::Range<usize>, Mat4),
+        (range, model): &(std::ops::Range<usize>, Mat4),
         view: &FrameView<'_>,
     ) -> Option<(TransformedPoints<'a>, MeshShader<'a>, TriangleGroup<'a>)> {
         let mesh = self.mesh;
-        let tris = mesh.triangles.get(range)?;
+        let tris = mesh.triangles.get(range.clone())?;
         let (first, last) = index_range(tris)?;
         let (first, last) = (first as usize, last as usize);
         if last >= mesh.positions.len() {
@@ -116,7 +112,7 @@ impl<'a> MeshInstance<'a> {
         // inside the run).
         let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
         let positions =
-            TransformedPoints::new(&mesh.positions[first..=last], model, view.view_proj);
+            TransformedPoints::new(&mesh.positions[first..=last], *model, view.view_proj);
         let shader = MeshShader::new(
             positions,
             run(&mesh.normals),
@@ -134,36 +130,23 @@ impl<'a> MeshInstance<'a> {
     }
 }
 
-/// Batches of at most [`TRIANGLES_PER_BATCH`] triangles per part, in part
-/// order.
+/// A piece per run of at most [`TRIANGLES_PER_BATCH`] triangles of each
+/// part, in part order.
 impl SceneGeometry for MeshInstance<'_> {
-    fn batches(&self, view: &FrameView<'_>, pool: &BatchPool) -> Vec<ScreenBatch> {
+    type Piece = (std::ops::Range<usize>, Mat4);
+
+    fn pieces(&self, _view: &FrameView<'_>) -> Vec<Self::Piece> {
         self.runs()
-            .into_par_iter()
-            .filter_map(|run| {
-                let (positions, shader, group) = self.run_sources(run, view)?;
-                let mut batch = pool.take();
-                batch.rebuild_shaded(positions, shader, &[group], view.vp, view.kernels);
-                Some(batch)
-            })
-            .collect()
     }
 
-    fn draw_at_once(
+    fn build(
         &self,
+        run: &Self::Piece,
         view: &FrameView<'_>,
-        scratch: &mut ScreenBatch,
-        frame: &mut Band<'_>,
-    ) -> FrameStats {
-        let mut stats = FrameStats::default();
-        for run in self.runs() {
-            if let Some((positions, shader, group)) = self.run_sources(run, view) {
-                stats.batches += 1;
-                stats.triangles +=
-                    scratch.draw_shaded(frame, positions, shader, &[group], view.vp, view.kernels);
-            }
-        }
-        stats
+        target: BatchTarget<'_, '_>,
+    ) -> Option<usize> {
+        let (positions, shader, group) = self.run_sources(run, view)?;
+        Some(target.build_shaded(positions, shader, &[group], view.vp, view.kernels))
     }
 }
 

@@ -10,12 +10,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::Camera;
-use super::batch::{BatchTarget, CullMode, ScreenBatch, TriangleGroup, to_clip};
-use super::batch_pool::BatchPool;
+use super::batch::{BatchTarget, CullMode, TriangleGroup, to_clip};
 use super::clip::ClipVertex;
 use super::error::{RenderError, positive};
-use super::frame::FrameStats;
-use super::raster::Band;
 use super::scene_geometry::{FrameView, SceneGeometry};
 use super::shading::{Lighting, encode_display};
 use super::terrain_colors::TerrainColors;
@@ -344,16 +341,23 @@ impl TerrainRenderer {
             })
             .collect()
     }
+}
 
-    /// Sets up patch `drawn.index` at its level, with skirts where a
-    /// neighbour is drawn coarser, into `target`. Returns how many
-    /// triangles were kept or drawn.
-    fn build_patch(
+/// A piece per visible patch, in patch order, at the level it is drawn
+/// with, with skirts where a neighbour is drawn coarser.
+impl SceneGeometry for TerrainRenderer {
+    type Piece = DrawnPatch;
+
+    fn pieces(&self, view: &FrameView<'_>) -> Vec<DrawnPatch> {
+        self.visible_patches(view.camera)
+    }
+
+    fn build(
         &self,
-        target: BatchTarget<'_, '_>,
         drawn: &DrawnPatch,
         view: &FrameView<'_>,
-    ) -> usize {
+        target: BatchTarget<'_, '_>,
+    ) -> Option<usize> {
         let DrawnPatch {
             index: k,
             level,
@@ -407,7 +411,7 @@ impl TerrainRenderer {
             }
         }
         let surface = &self.indices[&(m, n)];
-        target.build(
+        Some(target.build(
             &verts,
             &[
                 TriangleGroup {
@@ -423,45 +427,13 @@ impl TerrainRenderer {
             ],
             view.vp,
             view.kernels,
-        )
-    }
-}
-
-/// One batch per visible patch, in patch order.
-impl SceneGeometry for TerrainRenderer {
-    fn batches(&self, view: &FrameView<'_>, pool: &BatchPool) -> Vec<ScreenBatch> {
-        self.visible_patches(view.camera)
-            .par_iter()
-            .map(|drawn| {
-                let mut batch = pool.take();
-                self.build_patch(BatchTarget::Binned(&mut batch), drawn, view);
-                batch
-            })
-            .collect()
-    }
-
-    fn draw_at_once(
-        &self,
-        view: &FrameView<'_>,
-        scratch: &mut ScreenBatch,
-        frame: &mut Band<'_>,
-    ) -> FrameStats {
-        let mut stats = FrameStats::default();
-        for drawn in &self.visible_patches(view.camera) {
-            let target = BatchTarget::AtOnce {
-                scratch: &mut *scratch,
-                frame: &mut *frame,
-            };
-            stats.batches += 1;
-            stats.triangles += self.build_patch(target, drawn, view);
-        }
-        stats
+        ))
     }
 }
 
 /// A visible patch as a frame draws it.
 #[derive(Debug, Clone, Copy)]
-struct DrawnPatch {
+pub(crate) struct DrawnPatch {
     /// Its index in the renderer's patches.
     index: usize,
     /// Its level of detail.
