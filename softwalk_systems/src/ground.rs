@@ -10,6 +10,9 @@ pub struct GroundHit {
     pub point: Vec3,
     /// Unit surface normal at the hit.
     pub normal: Vec3,
+    /// How far a planted foot presses this surface into the ground, metres:
+    /// the print loose ground will take here (0 on rigid ground).
+    pub give: f32,
 }
 
 /// Anything a foot can stand on, queried with vertical rays.
@@ -28,6 +31,7 @@ impl Ground for engine::geom::HeightGrid {
         Some(GroundHit {
             point: Vec3::new(x, y, z),
             normal: self.normal_at(x, z)?,
+            give: 0.0,
         })
     }
 }
@@ -41,6 +45,7 @@ impl Ground for FlatGround {
         (self.0 <= from_y).then_some(GroundHit {
             point: Vec3::new(x, self.0, z),
             normal: Vec3::Y,
+            give: 0.0,
         })
     }
 }

@@ -8,20 +8,21 @@ use super::balance::RigidProxy;
 use super::body::CharacterBody;
 use super::gait::{FootPlan, Gait, clamp_dt, contact_offset};
 use super::ik::solve_two_bone;
+use super::pelvis::PelvisFollower;
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
 use crate::foot::{FootPhase, FootSole, FootState, Side};
 
-/// Foot IK state: the smoothed pelvis drop, the foot roll added for reach,
-/// and last ankle positions.
+/// Foot IK state: the pelvis follower, the foot roll added for reach, and
+/// last ankle positions.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootIK {
-    /// How far the pelvis is lowered below its walking height, metres.
+    /// The pelvis base height, following the height the legs need.
+    pub pelvis: PelvisFollower,
+    /// How far the pelvis is below its walking height over the body's
+    /// ground this step, metres (positive: lowered).
     pub pelvis_drop: f32,
-    /// Half-life with which the drop relaxes when less is needed, seconds
-    /// (more is applied at once, so the feet always reach).
-    pub drop_halflife: f32,
     /// Foot pitch each leg added to its scheduled roll this step so that it
     /// reaches its foot without lowering the pelvis, radians: negative is
     /// more heel lift (a trailing leg), positive more toe lift (a leading leg).
@@ -34,17 +35,23 @@ pub struct FootIK {
     pub contact_points: [Vec3; 2],
     /// Ankle position of each foot last step (world), for velocities.
     pub last_ankles: [Vec3; 2],
+    /// Height of each flat sole-centre target last step: a target may fall
+    /// by at most [`MAX_FOOT_FALL_SPEED`] (a vanishing platform, a key
+    /// dropping into a print), so a foot drops onto the ground instead of
+    /// teleporting.
+    pub flat_heights: Option<[f32; 2]>,
 }
 
 impl Default for FootIK {
     fn default() -> Self {
         FootIK {
+            pelvis: PelvisFollower::default(),
             pelvis_drop: 0.0,
-            drop_halflife: 0.1,
             extra_pitch: [0.0; 2],
             sole_targets: [Vec3::ZERO; 2],
             contact_points: [Vec3::ZERO; 2],
             last_ankles: [Vec3::ZERO; 2],
+            flat_heights: None,
         }
     }
 }
@@ -60,6 +67,8 @@ const MAX_HEEL_LIFT: f32 = 1.1;
 const MAX_TOE_LIFT: f32 = 0.6;
 /// Fastest change of the extra foot pitch, rad/s (ankle speeds of real gait).
 const MAX_PITCH_RATE: f32 = 6.0;
+/// Fastest a foot's target falls, m/s.
+pub const MAX_FOOT_FALL_SPEED: f32 = 1.5;
 /// Bisection steps when solving the foot pitch a leg needs (resolution below 0.001 rad).
 const PITCH_STEPS: usize = 11;
 
@@ -168,7 +177,7 @@ pub(crate) fn sole_direction(heading: Vec2, normal: Vec3) -> Vec3 {
 }
 
 /// Stage 5: builds the final pose and returns each foot's state (left first).
-/// A `dt` of 0 (see [`clamp_dt`]) poses without moving the drop spring and
+/// A `dt` of 0 (see [`clamp_dt`]) places the pelvis follower at rest and
 /// reports zero velocities.
 ///
 /// Each foot rolls as the gait schedules it (heel strike about the heel,
@@ -186,12 +195,6 @@ pub fn foot_ik_stage(
     let dt = clamp_dt(dt);
     let forward = gait.pelvis.heading3();
     let right = forward.cross(Vec3::Y);
-    let relax = if dt > 0.0 {
-        1.0 - (-dt * std::f32::consts::LN_2 / ik.drop_halflife).exp()
-    } else {
-        0.0
-    };
-
     // Pelvis: walking height over the ground under it, bob, sway, and a small
     // shift back against the trunk's lean.
     let xz = gait.pelvis.position;
@@ -210,9 +213,14 @@ pub fn foot_ik_stage(
     // ahead of it. A planted foot only rolls further about the point its
     // scheduled roll already stands on (where its ray was cast), so a flat
     // planted foot does not rock.
+    let mut flat_heights = [0.0; 2];
     let feet = [0, 1].map(|k| {
         let plan = &gait.feet[k];
-        let frame = FootFrame::new(&rays.feet[k], plan);
+        let mut frame = FootFrame::new(&rays.feet[k], plan);
+        if let (Some(last), true) = (ik.flat_heights, dt > 0.0) {
+            frame.centre.y = frame.centre.y.max(last[k] - MAX_FOOT_FALL_SPEED * dt);
+        }
+        flat_heights[k] = frame.centre.y;
         let trailing = (frame.centre - hips[k]).dot(forward) < 0.0;
         let swinging = plan.phase != FootPhase::Stance;
         let pitch = if trailing && (swinging || plan.contact_along > 0.0) {
@@ -252,11 +260,8 @@ pub fn foot_ik_stage(
         })
         .fold(0.0f32, f32::max)
         .min(0.6 * body.leg_reach());
-    ik.pelvis_drop = if needed >= ik.pelvis_drop || dt == 0.0 {
-        needed
-    } else {
-        ik.pelvis_drop + (needed - ik.pelvis_drop) * relax
-    };
+    let ground_y = rays.body.point.y;
+    ik.pelvis_drop = ground_y - ik.pelvis.follow(ground_y - needed, dt);
     pelvis.y -= ik.pelvis_drop;
 
     // Legs.
@@ -344,6 +349,7 @@ pub fn foot_ik_stage(
     });
     ik.last_ankles = ankles;
     ik.sole_targets = [feet[0].centre, feet[1].centre];
+    ik.flat_heights = Some(flat_heights);
     ik.contact_points = [0, 1].map(|k| feet[k].lowest + (soles[k].heel - feet[k].sole.heel));
     states
 }

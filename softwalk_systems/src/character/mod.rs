@@ -37,10 +37,12 @@ mod ik;
 mod mesh;
 mod metrics;
 mod path;
+mod pelvis;
 mod pose;
 mod rays;
 mod skeleton;
 mod step;
+mod support;
 
 pub use balance::{
     Balance, DEFAULT_LEAN_STIFFNESS, DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING,
@@ -62,3 +64,4 @@ pub use pose::Pose;
 pub use rays::{FootRays, GroundKey, foot_raycast_stage};
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use step::{Character, step_character};
+pub use support::{FootSupport, SINK_TIME, SupportPoint};

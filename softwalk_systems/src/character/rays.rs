@@ -1,58 +1,48 @@
-//! Stage 2, the foot rays: a vertical ray from above each foot (and one under
-//! the pelvis) onto the ground. The hit under a foot is that leg's IK key.
+//! Stage 2, the foot rays: vertical rays onto the ground give each foot its
+//! IK key (through its [`FootSupport`]) and the body its reference ground.
 
 use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
 use super::foot_ik::sole_direction;
-use super::gait::Gait;
-use crate::ground::{Ground, GroundHit};
+use super::gait::{FootPlan, Gait};
+use super::support::{FootSupport, SupportPoint};
+use crate::ground::Ground;
 
 /// Height above everything a character could stand on, used for the very first rays.
 const FIRST_RAY_HEIGHT: f32 = 1.0e4;
+/// Distance from the pelvis of the four outer samples of the body's ground, metres.
+const BODY_SAMPLE_REACH: f32 = 0.3;
 
-/// What a vertical ray found.
+/// What a foot stands on this step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GroundKey {
-    /// The ground point (when the ray missed: the last height found, at the new x, z).
+    /// The ground point under the part of the sole that touches (or will
+    /// touch) the ground (see [`FootPlan::contact_along`]).
     pub point: Vec3,
-    /// Unit ground normal (when the ray missed: the last normal found).
+    /// Unit ground normal.
     pub normal: Vec3,
-    /// False when the ray found nothing this step (off the terrain).
+    /// False when the ray found nothing this step (no ground there).
     pub hit: bool,
-}
-
-impl GroundKey {
-    fn update(&mut self, at: Vec2, found: Option<GroundHit>) {
-        match found {
-            Some(h) => {
-                *self = GroundKey {
-                    point: h.point,
-                    normal: h.normal,
-                    hit: true,
-                }
-            }
-            None => {
-                self.point = Vec3::new(at.x, self.point.y, at.y);
-                self.hit = false;
-            }
-        }
-    }
 }
 
 /// The ground keys of one character: one per foot (left first) and one under the pelvis.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootRays {
-    /// Under the point where each sole touches the ground (see
-    /// [`super::FootPlan::contact`]): the IK keys.
+    /// The IK keys.
     pub feet: [GroundKey; 2],
-    /// Under the pelvis: the reference height and slope of the body.
+    /// Where each foot stands or will land (left first).
+    pub support: [FootSupport; 2],
+    /// The body's ground: the floor a planted foot would sink to, averaged
+    /// over a cross of samples around the pelvis (so prints and rims under
+    /// the pelvis do not jolt it), and the slope of that floor.
     pub body: GroundKey,
 }
 
 impl FootRays {
-    /// First keys for a gait, cast from high above (a miss reads as height 0, normal up).
-    pub fn new(gait: &Gait, ground: &dyn Ground) -> Self {
+    /// First keys for a gait, cast from high above, both feet on the
+    /// surface of their footholds (a miss reads as height 0, normal up).
+    pub fn new(gait: &Gait, body: &CharacterBody, ground: &dyn Ground) -> Self {
         let blank = GroundKey {
             point: Vec3::ZERO,
             normal: Vec3::Y,
@@ -60,37 +50,104 @@ impl FootRays {
         };
         let mut rays = FootRays {
             feet: [blank; 2],
+            support: [FootSupport::planted_on(SupportPoint::rigid(Vec3::ZERO)); 2],
             body: blank,
         };
-        rays.cast(gait, ground, |_| FIRST_RAY_HEIGHT);
+        rays.body = body_ground(gait, ground, FIRST_RAY_HEIGHT, blank);
+        for (support, plan) in rays.support.iter_mut().zip(&gait.feet) {
+            let at = plan.from;
+            let found = ground.cast_down(at.x, at.y, FIRST_RAY_HEIGHT);
+            let point = found.map_or(
+                SupportPoint::rigid(Vec3::new(at.x, rays.body.point.y, at.y)),
+                |h| SupportPoint {
+                    point: h.point,
+                    normal: h.normal,
+                    give: h.give,
+                },
+            );
+            *support = FootSupport::planted_on(point);
+        }
+        rays.advance(gait, body, ground, 0.0);
         rays
     }
 
-    fn cast(&mut self, gait: &Gait, ground: &dyn Ground, from_y: impl Fn(&GroundKey) -> f32) {
-        for (key, plan) in self.feet.iter_mut().zip(&gait.feet) {
-            // The sole lies along the ground: its contact point is
-            // `contact_along` metres along the slope from the sole centre
-            // (using last step's normal), which is less than that horizontally.
-            let along = sole_direction(plan.heading, key.normal);
-            let at = plan.target + Vec2::new(along.x, along.z) * plan.contact_along;
-            key.update(at, ground.cast_down(at.x, at.y, from_y(key)));
+    fn advance(&mut self, gait: &Gait, body: &CharacterBody, ground: &dyn Ground, dt: f32) {
+        let from_y = self.body.point.y + body.desc.height + body.hip_height;
+        self.body = body_ground(gait, ground, from_y, self.body);
+        for k in 0..2 {
+            let plan = &gait.feet[k];
+            let (centre, normal) = self.support[k].advance(plan, ground, from_y, gait.params.clearance, dt);
+            self.feet[k] = contact_key(plan, centre, normal, self.support[k].hit);
         }
-        let at = gait.pelvis.position;
-        let found = ground.cast_down(at.x, at.y, from_y(&self.body));
-        self.body.update(at, found);
     }
 }
 
-/// Stage 2: casts each foot's ray from a hip height above its last key.
+/// The key under the part of the sole that touches the ground: `centre` (the
+/// ground under the sole centre) moved `contact_along` along the sole, which
+/// lies in the ground's tangent plane.
+fn contact_key(plan: &FootPlan, centre: Vec3, normal: Vec3, hit: bool) -> GroundKey {
+    let along = sole_direction(plan.heading, normal);
+    GroundKey {
+        point: centre + along * plan.contact_along,
+        normal,
+        hit,
+    }
+}
+
+/// The body's ground: the mean floor (surface minus give) under the pelvis
+/// and four points around it, with the normal of the plane through them.
+/// Rays that find nothing are left out; when all miss, `last` moves along.
+fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -> GroundKey {
+    let at = gait.pelvis.position;
+    let forward = gait.pelvis.heading;
+    let right = Vec2::new(-forward.y, forward.x);
+    let floor = |p: Vec2| {
+        ground
+            .cast_down(p.x, p.y, from_y)
+            .map(|h| h.point.y - h.give.max(0.0))
+    };
+    let r = BODY_SAMPLE_REACH;
+    let samples = [
+        floor(at),
+        floor(at + forward * r),
+        floor(at - forward * r),
+        floor(at + right * r),
+        floor(at - right * r),
+    ];
+    let found: Vec<f32> = samples.iter().flatten().copied().collect();
+    if found.is_empty() {
+        return GroundKey {
+            point: Vec3::new(at.x, last.point.y, at.y),
+            hit: false,
+            ..last
+        };
+    }
+    let mean = found.iter().sum::<f32>() / found.len() as f32;
+    let grade = |ahead: Option<f32>, behind: Option<f32>| match (ahead, behind) {
+        (Some(a), Some(b)) => (a - b) / (2.0 * r),
+        _ => 0.0,
+    };
+    let along = grade(samples[1], samples[2]);
+    let across = grade(samples[3], samples[4]);
+    let rise = Vec3::new(forward.x, 0.0, forward.y) * along + Vec3::new(right.x, 0.0, right.y) * across;
+    GroundKey {
+        point: Vec3::new(at.x, mean, at.y),
+        normal: (Vec3::Y - rise).normalize(),
+        hit: true,
+    }
+}
+
+/// Stage 2: advances each foot's support by `dt` and casts the body's rays.
 ///
-/// Off the terrain (no hit) a key keeps its last height and normal and
-/// reports `hit = false`; nothing becomes NaN.
+/// Rays start a body height above the body's ground; where nothing is found
+/// a key keeps its last height and normal and reports `hit = false`; nothing
+/// becomes NaN.
 pub fn foot_raycast_stage(
     rays: &mut FootRays,
     gait: &Gait,
     body: &CharacterBody,
     ground: &dyn Ground,
+    dt: f32,
 ) {
-    let above = body.hip_height;
-    rays.cast(gait, ground, |key| key.point.y + above);
+    rays.advance(gait, body, ground, super::gait::clamp_dt(dt));
 }

@@ -52,7 +52,7 @@ impl Character {
         let balance = Balance::new(desc.alpha, desc.beta)?;
         let modifiers = GaitModifiers::default();
         let gait = Gait::new(&body, path, &modifiers);
-        let rays = FootRays::new(&gait, ground);
+        let rays = FootRays::new(&gait, &body, ground);
         let proxy = RigidProxy::new(&body);
         let mut ik = FootIK::default();
         let mut pose = Pose::rest(&body, Vec3::ZERO);
@@ -78,7 +78,7 @@ impl Character {
 pub fn step_character(character: &mut Character, path: &WalkPath, ground: &dyn Ground, dt: f32) {
     let c = character;
     gait_stage(&mut c.gait, &c.body, path, &c.modifiers, dt);
-    foot_raycast_stage(&mut c.rays, &c.gait, &c.body, ground);
+    foot_raycast_stage(&mut c.rays, &c.gait, &c.body, ground, dt);
     balance_stage(&mut c.proxy, &c.balance, &c.body, &c.gait, &c.rays, dt);
     c.feet = foot_ik_stage(
         &mut c.ik,

@@ -131,10 +131,10 @@ impl SimBuilder {
         let world = &self.app.world;
         let scene = world.resource::<RayScene>();
         let mut terrains = world.query::<&Heightfield>();
-        let grid = terrains.iter().next().map(|t| t.grid());
+        let terrain = terrains.iter().next();
         f(&SceneGround {
             scene: &scene,
-            grid,
+            terrain,
         })
     }
 

@@ -93,14 +93,15 @@ pub fn foot_raycast_system(world: &mut World) {
     let Some(scene) = scene.as_deref() else {
         return;
     };
+    let dt = step_dt(world);
     let mut terrains = world.query::<&Heightfield>();
-    let grid = terrains.iter().next().map(|t| t.grid());
-    let ground = SceneGround { scene, grid };
+    let terrain = terrains.iter().next();
+    let ground = SceneGround { scene, terrain };
     for (rays, gait, body) in world
         .query::<(&mut FootRays, &Gait, &CharacterBody)>()
         .iter()
     {
-        foot_raycast_stage(rays, gait, body, &ground);
+        foot_raycast_stage(rays, gait, body, &ground, dt);
     }
 }
 

@@ -11,8 +11,8 @@ use crate::vegetation::PlatformSettings;
 
 /// System `platform`: advances each foot's virtual platform (paper §3.2) from
 /// the foot's last state and the real ground key, then lets the foot ray see
-/// it: where a standing platform's top covers the ray and lies above the real
-/// ground, it becomes the IK key.
+/// it: where a standing platform's top covers the foot's sole centre and
+/// lies above the real ground, it becomes the IK key.
 pub fn platform_system(world: &mut World) {
     let dt = step_dt(world);
     let mut patch_query = world.query::<&GrassPatch>();
@@ -29,7 +29,7 @@ pub fn platform_system(world: &mut World) {
             let key = &mut rays.feet[k];
             platform.update(foot, key.point.y, height, dt, &settings);
             if let Some(top) = platform.top(&settings)
-                && top.covers(key.point.x, key.point.z)
+                && top.covers(at.x, at.z)
                 && top.top_y > key.point.y
             {
                 key.point.y = top.top_y;

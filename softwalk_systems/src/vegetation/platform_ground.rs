@@ -60,6 +60,7 @@ impl<G: Ground + ?Sized> Ground for PlatformGround<'_, G> {
             Some(y) => Some(GroundHit {
                 point: Vec3::new(x, y, z),
                 normal: Vec3::Y,
+                give: 0.0,
             }),
             None => Some(real),
         }

@@ -1,0 +1,81 @@
+//! The pelvis height as a critically damped follower: it goes after the
+//! height the legs need with a bounded speed and acceleration, so a deeper
+//! print or a foot that cannot reach lowers the body smoothly, never in one
+//! step. The target's own rate (bounded too) is fed forward, so a steady
+//! slope is followed without lag.
+
+/// Time constant of the follower, seconds (critically damped: no overshoot
+/// without the bounds).
+pub const PELVIS_RESPONSE_TIME: f32 = 0.08;
+/// Fastest the pelvis base moves, m/s (the gait's bob comes on top).
+pub const PELVIS_MAX_SPEED: f32 = 0.3;
+/// Largest acceleration of the pelvis base, m/s².
+pub const PELVIS_MAX_ACCELERATION: f32 = 6.0;
+
+/// The pelvis base height (the walking height's floor) and its vertical speed.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PelvisFollower {
+    /// Current base height, metres.
+    pub height: f32,
+    /// Current vertical speed, m/s.
+    pub speed: f32,
+    /// The target of the last step, metres (its rate of change is fed
+    /// forward, so a steady slope is followed without lag).
+    pub last_target: f32,
+    /// False until the first step places it.
+    pub placed: bool,
+}
+
+impl PelvisFollower {
+    /// Moves towards `target` over `dt` seconds; a `dt` of 0 (or the first
+    /// call) jumps to it at rest.
+    pub fn follow(&mut self, target: f32, dt: f32) -> f32 {
+        if dt <= 0.0 || !self.placed {
+            *self = PelvisFollower {
+                height: target,
+                speed: 0.0,
+                last_target: target,
+                placed: true,
+            };
+            return self.height;
+        }
+        let w = 1.0 / PELVIS_RESPONSE_TIME;
+        let target_speed =
+            ((target - self.last_target) / dt).clamp(-PELVIS_MAX_SPEED, PELVIS_MAX_SPEED);
+        self.last_target = target;
+        let pull = w * w * (target - self.height) + 2.0 * w * (target_speed - self.speed);
+        let accel = pull.clamp(-PELVIS_MAX_ACCELERATION, PELVIS_MAX_ACCELERATION);
+        self.speed = (self.speed + accel * dt).clamp(-PELVIS_MAX_SPEED, PELVIS_MAX_SPEED);
+        self.height += self.speed * dt;
+        self.height
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_in_the_target_is_followed_within_the_bounds() {
+        let mut p = PelvisFollower::default();
+        p.follow(1.0, 0.0);
+        let dt = 1.0 / 60.0;
+        let mut last = p.height;
+        for _ in 0..120 {
+            let h = p.follow(0.7, dt);
+            assert!((last - h).abs() <= PELVIS_MAX_SPEED * dt + 1e-6);
+            assert!(h >= 0.7 - 1e-3, "no undershoot: {h}");
+            last = h;
+        }
+        assert!((p.height - 0.7).abs() < 1e-3);
+    }
+
+    #[test]
+    fn zero_dt_places_at_rest() {
+        let mut p = PelvisFollower::default();
+        p.follow(0.5, 1.0 / 60.0);
+        assert_eq!(p.height, 0.5);
+        p.follow(0.2, 0.0);
+        assert_eq!((p.height, p.speed), (0.2, 0.0));
+    }
+}
