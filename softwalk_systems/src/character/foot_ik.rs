@@ -7,7 +7,7 @@ use glam::{Quat, Vec2, Vec3};
 use super::balance::RigidProxy;
 use super::body::CharacterBody;
 use super::gait::{FootPlan, Gait, clamp_dt, contact_offset};
-use super::ik::solve_two_bone;
+use super::ik::{flexion_at_distance, limit_flexion_change, solve_two_bone};
 use super::pelvis::PelvisFollower;
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
@@ -40,6 +40,9 @@ pub struct FootIK {
     /// dropping into a print), so a foot drops onto the ground instead of
     /// teleporting.
     pub flat_heights: Option<[f32; 2]>,
+    /// Knee flexion of each leg last step, radians: it changes by at most
+    /// [`MAX_KNEE_SPEED`].
+    pub knee_flexion: Option<[f32; 2]>,
 }
 
 impl Default for FootIK {
@@ -52,6 +55,7 @@ impl Default for FootIK {
             contact_points: [Vec3::ZERO; 2],
             last_ankles: [Vec3::ZERO; 2],
             flat_heights: None,
+            knee_flexion: None,
         }
     }
 }
@@ -67,6 +71,9 @@ const MAX_HEEL_LIFT: f32 = 1.1;
 const MAX_TOE_LIFT: f32 = 0.6;
 /// Fastest change of the extra foot pitch, rad/s (ankle speeds of real gait).
 const MAX_PITCH_RATE: f32 = 6.0;
+/// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
+/// peaks at about 400–450°/s).
+pub const MAX_KNEE_SPEED: f32 = 9.5;
 /// Fastest a foot's target falls, m/s.
 pub const MAX_FOOT_FALL_SPEED: f32 = 1.5;
 /// Bisection steps when solving the foot pitch a leg needs (resolution below 0.001 rad).
@@ -281,10 +288,17 @@ pub fn foot_ik_stage(
     ];
     let foot_radius = body.bone_radius(super::skeleton::Bone::FootLeft);
     let mut soles = [feet[0].sole, feet[1].sole];
+    let mut knees = [0.0; 2];
     for (k, &(hip, knee, ankle, toe)) in legs.iter().enumerate() {
         let hip_at = hips[k] - Vec3::Y * ik.pelvis_drop;
         let pole = hip_at + forward * body.leg_reach();
-        let s = solve_two_bone(hip_at, feet[k].ankle, pole, body.thigh, body.shank);
+        let mut ankle_target = feet[k].ankle;
+        if let (Some(last), true) = (ik.knee_flexion, dt > 0.0) {
+            let (step, l1, l2) = (MAX_KNEE_SPEED * dt, body.thigh, body.shank);
+            ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
+        }
+        let s = solve_two_bone(hip_at, ankle_target, pole, body.thigh, body.shank);
+        knees[k] = flexion_at_distance(s.end.distance(hip_at), body.thigh, body.shank);
         // The foot follows the ankle the IK really reached.
         let miss = s.end - feet[k].ankle;
         soles[k].heel += miss;
@@ -350,6 +364,7 @@ pub fn foot_ik_stage(
     ik.last_ankles = ankles;
     ik.sole_targets = [feet[0].centre, feet[1].centre];
     ik.flat_heights = Some(flat_heights);
+    ik.knee_flexion = Some(knees);
     ik.contact_points = [0, 1].map(|k| feet[k].lowest + (soles[k].heel - feet[k].sole.heel));
     states
 }

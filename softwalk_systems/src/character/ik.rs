@@ -37,9 +37,68 @@ pub fn solve_two_bone(root: Vec3, target: Vec3, pole: Vec3, l1: f32, l2: f32) ->
     }
 }
 
+/// Knee flexion (0 = straight) of a chain `l1`, `l2` whose ends are
+/// `distance` apart (clamped to what the chain can span), radians.
+pub fn flexion_at_distance(distance: f32, l1: f32, l2: f32) -> f32 {
+    let d = distance.clamp((l1 - l2).abs(), l1 + l2);
+    ((d * d - l1 * l1 - l2 * l2) / (2.0 * l1 * l2))
+        .clamp(-1.0, 1.0)
+        .acos()
+}
+
+/// Distance between the ends of a chain `l1`, `l2` bent by `flexion` radians.
+pub fn distance_at_flexion(flexion: f32, l1: f32, l2: f32) -> f32 {
+    (l1 * l1 + l2 * l2 + 2.0 * l1 * l2 * flexion.cos())
+        .max(0.0)
+        .sqrt()
+}
+
+/// `target` moved along the line from `root` so that the chain's flexion
+/// differs from `last` by at most `max_change` radians: a joint cannot turn
+/// faster than its muscles, so a target that jumps is followed over a few
+/// steps instead of in one.
+pub fn limit_flexion_change(
+    root: Vec3,
+    target: Vec3,
+    last: f32,
+    max_change: f32,
+    l1: f32,
+    l2: f32,
+) -> Vec3 {
+    let to = target - root;
+    let flexion = flexion_at_distance(to.length(), l1, l2);
+    let limited = flexion.clamp(last - max_change, last + max_change);
+    if limited == flexion {
+        return target;
+    }
+    let dir = to.try_normalize().unwrap_or(Vec3::NEG_Y);
+    root + dir * distance_at_flexion(limited, l1, l2)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn flexion_and_distance_are_inverse() {
+        for flexion in [0.0f32, 0.3, 1.2, 2.0] {
+            let d = distance_at_flexion(flexion, 0.45, 0.43);
+            assert!((flexion_at_distance(d, 0.45, 0.43) - flexion).abs() < 1e-3);
+        }
+    }
+
+    #[test]
+    fn flexion_change_is_limited_along_the_line() {
+        let root = Vec3::new(0.0, 1.0, 0.0);
+        let target = Vec3::new(0.0, 0.4, 0.0);
+        let limited = limit_flexion_change(root, target, 0.1, 0.1, 0.45, 0.45);
+        let s = solve_two_bone(root, limited, root + Vec3::Z, 0.45, 0.45);
+        let flexion = (s.mid - root).angle_between(s.end - s.mid);
+        assert!((flexion - 0.2).abs() < 1e-3, "{flexion}");
+        assert!(limited.x.abs() < 1e-6 && limited.y > target.y);
+        let free = limit_flexion_change(root, target, 1.5, 2.0, 0.45, 0.45);
+        assert_eq!(free, target);
+    }
 
     #[test]
     fn reachable_targets_are_reached_exactly_with_bone_lengths_kept() {

@@ -14,8 +14,8 @@ use crate::foot::FootPhase;
 use crate::ground::{Ground, GroundHit};
 
 /// Time a planted foot takes to sink to its full print, seconds: the weight
-/// comes onto the leg over the loading response and early midstance.
-pub const SINK_TIME: f32 = 0.25;
+/// comes onto the leg over the loading response.
+pub const SINK_TIME: f32 = 0.2;
 
 /// Least height of a swinging foot over the higher of the print it left and
 /// the ground it lands on, metres.
@@ -87,6 +87,8 @@ pub struct FootSupport {
     pub landing: SupportPoint,
     /// The sole-centre ground point the foot left at lift-off (sunk), and its normal.
     pub left: SupportPoint,
+    /// The surface the foot left, before it sank: the top of its print.
+    pub left_rim: f32,
     /// Seconds since the foot landed (0 while swinging).
     pub planted_for: f32,
     /// True while the foot is planted.
@@ -101,6 +103,7 @@ impl FootSupport {
         FootSupport {
             landing: point,
             left: point,
+            left_rim: point.point.y,
             planted_for: 0.0,
             planted: true,
             hit: true,
@@ -110,7 +113,10 @@ impl FootSupport {
     /// How far the planted foot has sunk into its print, metres.
     pub fn sink(&self) -> f32 {
         if self.planted {
-            self.landing.give * smoothstep(self.planted_for / SINK_TIME)
+            // Fastest at touchdown (the foot arrives moving down), easing
+            // out as the print reaches its floor.
+            let s = (self.planted_for / SINK_TIME).clamp(0.0, 1.0);
+            self.landing.give * (1.0 - (1.0 - s) * (1.0 - s))
         } else {
             0.0
         }
@@ -150,6 +156,7 @@ impl FootSupport {
                 point: self.landing.point - Vec3::Y * self.sink(),
                 ..self.landing
             };
+            self.left_rim = self.landing.point.y;
             self.planted = false;
             self.planted_for = 0.0;
         }
@@ -164,14 +171,15 @@ impl FootSupport {
     /// the swing's own lift `clearance` to come on top: from the print it
     /// left to its landing. Between two footholds of different heights (out
     /// of a deep print, or down into one) the foot rises early and clears
-    /// the higher one by at least [`RIM_CLEARANCE`], the way a leg steps
+    /// the higher of its landing and the print's rim by at least
+    /// [`RIM_CLEARANCE`], the way a leg steps
     /// out of deep snow with the hip, not by dragging the foot.
     fn swing_ground(&self, u: f32, clearance: f32) -> (f32, Vec3) {
         let u = u.clamp(0.0, 1.0);
         let eased = smoothstep(u);
         let (from, to) = (self.left.point.y, self.landing.point.y);
         let base = from + (to - from) * eased;
-        let apex = (from.min(to) + clearance).max(from.max(to) + RIM_CLEARANCE);
+        let apex = (from.min(to) + clearance).max(self.left_rim.max(to) + RIM_CLEARANCE);
         let top = apex - clearance;
         let held = smoothstep(u.min(1.0 - u) / STEP_OUT_TIME);
         let y = base + (top - base).max(0.0) * held;
