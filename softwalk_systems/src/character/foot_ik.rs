@@ -104,13 +104,15 @@ struct FootFrame {
 
 impl FootFrame {
     /// The flat sole whose scheduled contact point stands on the key
-    /// (raised by the swing lift), aligned to the key's normal.
+    /// (raised by the swing lift), aligned to the key's normal; its centre
+    /// never goes below a platform under it.
     fn new(key: &GroundKey, plan: &FootPlan) -> Self {
         let normal = key.normal;
         let along = sole_direction(plan.heading, normal);
-        let contact = key.point + Vec3::Y * plan.lift;
+        let mut centre = key.point + Vec3::Y * plan.lift - along * plan.contact_along;
+        centre.y = centre.y.max(key.platform.unwrap_or(f32::MIN));
         FootFrame {
-            centre: contact - along * plan.contact_along,
+            centre,
             normal,
             along,
             contact_along: plan.contact_along,
@@ -345,6 +347,7 @@ pub fn foot_ik_stage(
     pose.right = right;
 
     let ankles = [pose.joint(Joint::AnkleLeft), pose.joint(Joint::AnkleRight)];
+    ik.contact_points = [0, 1].map(|k| feet[k].lowest + (soles[k].heel - feet[k].sole.heel));
     let states = Side::BOTH.map(|side| {
         let k = side.index();
         let plan = &gait.feet[k];
@@ -358,13 +361,13 @@ pub fn foot_ik_stage(
                 Vec3::ZERO
             },
             phase: plan.phase,
-            contact: plan.phase == FootPhase::Stance && rays.feet[k].hit,
+            contact: rays.feet[k].hit && rays.feet[k].pressing,
         }
     });
+    if std::env::var_os("SW_DEBUG").is_some() { eprintln!("DBG ground {:.3} drop {:.3} pelvis {:.3} ", rays.body.point.y, ik.pelvis_drop, pelvis.y); eprintln!("DBG {:?} key {:.3} pressing {} plat {:?} heel {:.3} toe {:.3} contact {} flex {:.1} lift {:.3} pitch {:.2}", gait.feet[0].phase, rays.feet[0].point.y, rays.feet[0].pressing, rays.feet[0].platform, states[0].sole.heel.y, states[0].sole.toe.y, states[0].contact, knees[0].to_degrees(), gait.feet[0].lift, gait.feet[0].pitch); }
     ik.last_ankles = ankles;
     ik.sole_targets = [feet[0].centre, feet[1].centre];
     ik.flat_heights = Some(flat_heights);
     ik.knee_flexion = Some(knees);
-    ik.contact_points = [0, 1].map(|k| feet[k].lowest + (soles[k].heel - feet[k].sole.heel));
     states
 }

@@ -64,4 +64,4 @@ pub use pose::Pose;
 pub use rays::{FootRays, GroundKey, foot_raycast_stage};
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use step::{Character, step_character};
-pub use support::{FootSupport, SINK_TIME, SupportPoint};
+pub use support::{FootSupport, RIM_CLEARANCE, SupportPoint};

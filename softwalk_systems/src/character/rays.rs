@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
 use super::foot_ik::sole_direction;
-use super::gait::{FootPlan, Gait};
+use super::gait::Gait;
 use super::support::{FootSupport, SupportPoint};
 use crate::ground::Ground;
 
@@ -24,6 +24,12 @@ pub struct GroundKey {
     pub normal: Vec3,
     /// False when the ray found nothing this step (no ground there).
     pub hit: bool,
+    /// True while the foot presses the ground: planted, or pushing into its
+    /// landing at the end of the swing.
+    pub pressing: bool,
+    /// Top of a virtual platform under the foot (set by the vegetation's
+    /// platform system): the sole centre stays on or above it.
+    pub platform: Option<f32>,
 }
 
 /// The ground keys of one character: one per foot (left first) and one under the pelvis.
@@ -47,6 +53,8 @@ impl FootRays {
             point: Vec3::ZERO,
             normal: Vec3::Y,
             hit: false,
+            pressing: false,
+            platform: None,
         };
         let mut rays = FootRays {
             feet: [blank; 2],
@@ -59,38 +67,30 @@ impl FootRays {
             let found = ground.cast_down(at.x, at.y, FIRST_RAY_HEIGHT);
             let point = found.map_or(
                 SupportPoint::rigid(Vec3::new(at.x, rays.body.point.y, at.y)),
-                |h| SupportPoint {
-                    point: h.point,
-                    normal: h.normal,
-                    give: h.give,
-                },
+                SupportPoint::from_hit,
             );
             *support = FootSupport::planted_on(point);
         }
-        rays.advance(gait, body, ground, 0.0);
+        rays.advance(gait, body, ground);
         rays
     }
 
-    fn advance(&mut self, gait: &Gait, body: &CharacterBody, ground: &dyn Ground, dt: f32) {
+    fn advance(&mut self, gait: &Gait, body: &CharacterBody, ground: &dyn Ground) {
         let from_y = self.body.point.y + body.desc.height + body.hip_height;
         self.body = body_ground(gait, ground, from_y, self.body);
         for k in 0..2 {
             let plan = &gait.feet[k];
-            let (centre, normal) = self.support[k].advance(plan, ground, from_y, gait.params.clearance, dt);
-            self.feet[k] = contact_key(plan, centre, normal, self.support[k].hit);
+            let (centre, normal, pressing) =
+                self.support[k].advance(plan, &gait.params, ground, from_y);
+            let along = sole_direction(plan.heading, normal);
+            self.feet[k] = GroundKey {
+                point: centre + along * plan.contact_along,
+                normal,
+                hit: self.support[k].hit,
+                pressing,
+                platform: None,
+            };
         }
-    }
-}
-
-/// The key under the part of the sole that touches the ground: `centre` (the
-/// ground under the sole centre) moved `contact_along` along the sole, which
-/// lies in the ground's tangent plane.
-fn contact_key(plan: &FootPlan, centre: Vec3, normal: Vec3, hit: bool) -> GroundKey {
-    let along = sole_direction(plan.heading, normal);
-    GroundKey {
-        point: centre + along * plan.contact_along,
-        normal,
-        hit,
     }
 }
 
@@ -134,10 +134,12 @@ fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -
         point: Vec3::new(at.x, mean, at.y),
         normal: (Vec3::Y - rise).normalize(),
         hit: true,
+        pressing: false,
+        platform: None,
     }
 }
 
-/// Stage 2: advances each foot's support by `dt` and casts the body's rays.
+/// Stage 2: advances each foot's support and casts the body's rays.
 ///
 /// Rays start a body height above the body's ground; where nothing is found
 /// a key keeps its last height and normal and reports `hit = false`; nothing
@@ -147,7 +149,6 @@ pub fn foot_raycast_stage(
     gait: &Gait,
     body: &CharacterBody,
     ground: &dyn Ground,
-    dt: f32,
 ) {
-    rays.advance(gait, body, ground, super::gait::clamp_dt(dt));
+    rays.advance(gait, body, ground);
 }

@@ -78,7 +78,7 @@ impl Character {
 pub fn step_character(character: &mut Character, path: &WalkPath, ground: &dyn Ground, dt: f32) {
     let c = character;
     gait_stage(&mut c.gait, &c.body, path, &c.modifiers, dt);
-    foot_raycast_stage(&mut c.rays, &c.gait, &c.body, ground, dt);
+    foot_raycast_stage(&mut c.rays, &c.gait, &c.body, ground);
     balance_stage(&mut c.proxy, &c.balance, &c.body, &c.gait, &c.rays, dt);
     c.feet = foot_ik_stage(
         &mut c.ik,

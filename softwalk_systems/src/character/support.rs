@@ -1,28 +1,33 @@
-//! Where each foot stands: the ground under a planted foot is locked when it
-//! lands and sinks by the print the material predicts; a swinging foot
-//! travels from the print it left to the ground it will land on.
+//! Where each foot stands: the floor under a planted foot is locked when it
+//! lands (the surface lowered by the print the material predicts), and a
+//! swinging foot travels from the print it left to the floor of the print it
+//! will make, pushing into the ground at the end of the swing.
 //!
-//! This is what keeps the foot IK, the rays and carving from feeding each
-//! other: a planted foot does not re-read the cells it is carving (which
-//! would lower the foot, which would carve deeper, every step), and a
-//! swinging foot does not snap to every print wall and rim it passes over.
+//! This keeps the foot IK, the rays and carving from feeding each other: a
+//! planted foot does not re-read the cells it is carving (which would lower
+//! the foot, which would carve deeper, every step), and a swinging foot does
+//! not snap to every print wall and rim it passes over. The foot pushes into
+//! the ground over the ground's own [`SINK_TIME_S`], so it goes down as fast
+//! as carving presses the ground, never through it.
+
+use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::gait::FootPlan;
+use super::gait::{FootPlan, GaitParams};
+use crate::terrain::SINK_TIME_S;
 use crate::foot::FootPhase;
 use crate::ground::{Ground, GroundHit};
 
-/// Time a planted foot takes to sink to its full print, seconds: the weight
-/// comes onto the leg over the loading response.
-pub const SINK_TIME: f32 = 0.2;
-
-/// Least height of a swinging foot over the higher of the print it left and
-/// the ground it lands on, metres.
+/// Least height of a swinging foot over the higher of the print's rim it
+/// leaves and the ground it lands on, metres.
 pub const RIM_CLEARANCE: f32 = 0.03;
 /// Fraction of the swing over which a foot rises out of a print (and, at
-/// the end, settles into a lower landing).
+/// the end, comes down into a lower landing).
 const STEP_OUT_TIME: f32 = 0.3;
+/// Give of a landing (metres) from which a foot pushes into it for the
+/// ground's whole [`SINK_TIME_S`]; a landing that gives less takes less.
+pub const FULL_PUSH_GIVE: f32 = 0.02;
 
 fn smoothstep(t: f32) -> f32 {
     let t = t.clamp(0.0, 1.0);
@@ -50,17 +55,18 @@ impl SupportPoint {
         }
     }
 
-    /// The floor a planted foot sinks to: the surface lowered by the give.
-    pub fn floor(&self) -> f32 {
-        self.point.y - self.give
-    }
-
-    fn from_hit(hit: GroundHit) -> Self {
+    /// What a ray found.
+    pub fn from_hit(hit: GroundHit) -> Self {
         SupportPoint {
             point: hit.point,
             normal: hit.normal,
             give: hit.give.max(0.0),
         }
+    }
+
+    /// The floor a planted foot stands on: the surface lowered by the give.
+    pub fn floor(&self) -> Vec3 {
+        self.point - Vec3::Y * self.give
     }
 
     /// Moves to `at` (x, z) with what a ray found there; a miss keeps the
@@ -82,15 +88,13 @@ impl SupportPoint {
 /// One foot's support: locked while planted, interpolated while swinging.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootSupport {
-    /// Stance: the ground under the sole centre when this contact began,
-    /// before it sank. Swing: the ground at the planned foothold.
+    /// The ground at the foothold, aimed during the swing and locked once
+    /// the foot starts pressing it.
     pub landing: SupportPoint,
-    /// The sole-centre ground point the foot left at lift-off (sunk), and its normal.
+    /// The floor the foot left at lift-off, and its normal.
     pub left: SupportPoint,
-    /// The surface the foot left, before it sank: the top of its print.
+    /// The surface the foot left, before it was pressed: the top of its print.
     pub left_rim: f32,
-    /// Seconds since the foot landed (0 while swinging).
-    pub planted_for: f32,
     /// True while the foot is planted.
     pub planted: bool,
     /// False when the last ray for this foot found nothing.
@@ -98,97 +102,94 @@ pub struct FootSupport {
 }
 
 impl FootSupport {
-    /// A foot planted (and already sunk) on `point`.
+    /// A foot planted on `point`.
     pub fn planted_on(point: SupportPoint) -> Self {
         FootSupport {
             landing: point,
             left: point,
             left_rim: point.point.y,
-            planted_for: 0.0,
             planted: true,
             hit: true,
         }
     }
 
-    /// How far the planted foot has sunk into its print, metres.
-    pub fn sink(&self) -> f32 {
-        if self.planted {
-            // Fastest at touchdown (the foot arrives moving down), easing
-            // out as the print reaches its floor.
-            let s = (self.planted_for / SINK_TIME).clamp(0.0, 1.0);
-            self.landing.give * (1.0 - (1.0 - s) * (1.0 - s))
-        } else {
-            0.0
-        }
-    }
-
-    /// The floor this foot stands on, or will once sunk: for a swinging
-    /// foot, the floor at its next foothold.
+    /// The floor height this foot stands on, or (swinging) will stand on.
     pub fn floor(&self) -> f32 {
-        self.landing.floor()
+        self.landing.floor().y
     }
 
-    /// Advances the support by `dt` for `plan` (whose swing lifts the foot
-    /// by up to `clearance`), casting rays from `from_y`; returns the ground
-    /// point under the sole centre and its normal (for a swinging foot, the
-    /// ground its lift is measured from).
+    /// Advances the support for `plan` under `params` (the swing lift, the
+    /// swing's duration), casting rays from `from_y`; returns the ground
+    /// point under the sole centre its lift is measured from, its normal, and
+    /// whether the foot presses the ground (planted, or pushing in at the end
+    /// of its swing).
     pub fn advance(
         &mut self,
         plan: &FootPlan,
+        params: &GaitParams,
         ground: &dyn Ground,
         from_y: f32,
-        clearance: f32,
-        dt: f32,
-    ) -> (Vec3, Vec3) {
+    ) -> (Vec3, Vec3, bool) {
         let cast = |at: Vec2| ground.cast_down(at.x, at.y, from_y);
         if plan.phase == FootPhase::Stance {
-            if self.planted {
-                self.planted_for += dt;
-            } else {
-                self.hit = self.landing.update(plan.foothold, cast(plan.foothold));
-                self.planted = true;
-                self.planted_for = 0.0;
-            }
-            return (self.landing.point - Vec3::Y * self.sink(), self.landing.normal);
+            // The landing was aimed (and locked) during the swing.
+            self.planted = true;
+            return (self.landing.floor(), self.landing.normal, true);
         }
         if self.planted {
             self.left = SupportPoint {
-                point: self.landing.point - Vec3::Y * self.sink(),
+                point: self.landing.floor(),
                 ..self.landing
             };
             self.left_rim = self.landing.point.y;
             self.planted = false;
-            self.planted_for = 0.0;
         }
-        self.hit = self.landing.update(plan.foothold, cast(plan.foothold));
-        let (y, normal) = self.swing_ground(plan.swing, clearance);
-        // Ground rising above the path between the two footholds lifts the foot.
-        let y = cast(plan.target).map_or(y, |h| y.max(h.point.y - plan.lift));
-        (Vec3::new(plan.target.x, y, plan.target.y), normal)
-    }
-
-    /// The ground a swinging foot travels over at swing progress `u`, with
-    /// the swing's own lift `clearance` to come on top: from the print it
-    /// left to its landing. Between two footholds of different heights (out
-    /// of a deep print, or down into one) the foot rises early and clears
-    /// the higher of its landing and the print's rim by at least
-    /// [`RIM_CLEARANCE`], the way a leg steps
-    /// out of deep snow with the hip, not by dragging the foot.
-    fn swing_ground(&self, u: f32, clearance: f32) -> (f32, Vec3) {
-        let u = u.clamp(0.0, 1.0);
-        let eased = smoothstep(u);
-        let (from, to) = (self.left.point.y, self.landing.point.y);
-        let base = from + (to - from) * eased;
-        let apex = (from.min(to) + clearance).max(self.left_rim.max(to) + RIM_CLEARANCE);
-        let top = apex - clearance;
-        let held = smoothstep(u.min(1.0 - u) / STEP_OUT_TIME);
-        let y = base + (top - base).max(0.0) * held;
+        let swing_time = params.cycle_time() * (1.0 - params.duty);
+        let u = plan.swing.clamp(0.0, 1.0);
+        let pushing_from = 1.0 - self.push_time() / swing_time.max(f32::EPSILON);
+        // The landing is aimed until the foot starts pushing into it; from
+        // then on it is carved, and must not be read back.
+        if u <= pushing_from {
+            self.hit = self.landing.update(plan.foothold, cast(plan.foothold));
+        }
         let normal = self
             .left
             .normal
-            .lerp(self.landing.normal, eased)
+            .lerp(self.landing.normal, smoothstep(u))
             .try_normalize()
             .unwrap_or(Vec3::Y);
-        (y, normal)
+        let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
+        if u > pushing_from {
+            let pushed = (u - pushing_from) / (1.0 - pushing_from);
+            return (at(self.landing.point.y - self.landing.give * pushed), normal, true);
+        }
+        let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
+        // Ground rising above the path between the two footholds lifts the foot.
+        let height = cast(plan.target).map_or(height, |h| height.max(h.point.y));
+        (at(height), normal, false)
+    }
+
+    /// Time the foot takes to push into its landing, seconds: as long as
+    /// the ground takes to give ([`SINK_TIME_S`]), shorter for a landing
+    /// that gives less than [`FULL_PUSH_GIVE`], none on rigid ground.
+    fn push_time(&self) -> f32 {
+        SINK_TIME_S * (self.landing.give / FULL_PUSH_GIVE).min(1.0)
+    }
+
+    /// Height of the sole's lowest point over the swing to the landing
+    /// surface, at progress `u` of that part, for a lift of `clearance`:
+    /// from the floor it left to the surface it lands on. Out of a print, or
+    /// into one, the foot rises early and clears the higher of the print's
+    /// rim and the landing surface by at least [`RIM_CLEARANCE`] (the way a
+    /// leg steps out of deep snow: with the hip, not by dragging the foot).
+    fn swing_height(&self, u: f32, clearance: f32) -> f32 {
+        let u = u.clamp(0.0, 1.0);
+        let (from, to) = (self.left.point.y, self.landing.point.y);
+        let rim = self.left_rim.max(to);
+        let base = from + (to - from) * smoothstep(u);
+        let apex = (from.min(to) + clearance).max(rim + RIM_CLEARANCE);
+        let top = apex - clearance;
+        let held = smoothstep(u.min(1.0 - u) / STEP_OUT_TIME);
+        base + (top - base).max(0.0) * held + clearance * (PI * u).sin()
     }
 }

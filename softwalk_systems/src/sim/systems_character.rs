@@ -93,7 +93,6 @@ pub fn foot_raycast_system(world: &mut World) {
     let Some(scene) = scene.as_deref() else {
         return;
     };
-    let dt = step_dt(world);
     let mut terrains = world.query::<&Heightfield>();
     let terrain = terrains.iter().next();
     let ground = SceneGround { scene, terrain };
@@ -101,7 +100,7 @@ pub fn foot_raycast_system(world: &mut World) {
         .query::<(&mut FootRays, &Gait, &CharacterBody)>()
         .iter()
     {
-        foot_raycast_stage(rays, gait, body, &ground, dt);
+        foot_raycast_stage(rays, gait, body, &ground);
     }
 }
 

@@ -10,9 +10,10 @@ use crate::vegetation::GrassPatch;
 use crate::vegetation::PlatformSettings;
 
 /// System `platform`: advances each foot's virtual platform (paper §3.2) from
-/// the foot's last state and the real ground key, then lets the foot ray see
-/// it: where a standing platform's top covers the foot's sole centre and
-/// lies above the real ground, it becomes the IK key.
+/// the foot's last state and the ground under its key, then lets the
+/// foot see it: where a standing platform's top covers the foot's sole
+/// centre and lies above the key, the sole stays on or above it
+/// ([`crate::character::GroundKey::platform`]).
 pub fn platform_system(world: &mut World) {
     let dt = step_dt(world);
     let mut patch_query = world.query::<&GrassPatch>();
@@ -28,13 +29,10 @@ pub fn platform_system(world: &mut World) {
             let height = vegetation.map_or(0.0, |(_, h)| h);
             let key = &mut rays.feet[k];
             platform.update(foot, key.point.y, height, dt, &settings);
-            if let Some(top) = platform.top(&settings)
-                && top.covers(at.x, at.z)
-                && top.top_y > key.point.y
-            {
-                key.point.y = top.top_y;
-                key.normal = glam::Vec3::Y;
-            }
+            key.platform = platform
+                .top(&settings)
+                .filter(|top| top.covers(at.x, at.z) && top.top_y > key.point.y)
+                .map(|top| top.top_y);
         }
     }
 }
