@@ -75,7 +75,7 @@ const MAX_PITCH_RATE: f32 = 6.0;
 /// peaks at about 400–450°/s).
 pub const MAX_KNEE_SPEED: f32 = 9.5;
 /// Fastest a foot's target falls, m/s.
-pub const MAX_FOOT_FALL_SPEED: f32 = 1.5;
+pub const MAX_FOOT_FALL_SPEED: f32 = 3.0;
 /// Bisection steps when solving the foot pitch a leg needs (resolution below 0.001 rad).
 const PITCH_STEPS: usize = 11;
 
