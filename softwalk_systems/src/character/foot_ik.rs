@@ -364,7 +364,6 @@ pub fn foot_ik_stage(
             contact: rays.feet[k].hit && rays.feet[k].pressing,
         }
     });
-    if std::env::var_os("SW_DEBUG").is_some() { eprintln!("DBG ground {:.3} drop {:.3} pelvis {:.3} ", rays.body.point.y, ik.pelvis_drop, pelvis.y); eprintln!("DBG {:?} key {:.3} pressing {} plat {:?} heel {:.3} toe {:.3} contact {} flex {:.1} lift {:.3} pitch {:.2}", gait.feet[0].phase, rays.feet[0].point.y, rays.feet[0].pressing, rays.feet[0].platform, states[0].sole.heel.y, states[0].sole.toe.y, states[0].contact, knees[0].to_degrees(), gait.feet[0].lift, gait.feet[0].pitch); }
     ik.last_ankles = ankles;
     ik.sole_targets = [feet[0].centre, feet[1].centre];
     ik.flat_heights = Some(flat_heights);

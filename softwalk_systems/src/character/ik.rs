@@ -95,7 +95,7 @@ mod tests {
         let s = solve_two_bone(root, limited, root + Vec3::Z, 0.45, 0.45);
         let flexion = (s.mid - root).angle_between(s.end - s.mid);
         assert!((flexion - 0.2).abs() < 1e-3, "{flexion}");
-        assert!(limited.x.abs() < 1e-6 && limited.y > target.y);
+        assert!(limited.x.abs() < 1e-6 && limited.y < target.y);
         let free = limit_flexion_change(root, target, 1.5, 2.0, 0.45, 0.45);
         assert_eq!(free, target);
     }

@@ -188,7 +188,6 @@ pub fn carve(
     // only what is under the sole now: a rolling foot lifts its heel
     // mid-stance, and smoothing must not pour the rim back under it every step.
     parts.changes.held.extend_from_slice(&print.pressed);
-    if std::env::var_os("SW_DEBUG").is_some() { eprintln!("CARVE removed {removed:.4} heel {:.3} toe {:.3} pressed {}", sole.heel.y, sole.toe.y, print.pressed.len()); }
     if removed == 0.0 {
         return Ok(GridRect::EMPTY);
     }
