@@ -105,15 +105,18 @@ impl FootPrint {
 
 /// One step of carving by one foot; returns the rectangle to smooth and settle.
 ///
-/// With `contact`, each sample under the [`Footprint`] sinks by the
+/// With `contact`, each sample under the [`Footprint`] (its edge
+/// anti-aliased: a sample within half a cell of it sinks by the fraction of
+/// its cell inside, see below) sinks by the
 /// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below
 /// `sole - sink step` (the foot pushes the ground one step ahead of itself,
 /// so the print takes the sole's tilt; samples under a raised toe are left
 /// alone) and never below the print depth under the surface this contact first
-/// touched, nor below its firm floor ([`Heightfield::firm_floor`]: the loose
+/// touched (times the sample's cover: `0.5 + (radius - distance) / cell`,
+/// at most 1), nor below its firm floor ([`Heightfield::firm_floor`]: the loose
 /// layer is all there is to press). Of the removed volume, c_t is compacted and 1 - c_t is spread over
-/// the rim ring just outside the footprint, weighted linearly from 1 at the
-/// print's edge to 0 at the ring's outer edge (samples off the grid get none;
+/// the rim ring of [`rim_width`] just outside the pressed samples, weighted
+/// linearly from 1 at its inner edge to 0 at its outer edge (samples off the grid get none;
 /// with no rim sample on the grid the volume counts as compacted).
 ///
 /// Without `contact`, a foot that was in contact is released: nothing is
@@ -144,8 +147,13 @@ pub fn carve(
     }
     let grid = hf.grid();
     let (origin, cell, nx, nz) = (grid.origin(), grid.cell_size(), grid.nx(), grid.nz());
+    // The print's edge is anti-aliased over one cell: a sample within half a
+    // cell of it is pressed by the part of its cell the sole covers, so a
+    // print has the same area and volume on any grid. The rim starts where
+    // that band ends.
+    let rim_start = foot.radius + 0.5 * cell;
     let rim_width = rim_width(foot.radius);
-    let (lo, hi) = foot.bounds(rim_width);
+    let (lo, hi) = foot.bounds(rim_width + 0.5 * cell);
     let rect = grid.rect_covering(lo, hi);
     if rect.is_empty() {
         return Ok(GridRect::EMPTY);
@@ -162,9 +170,10 @@ pub fn carve(
             let p = origin + Vec2::new(i as f32, j as f32) * cell;
             let d = foot.axis_distance(p);
             let k = j * nx + i;
-            if d > foot.radius {
-                if d <= foot.radius + rim_width {
-                    let w = 1.0 - (d - foot.radius) / rim_width;
+            let cover = (0.5 + (foot.radius - d) / cell).min(1.0);
+            if cover <= 0.0 {
+                if d <= rim_start + rim_width {
+                    let w = 1.0 - (d - rim_start) / rim_width;
                     print.rim.push((k, w));
                     weight_sum += w as f64;
                 }
@@ -182,7 +191,7 @@ pub fn carve(
             }
             let material = parts.material(k);
             let step = material.sink_speed() * dt;
-            let floor = (print.reference[local] - material.print_depth())
+            let floor = (print.reference[local] - cover * material.print_depth())
                 .max(sole_y - step)
                 .max(parts.floor(k));
             let new_h = (h - step).max(floor);

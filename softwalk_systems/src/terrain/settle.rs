@@ -28,8 +28,16 @@ pub const SETTLE_MAX_SWEEPS: usize = 256;
 /// repose. Like a real avalanche, which stops at a slope a few degrees below
 /// the steepest stable one, a slump runs a little past repose; the walls
 /// then need about a third of the transfers and sweeps. In `[1, 2)`:
-/// 1 puts every pair exactly at repose.
+/// 1 puts every pair exactly at repose. The run past repose is at most
+/// [`SETTLE_RUNOUT_SLOPE`].
 pub const SETTLE_OVERRELAXATION: f32 = 1.5;
+
+/// The furthest a settling transfer leaves a pair below the angle of repose,
+/// as a slope (m/m; 0.05 is about 2.5 degrees below sand's 34): the same at
+/// any grid spacing, where [`SETTLE_OVERRELAXATION`]'s share of the excess
+/// alone would leave coarse grids' walls shallower (their excesses are
+/// larger in metres per pair).
+pub const SETTLE_RUNOUT_SLOPE: f32 = 0.05;
 
 /// [`SETTLE_MARGIN_M`] in samples of this grid (rounded up).
 pub fn settle_margin_cells(hf: &Heightfield) -> usize {
@@ -272,6 +280,7 @@ fn relax_window(
             next_words: 0..0,
             stride,
             settle_to: SETTLE_TOLERANCE * cell,
+            runout: SETTLE_RUNOUT_SLOPE * cell,
             transfers: 0,
             visits: 0,
         };
@@ -359,6 +368,8 @@ struct Relaxation<'p> {
     stride: usize,
     /// How far below the limit a transfer leaves a pair, per unit length, metres.
     settle_to: f32,
+    /// The most a transfer leaves a pair below the limit, per unit length, metres.
+    runout: f32,
     transfers: usize,
     visits: usize,
 }
@@ -498,12 +509,15 @@ impl Relaxation<'_> {
         }
     }
 
-    /// Moves [`SETTLE_OVERRELAXATION`] / 2 of `excess` from `hi` to `lo`, or
+    /// Moves [`SETTLE_OVERRELAXATION`] / 2 of `excess` from `hi` to `lo` (its
+    /// run past repose capped at [`SETTLE_RUNOUT_SLOPE`]), or
     /// what `hi` has above its firm floor if less, and queues the samples
     /// whose edges this touches.
     #[cold]
     fn transfer(&mut self, hi: usize, lo: usize, excess: f32, length: f32) {
-        let wanted = 0.5 * SETTLE_OVERRELAXATION * (excess + self.settle_to * length);
+        let base = excess + self.settle_to * length;
+        let past = ((SETTLE_OVERRELAXATION - 1.0) * base).min(self.runout * length);
+        let wanted = 0.5 * (base + past);
         let moved = wanted.min(self.heights[hi] - self.floor[hi]);
         // `moved` is finite: heights and floors are.
         if moved <= 0.0 {

@@ -56,12 +56,28 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
     cells_covering(smoothing_reach_m(hf), hf.grid().cell_size())
 }
 
+/// How long a smoothing of `window` in a step of `dt` seconds lasts,
+/// seconds: `dt`, or one reference step (1 / [`REFERENCE_RATE_HZ`]) when
+/// `window` meets a print released this step
+/// ([`super::StepChanges::released`]). A print's walls are smoothed once,
+/// when the sole lifts: an event, the same at any step rate, unlike the
+/// smoothing of a rim around a planted sole, which goes on for the stance.
+pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
+    if hf.changes().released.intersect(&window).is_empty() {
+        dt
+    } else {
+        1.0 / REFERENCE_RATE_HZ
+    }
+}
+
 /// Smooths the heights around `window` for a step of `dt` seconds; returns
 /// the rectangle it worked in (`window` grown by [`smoothing_radius`],
 /// clipped), which may have changed.
 ///
 /// Each edge of the rectangle adds the Gaussian variance
-/// [`smoothing_variance_rate`]`(s) * dt` (m²), where `s` is the mean
+/// [`smoothing_variance_rate`]`(s) * t` (m²), with `t` the
+/// [`smoothing_duration`] (`dt`, or one reference step for a released
+/// print), where `s` is the mean
 /// smoothness of its two samples' materials, scaled by their trodden level
 /// (see [`SMOOTHING_MIN_LEVEL`]). In cells that is
 /// [`smoothing_pass_equivalent`] full passes; the call runs
@@ -89,7 +105,8 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
     if w.is_empty() || !(dt.is_finite() && dt > 0.0) || hf.table().max_smoothness() == 0.0 {
         return w;
     }
-    let scale = smoothing_pass_equivalent(1.0, hf.grid().cell_size(), dt);
+    let duration = smoothing_duration(hf, window, dt);
+    let scale = smoothing_pass_equivalent(1.0, hf.grid().cell_size(), duration);
     let mut buffers = hf.take_buffers();
     let changed = {
         let mut parts = hf.parts_mut();
