@@ -59,7 +59,7 @@ pub use material_table::{MaterialId, MaterialTable};
 pub use settle::{
     SETTLE_AREA_RATE_M2_S, SETTLE_MARGIN_M, SETTLE_MAX_SWEEPS, SETTLE_OVERRELAXATION,
     SETTLE_RUNOUT_SLOPE, SETTLE_TOLERANCE, settle, settle_from, settle_margin_cells,
-    settle_pending, settle_step, settle_step_visits, stage_window,
+    settle_max_sweeps, settle_pending, settle_step, settle_step_visits, stage_window,
 };
 pub use smooth::{
     DIFFUSION_RATE, MAX_SMOOTHING_PASSES, smooth, smoothing_duration, smoothing_pass_equivalent,

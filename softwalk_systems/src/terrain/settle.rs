@@ -19,8 +19,20 @@ pub const SETTLE_TOLERANCE: f32 = 1e-3;
 /// room for a slump's runout on a slope (8 reference cells, about 16 cm).
 pub const SETTLE_MARGIN_M: f32 = 8.0 * REFERENCE_CELL_M;
 
-/// Upper bound on relaxation sweeps per call.
+/// Upper bound on relaxation sweeps per call at the reference spacing
+/// ([`REFERENCE_CELL_M`]): a sweep carries a slump about one sample, so the
+/// bound is a reach of 256 reference cells (5 m), converted to sweeps on
+/// each grid by [`settle_max_sweeps`].
 pub const SETTLE_MAX_SWEEPS: usize = 256;
+
+/// [`SETTLE_MAX_SWEEPS`] on this grid: 256 reference cells in samples.
+pub fn settle_max_sweeps(hf: &Heightfield) -> usize {
+    cells_covering(
+        SETTLE_MAX_SWEEPS as f32 * REFERENCE_CELL_M,
+        hf.grid().cell_size(),
+    )
+    .max(1)
+}
 
 /// Over-relaxation of a settling transfer: a pair steeper than repose by
 /// `excess` gives up `SETTLE_OVERRELAXATION / 2` of it instead of half, so it
@@ -69,7 +81,7 @@ pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
 /// sample moved by the previous sweep are revisited (a work list, sorted
 /// into row-major order each sweep). Sweeps stop when nothing moves (no
 /// slope above repose by more than [`SETTLE_TOLERANCE`]) or after
-/// [`SETTLE_MAX_SWEEPS`]. Everything is in a fixed order, so the result is
+/// [`settle_max_sweeps`]. Everything is in a fixed order, so the result is
 /// deterministic.
 ///
 /// Guards against creeping over natural terrain:
@@ -188,7 +200,7 @@ fn release_scan_visits(visits: usize) -> usize {
 pub(crate) struct PendingSettle {
     window: GridRect,
     start: Start,
-    /// Sweeps made so far (the run stops at [`SETTLE_MAX_SWEEPS`]).
+    /// Sweeps made so far (the run stops at [`settle_max_sweeps`]).
     sweeps: usize,
 }
 
@@ -240,6 +252,7 @@ fn relax_window(
     sweeps_done: usize,
 ) -> Outcome {
     let cell = hf.grid().cell_size();
+    let max_sweeps = settle_max_sweeps(hf);
     let mut buffers = hf.take_buffers();
     let outcome = {
         let mut parts = hf.parts_mut();
@@ -287,7 +300,8 @@ fn relax_window(
         for l in queued_local {
             relax.queue(l);
         }
-        let sweeps = relax.run(first, steep, now, SETTLE_MAX_SWEEPS - sweeps_done, budget);
+        let cap = max_sweeps.saturating_sub(sweeps_done);
+        let sweeps = relax.run(first, steep, now, cap, budget);
         let left = relax.queued();
         let (transfers, visits) = (relax.transfers, relax.visits);
         let changed = if transfers > 0 {
@@ -301,7 +315,7 @@ fn relax_window(
             patch.store(&mut parts, changed);
         }
         let sweeps = sweeps_done + sweeps;
-        let left = (!left.is_empty() && sweeps < SETTLE_MAX_SWEEPS).then(|| PendingSettle {
+        let left = (!left.is_empty() && sweeps < max_sweeps).then(|| PendingSettle {
             window: w,
             start: Start::Queued(left.into_iter().map(|l| patch.grid_index(l, nx)).collect()),
             sweeps,
