@@ -45,11 +45,11 @@ pub fn settle_max_sweeps(hf: &Heightfield) -> usize {
 pub const SETTLE_OVERRELAXATION: f32 = 1.5;
 
 /// The furthest a settling transfer leaves a pair below the angle of repose,
-/// as a slope (m/m; 0.05 is about 2.5 degrees below sand's 34): the same at
+/// as a slope (m/m; 0.1 is about 4 degrees below sand's 34): the same at
 /// any grid spacing, where [`SETTLE_OVERRELAXATION`]'s share of the excess
 /// alone would leave coarse grids' walls shallower (their excesses are
 /// larger in metres per pair).
-pub const SETTLE_RUNOUT_SLOPE: f32 = 0.05;
+pub const SETTLE_RUNOUT_SLOPE: f32 = 0.1;
 
 /// [`SETTLE_MARGIN_M`] in samples of this grid (rounded up).
 pub fn settle_margin_cells(hf: &Heightfield) -> usize {
