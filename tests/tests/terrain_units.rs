@@ -229,3 +229,28 @@ fn give_is_the_print_depth_on_fresh_ground_and_nothing_on_the_floor() {
         assert_eq!(hf.initial_height_at(CENTER.x, CENTER.y), Some(BASE));
     }
 }
+
+#[test]
+fn the_carved_volume_is_the_same_at_every_resolution_and_rate() {
+    // The print's edge is anti-aliased, so the volume a sole presses out is
+    // its area times the depth on any grid (within 5 %), and at any rate.
+    for m in TerrainMaterial::presets() {
+        let volume = |samples: usize, rate: f32| {
+            let mut hf = patch(&m, samples);
+            plant(&mut hf, rate).carved_volume
+        };
+        let reference = volume(512, 60.0);
+        for (samples, rate) in [(256, 60.0), (1024, 60.0), (512, 30.0), (512, 120.0)] {
+            let v = volume(samples, rate);
+            println!(
+                "{} {samples} samples {rate} Hz: carved {v:.4e} m3 (512, 60 Hz: {reference:.4e})",
+                m.name
+            );
+            assert!(
+                (v - reference).abs() <= 0.05 * reference,
+                "{} at {samples} samples, {rate} Hz: {v} vs {reference}",
+                m.name
+            );
+        }
+    }
+}

@@ -105,19 +105,20 @@ impl FootPrint {
 
 /// One step of carving by one foot; returns the rectangle to smooth and settle.
 ///
-/// With `contact`, each sample under the [`Footprint`] (its edge
-/// anti-aliased: a sample within half a cell of it sinks by the fraction of
-/// its cell inside, see below) sinks by the
+/// With `contact`, each sample under the [`Footprint`] sinks by the
 /// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below
 /// `sole - sink step` (the foot pushes the ground one step ahead of itself,
 /// so the print takes the sole's tilt; samples under a raised toe are left
-/// alone) and never below the print depth under the surface this contact first
-/// touched (times the sample's cover: `0.5 + (radius - distance) / cell`,
-/// at most 1), nor below its firm floor ([`Heightfield::firm_floor`]: the loose
-/// layer is all there is to press). Of the removed volume, c_t is compacted and 1 - c_t is spread over
-/// the rim ring of [`rim_width`] just outside the pressed samples, weighted
-/// linearly from 1 at its inner edge to 0 at its outer edge (samples off the grid get none;
-/// with no rim sample on the grid the volume counts as compacted).
+/// alone), never below the print depth under the surface this contact first
+/// touched, and never below its firm floor ([`Heightfield::firm_floor`]: the
+/// loose layer is all there is to press). The print's edge is anti-aliased:
+/// a sample within half a cell of it goes the share of that way its cell
+/// is covered (`0.5 + (radius - distance) / cell`, at most 1), so a print
+/// has the same area and volume on any grid. Of the removed volume, c_t is
+/// compacted and 1 - c_t is spread over the rim ring of [`rim_width`] just
+/// outside the pressed samples, weighted linearly from 1 at its inner edge
+/// to 0 at its outer edge (samples off the grid get none; with no rim sample
+/// on the grid the volume counts as compacted).
 ///
 /// Without `contact`, a foot that was in contact is released: nothing is
 /// carved and the whole touched rectangle is returned (and added to
@@ -191,7 +192,11 @@ pub fn carve(
             }
             let material = parts.material(k);
             let step = material.sink_speed() * dt;
-            let floor = (print.reference[local] - cover * material.print_depth())
+            // A fully covered sample stops at the print depth or the firm
+            // floor; a partly covered one, at that share of the way.
+            let reference = print.reference[local];
+            let full = (reference - material.print_depth()).max(parts.floor(k));
+            let floor = (reference - cover * (reference - full))
                 .max(sole_y - step)
                 .max(parts.floor(k));
             let new_h = (h - step).max(floor);
