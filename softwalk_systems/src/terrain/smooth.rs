@@ -58,15 +58,17 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
 
 /// How long a smoothing of `window` in a step of `dt` seconds lasts,
 /// seconds: `dt`, or one reference step (1 / [`REFERENCE_RATE_HZ`]) when
-/// `window` meets a print released this step
+/// `window` (clipped to the grid) lies in the prints released this step
 /// ([`super::StepChanges::released`]). A print's walls are smoothed once,
 /// when the sole lifts: an event, the same at any step rate, unlike the
 /// smoothing of a rim around a planted sole, which goes on for the stance.
 pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
-    if hf.changes().released.intersect(&window).is_empty() {
-        dt
-    } else {
+    let window = window.intersect(&hf.grid().full_rect());
+    let released = hf.changes().released;
+    if !window.is_empty() && released.intersect(&window) == window {
         1.0 / REFERENCE_RATE_HZ
+    } else {
+        dt
     }
 }
 
@@ -443,5 +445,19 @@ mod tests {
         assert!(hf.grid().height(20, 20) < 1.0 && hf.grid().height(21, 20) > 0.8);
         let before = before.volume();
         assert!(((hf.grid().volume() - before) / before).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_released_print_is_smoothed_for_one_reference_step_at_any_rate() {
+        let mut hf = field(flat(GridSpec::square(1.0, 41), 1.0).unwrap());
+        let print = GridRect::new(10, 10, 20, 20);
+        assert_eq!(smoothing_duration(&hf, print, 1.0 / 120.0), 1.0 / 120.0);
+        hf.parts_mut().changes.released = print;
+        for dt in [1.0 / 30.0, 1.0 / 120.0] {
+            assert_eq!(smoothing_duration(&hf, print, dt), 1.0 / REFERENCE_RATE_HZ);
+            // A stance window reaching past the released print keeps its dt.
+            let stance = GridRect::new(15, 15, 30, 30);
+            assert_eq!(smoothing_duration(&hf, stance, dt), dt);
+        }
     }
 }
