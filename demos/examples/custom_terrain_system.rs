@@ -150,6 +150,7 @@ fn wet_sand() -> TerrainMaterial {
         compression: 0.7,
         smoothness: 1.0,
         repose_deg: 55.0,
+        layer: 0.08,
         gait: GaitResponse {
             speed_scale: 0.9,
             step_length_scale: 0.95,

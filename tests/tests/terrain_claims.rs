@@ -233,7 +233,6 @@ fn claim3_a_print_on_a_25_degree_sand_slope_slumps_downhill() {
 #[test]
 fn claim5_one_step_changes_only_the_print_its_rim_and_the_stage_margin() {
     let mut hf = flat_patch(TerrainMaterial::dry_sand());
-    let cell = hf.grid().cell_size();
     let mut print = FootPrint::new();
     let center = Vec2::new(1.5, 1.0);
     let size = FootSize::default();
@@ -246,7 +245,7 @@ fn claim5_one_step_changes_only_the_print_its_rim_and_the_stage_margin() {
         let before = hf.grid().clone();
         step_foot(&mut hf, &mut print, &sole, contact, DT).unwrap();
         let foot = Footprint::from_sole(&sole).unwrap();
-        let rim = (RIM_WIDTH_FRACTION * foot.radius).max(RIM_MIN_CELLS * cell);
+        let rim = rim_width(foot.radius);
         let (lo, hi) = foot.bounds(rim);
         let reach = if contact {
             hf.grid().rect_covering(lo, hi)

@@ -19,6 +19,7 @@ pub fn rigid_material() -> TerrainMaterial {
         compression: 1.0,
         smoothness: 0.0,
         repose_deg: 90.0,
+        layer: 0.0,
         gait: GaitResponse::NEUTRAL,
     }
 }

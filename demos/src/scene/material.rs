@@ -2,7 +2,8 @@
 //!
 //! Each `[[materials]]` entry deserialises straight into a
 //! [`TerrainMaterial`] (`depth` is the paper's d_t: a print is 0.1 m x d_t
-//! deep). This file only checks entries with the field path prefixed and
+//! deep; `layer` is the loose layer's thickness in metres, optional: a
+//! preset's name keeps the preset's, another name gets the print depth). This file only checks entries with the field path prefixed and
 //! assembles the [`MaterialTable`] a terrain indexes.
 
 use softwalk_systems::terrain::{MaterialTable, TerrainError, TerrainMaterial};

@@ -48,6 +48,7 @@ pub fn carve_system(world: &mut World) {
 
 /// System `smooth`: the Gaussian filter of strength s_t, conservative, in each carved window.
 pub fn smooth_system(world: &mut World) {
+    let dt = step_dt(world);
     let mut windows = world.resource_mut::<TerrainWindows>();
     let mut terrains = world.query::<&mut Heightfield>();
     let Some(hf) = terrains.iter().next() else {
@@ -56,7 +57,7 @@ pub fn smooth_system(world: &mut World) {
     let smoothed: Vec<GridRect> = windows
         .carved
         .iter()
-        .map(|&rect| smooth(hf, rect))
+        .map(|&rect| smooth(hf, rect, dt))
         .collect();
     windows.smoothed = smoothed;
 }
@@ -66,16 +67,17 @@ pub fn smooth_system(world: &mut World) {
 /// over steps ([`settle_step`]): what earlier steps left pending (a released
 /// print still slumping) continues first.
 pub fn settle_system(world: &mut World) {
+    let dt = step_dt(world);
     let windows = world.resource::<TerrainWindows>();
     let mut terrains = world.query::<&mut Heightfield>();
     let Some(hf) = terrains.iter().next() else {
         return;
     };
-    settle_pending(hf);
+    settle_pending(hf, dt);
     for (k, &carved) in windows.carved.iter().enumerate() {
         // Without a smooth system (removed or replaced), settling starts from the carved window.
         let seeds = windows.smoothed.get(k).copied().unwrap_or(carved);
-        settle_step(hf, stage_window(hf, carved), seeds);
+        settle_step(hf, stage_window(hf, carved), seeds, dt);
     }
 }
 

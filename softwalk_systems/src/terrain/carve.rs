@@ -7,14 +7,22 @@ use glam::Vec2;
 use super::error::TerrainError;
 use super::footprint::Footprint;
 use super::heightfield::{DISTURBED_PRESSED, DISTURBED_RIM, Heightfield};
+use super::units::REFERENCE_CELL_M;
 use crate::foot::FootSole;
 
 /// Width of the rim ring as a fraction of the sole half-width.
 pub const RIM_WIDTH_FRACTION: f32 = 0.6;
-/// The rim ring is at least this many cells wide.
-pub const RIM_MIN_CELLS: f32 = 1.5;
+/// The rim ring is at least this wide, metres: 1.5 cells of the reference
+/// grid ([`REFERENCE_CELL_M`]), about 2.9 cm.
+pub const RIM_MIN_WIDTH_M: f32 = 1.5 * REFERENCE_CELL_M;
 /// A sample counts as pressed (held) when the sole is at most this high above it, metres.
 pub const CONTACT_TOLERANCE: f32 = 0.005;
+
+/// Width of the rim ring around a footprint of half-width `radius`, metres:
+/// [`RIM_WIDTH_FRACTION`] of it, at least [`RIM_MIN_WIDTH_M`].
+pub fn rim_width(radius: f32) -> f32 {
+    (RIM_WIDTH_FRACTION * radius).max(RIM_MIN_WIDTH_M)
+}
 
 /// Per-foot carving state: the surface each sample had when this contact first
 /// touched it, so a planted foot stops at the print depth instead of sinking
@@ -101,11 +109,16 @@ impl FootPrint {
 /// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below
 /// `sole - sink step` (the foot pushes the ground one step ahead of itself,
 /// so the print takes the sole's tilt; samples under a raised toe are left
-/// alone) and never below the print depth under the surface this contact first
-/// touched. Of the removed volume, c_t is compacted and 1 - c_t is spread over
-/// the rim ring just outside the footprint, weighted linearly from 1 at the
-/// print's edge to 0 at the ring's outer edge (samples off the grid get none;
-/// with no rim sample on the grid the volume counts as compacted).
+/// alone), never below the print depth under the surface this contact first
+/// touched, and never below its firm floor ([`Heightfield::firm_floor`]: the
+/// loose layer is all there is to press). The print's edge is anti-aliased:
+/// a sample within half a cell of it goes the share of that way its cell
+/// is covered (`0.5 + (radius - distance) / cell`, at most 1), so a print
+/// has the same area and volume on any grid. Of the removed volume, c_t is
+/// compacted and 1 - c_t is spread over the rim ring of [`rim_width`] just
+/// outside the pressed samples, weighted linearly from 1 at its inner edge
+/// to 0 at its outer edge (samples off the grid get none; with no rim sample
+/// on the grid the volume counts as compacted).
 ///
 /// Without `contact`, a foot that was in contact is released: nothing is
 /// carved and the whole touched rectangle is returned (and added to
@@ -135,8 +148,13 @@ pub fn carve(
     }
     let grid = hf.grid();
     let (origin, cell, nx, nz) = (grid.origin(), grid.cell_size(), grid.nx(), grid.nz());
-    let rim_width = (RIM_WIDTH_FRACTION * foot.radius).max(RIM_MIN_CELLS * cell);
-    let (lo, hi) = foot.bounds(rim_width);
+    // The print's edge is anti-aliased over one cell: a sample within half a
+    // cell of it is pressed by the part of its cell the sole covers, so a
+    // print has the same area and volume on any grid. The rim starts where
+    // that band ends.
+    let rim_start = foot.radius + 0.5 * cell;
+    let rim_width = rim_width(foot.radius);
+    let (lo, hi) = foot.bounds(rim_width + 0.5 * cell);
     let rect = grid.rect_covering(lo, hi);
     if rect.is_empty() {
         return Ok(GridRect::EMPTY);
@@ -153,9 +171,10 @@ pub fn carve(
             let p = origin + Vec2::new(i as f32, j as f32) * cell;
             let d = foot.axis_distance(p);
             let k = j * nx + i;
-            if d > foot.radius {
-                if d <= foot.radius + rim_width {
-                    let w = 1.0 - (d - foot.radius) / rim_width;
+            let cover = (0.5 + (foot.radius - d) / cell).min(1.0);
+            if cover <= 0.0 {
+                if d <= rim_start + rim_width {
+                    let w = 1.0 - (d - rim_start) / rim_width;
                     print.rim.push((k, w));
                     weight_sum += w as f64;
                 }
@@ -173,7 +192,13 @@ pub fn carve(
             }
             let material = parts.material(k);
             let step = material.sink_speed() * dt;
-            let floor = (print.reference[local] - material.print_depth()).max(sole_y - step);
+            // A fully covered sample stops at the print depth or the firm
+            // floor; a partly covered one, at that share of the way.
+            let reference = print.reference[local];
+            let full = (reference - material.print_depth()).max(parts.floor(k));
+            let floor = (reference - cover * (reference - full))
+                .max(sole_y - step)
+                .max(parts.floor(k));
             let new_h = (h - step).max(floor);
             parts.disturbed[k] = DISTURBED_PRESSED;
             if new_h < h {

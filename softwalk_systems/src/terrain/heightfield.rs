@@ -1,5 +1,6 @@
 //! The `Heightfield` component: a height grid with a material per sample,
-//! a trodden-ground mask, dirty-window tracking and a per-step change record.
+//! the initial surface (over firm ground, a loose layer per material), a
+//! trodden-ground mask, dirty-window tracking and a per-step change record.
 
 use engine::geom::{GridRect, HeightGrid};
 use glam::Vec2;
@@ -42,9 +43,18 @@ pub struct StepChanges {
     pub settle_transfers: usize,
     /// Samples visited by settling sweeps (its work).
     pub settle_visits: usize,
+    /// Smoothing calls whose passes were cut at
+    /// [`super::MAX_SMOOTHING_PASSES`] (their variance fell short).
+    pub smoothing_capped: usize,
 }
 
 /// A deformable loose ground: heights, a material per sample and the trodden mask.
+///
+/// It remembers the surface it was created with: each sample's material is a
+/// loose layer of [`TerrainMaterial::layer`] metres over firm ground, so its
+/// firm floor ([`Heightfield::firm_floor`]) is its initial height minus the
+/// layer of its current material (painting a material moves the floor with
+/// it). Carving, compaction and settling never take a sample below its floor.
 ///
 /// Every stage that edits heights reports the edited rectangle through
 /// [`Heightfield::mark_dirty`]; consumers (BVH refit, render patches) read it
@@ -52,6 +62,8 @@ pub struct StepChanges {
 #[derive(Debug, Clone)]
 pub struct Heightfield {
     grid: HeightGrid,
+    /// The heights at creation (same layout as `grid`).
+    initial: HeightGrid,
     table: MaterialTable,
     material: Vec<u8>,
     disturbed: Vec<u8>,
@@ -96,6 +108,7 @@ impl Heightfield {
         table.get(fill)?;
         let n = grid.nx() * grid.nz();
         Ok(Heightfield {
+            initial: grid.clone(),
             grid,
             table,
             material: vec![fill.0; n],
@@ -115,6 +128,44 @@ impl Heightfield {
     /// The heights, writable. Report what you edit with [`Heightfield::mark_dirty`].
     pub fn grid_mut(&mut self) -> &mut HeightGrid {
         &mut self.grid
+    }
+
+    /// The heights the terrain was created with, row-major like the heights.
+    pub fn initial_heights(&self) -> &[f32] {
+        self.initial.heights()
+    }
+
+    /// The initial surface's height at world `(x, z)`, interpolated like
+    /// [`HeightGrid::height_at`]; `None` off the grid.
+    pub fn initial_height_at(&self, x: f32, z: f32) -> Option<f32> {
+        self.initial.height_at(x, z)
+    }
+
+    /// The firm floor of sample index `k`: its initial height minus the layer
+    /// of its material. Nothing but the user (through [`Heightfield::grid_mut`])
+    /// takes a sample below it.
+    #[inline]
+    pub fn firm_floor(&self, k: usize) -> f32 {
+        self.initial.heights()[k] - self.material_of(k).layer
+    }
+
+    /// How far a planted sole can still press the surface at world `(x, z)`,
+    /// metres: the material's print depth, or less where the loose layer left
+    /// above the firm floor is thinner (never below 0), at the nearest sample;
+    /// `None` off the grid.
+    pub fn give_at(&self, x: f32, z: f32) -> Option<f32> {
+        let k = self.nearest_index(x, z)?;
+        let above_floor = self.grid.heights()[k] - self.firm_floor(k);
+        Some(self.material_of(k).print_depth().min(above_floor).max(0.0))
+    }
+
+    /// Index of the sample nearest to world `(x, z)`, or `None` off the grid.
+    fn nearest_index(&self, x: f32, z: f32) -> Option<usize> {
+        if !self.grid.contains_xz(x, z) {
+            return None;
+        }
+        let g = self.grid.to_grid(x, z).round();
+        Some(self.grid.index(g.x as usize, g.y as usize))
     }
 
     /// The material table the material map indexes.
@@ -143,12 +194,7 @@ impl Heightfield {
 
     /// The material of the sample nearest to world `(x, z)`, or `None` off the grid.
     pub fn material_at(&self, x: f32, z: f32) -> Option<&TerrainMaterial> {
-        if !self.grid.contains_xz(x, z) {
-            return None;
-        }
-        let g = self.grid.to_grid(x, z).round();
-        let k = self.grid.index(g.x as usize, g.y as usize);
-        Some(self.material_of(k))
+        self.nearest_index(x, z).map(|k| self.material_of(k))
     }
 
     /// Print depth in metres of the material under world `(x, z)`.
@@ -266,6 +312,7 @@ impl Heightfield {
         let nx = self.grid.nx();
         TerrainParts {
             heights: self.grid.heights_mut(),
+            initial: self.initial.heights(),
             nx,
             table: &self.table,
             material: &self.material,
@@ -278,6 +325,8 @@ impl Heightfield {
 /// Split borrows of a [`Heightfield`] for the carving, smoothing and settling stages.
 pub(crate) struct TerrainParts<'a> {
     pub heights: &'a mut [f32],
+    /// The heights at creation.
+    pub initial: &'a [f32],
     pub nx: usize,
     pub table: &'a MaterialTable,
     pub material: &'a [u8],
@@ -290,6 +339,12 @@ impl<'a> TerrainParts<'a> {
     #[inline]
     pub fn material(&self, k: usize) -> &'a TerrainMaterial {
         &self.table.materials()[self.material[k] as usize]
+    }
+
+    /// The firm floor of sample index `k` (see [`Heightfield::firm_floor`]).
+    #[inline]
+    pub fn floor(&self, k: usize) -> f32 {
+        self.initial[k] - self.material(k).layer
     }
 }
 
@@ -350,6 +405,28 @@ mod tests {
         assert!(hf.dirty().is_empty());
         assert_eq!(hf.begin_step().rect, GridRect::new(1, 0, 6, 3));
         assert!(hf.changes().rect.is_empty());
+    }
+
+    #[test]
+    fn the_floor_follows_the_painted_material_and_give_stops_at_it() {
+        let mut hf = field();
+        let k = hf.grid().index(20, 20);
+        assert!((hf.firm_floor(k) - 0.95).abs() < 1e-6);
+        // Fresh sand gives its print depth (5 cm, as thick as its layer).
+        assert!((hf.give_at(2.0, 2.0).unwrap() - 0.05).abs() < 1e-6);
+        let mud = hf.table().id("mud").unwrap();
+        hf.paint_rect(GridRect::new(15, 15, 25, 25), mud).unwrap();
+        assert!((hf.firm_floor(k) - 0.85).abs() < 1e-6);
+        // Mud prints 0.2 m but its layer is 0.15 m: the layer bounds the give.
+        assert!((hf.give_at(2.0, 2.0).unwrap() - 0.15).abs() < 1e-6);
+        hf.grid_mut().set_height(20, 20, 0.9);
+        assert!((hf.give_at(2.0, 2.0).unwrap() - 0.05).abs() < 1e-6);
+        hf.grid_mut().set_height(20, 20, 0.7);
+        assert_eq!(hf.give_at(2.0, 2.0), Some(0.0));
+        assert_eq!(hf.give_at(-1.0, 2.0), None);
+        assert_eq!(hf.initial_height_at(2.0, 2.0), Some(1.0));
+        assert_eq!(hf.initial_height_at(5.0, 2.0), None);
+        assert!(hf.initial_heights().iter().all(|&h| h == 1.0));
     }
 
     #[test]

@@ -1,8 +1,10 @@
-//! Loose-ground materials: the paper's d_t, c_t, s_t, an angle of repose and a gait response.
+//! Loose-ground materials: the paper's d_t, c_t, s_t, an angle of repose,
+//! the loose layer's thickness and a gait response.
 
 use serde::{Deserialize, Serialize};
 
 use super::error::TerrainError;
+use super::material_data::TerrainMaterialData;
 
 /// Print depth in metres per unit of the depth coefficient d_t: a print is
 /// `DEPTH_SCALE_M * d_t` deep below the surface the foot first touched
@@ -51,11 +53,17 @@ impl Default for GaitResponse {
 ///   = 0.1 m × d_t deep and contact cells sink at d_t m/s ([`SINK_TIME_S`]);
 /// - `compression` is c_t: the fraction of the displaced volume that is
 ///   compacted (lost); the rim receives `1 - c_t` of it;
-/// - `smoothness` is s_t: the number of diffusion passes (Gaussian variance
-///   0.4 cell² each) run over the touched window per step;
-/// - `repose_deg` is the angle of repose: steeper disturbed slopes slump.
+/// - `smoothness` is s_t: the strength of the Gaussian filter, as the
+///   paper's passes per step at the reference grid and rate
+///   ([`super::smoothing_variance_rate`] turns it into m²/s);
+/// - `repose_deg` is the angle of repose: steeper disturbed slopes slump;
+/// - `layer` is the thickness of the loose layer over firm ground, metres:
+///   carving, compaction and settling never take a sample below its initial
+///   height minus `layer` ([`super::Heightfield::firm_floor`]). Omitted in
+///   data, it takes the preset's value for a preset's name
+///   ([`TerrainMaterial::default_layer`]), else the print depth.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(from = "TerrainMaterialData")]
 pub struct TerrainMaterial {
     /// Unique name, used for lookups.
     pub name: String,
@@ -67,8 +75,9 @@ pub struct TerrainMaterial {
     pub smoothness: f32,
     /// Angle of repose in degrees, in (0, 90].
     pub repose_deg: f32,
+    /// Thickness of the loose layer over firm ground, metres, in [0, 10].
+    pub layer: f32,
     /// How this ground changes the walk.
-    #[serde(default)]
     pub gait: GaitResponse,
 }
 
@@ -76,24 +85,43 @@ impl TerrainMaterial {
     /// Largest accepted smoothness (passes per step).
     pub const MAX_SMOOTHNESS: f32 = 16.0;
 
-    /// Dry sand: d 0.5 (5 cm), s 3, c 0.2, repose 34°.
+    /// Largest accepted layer thickness, metres.
+    pub const MAX_LAYER_M: f32 = 10.0;
+
+    /// Dry sand: d 0.5 (5 cm), s 3, c 0.2, repose 34°, a 5 cm layer.
     pub fn dry_sand() -> Self {
         Self::preset("sand", 0.5, 0.2, 3.0, 34.0, (0.85, 0.9, 0.02))
     }
 
-    /// Soil: d 0.4 (4 cm), s 2, c 0.6, repose 40°.
+    /// Soil: d 0.4 (4 cm), s 2, c 0.6, repose 40°, a 4 cm layer.
     pub fn soil() -> Self {
         Self::preset("soil", 0.4, 0.6, 2.0, 40.0, (0.95, 0.97, 0.0))
     }
 
-    /// Mud: d 2 (20 cm), s 2, c 0.6, repose 80° (cohesive, holds walls).
+    /// Mud: d 2 (20 cm), s 2, c 0.6, repose 80° (cohesive, holds walls), a
+    /// 15 cm layer (so mud prints are 15 cm deep).
     pub fn mud() -> Self {
         Self::preset("mud", 2.0, 0.6, 2.0, 80.0, (0.7, 0.8, 0.05))
     }
 
-    /// Snow: d 3 (30 cm), s 4, c 0.9, repose 84° (holds near-vertical walls).
+    /// Snow: d 3 (30 cm), s 4, c 0.9, repose 84° (holds near-vertical walls),
+    /// a 30 cm layer.
     pub fn snow() -> Self {
         Self::preset("snow", 3.0, 0.9, 4.0, 84.0, (0.65, 0.75, 0.08))
+    }
+
+    /// The layer thickness a material called `name` with print depth
+    /// `print_depth` gets when its data omit `layer`: the preset's for a
+    /// preset's name (sand 0.05, soil 0.04, mud 0.15, snow 0.30 m), else the
+    /// print depth (one print reaches firm ground).
+    pub fn default_layer(name: &str, print_depth: f32) -> f32 {
+        match name {
+            "sand" => 0.05,
+            "soil" => 0.04,
+            "mud" => 0.15,
+            "snow" => 0.30,
+            _ => print_depth,
+        }
     }
 
     fn preset(
@@ -110,6 +138,7 @@ impl TerrainMaterial {
             compression,
             smoothness,
             repose_deg,
+            layer: Self::default_layer(name, DEPTH_SCALE_M * depth),
             gait: GaitResponse {
                 speed_scale,
                 step_length_scale,
@@ -171,6 +200,9 @@ impl TerrainMaterial {
         if !(inside(self.repose_deg, 0.0, 90.0) && self.repose_deg > 0.0) {
             return fail("repose_deg", self.repose_deg, "(0, 90]");
         }
+        if !inside(self.layer, 0.0, Self::MAX_LAYER_M) {
+            return fail("layer", self.layer, "[0, 10]");
+        }
         let g = &self.gait;
         if !(inside(g.speed_scale, 0.0, 2.0) && g.speed_scale > 0.0) {
             return fail("gait.speed_scale", g.speed_scale, "(0, 2]");
@@ -224,6 +256,14 @@ mod tests {
         m.repose_deg = 0.0;
         assert!(m.validate().is_err());
         let mut m = TerrainMaterial::soil();
+        m.layer = f32::INFINITY;
+        assert!(matches!(
+            m.validate(),
+            Err(TerrainError::InvalidMaterial { field: "layer", .. })
+        ));
+        m.layer = 10.5;
+        assert!(m.validate().is_err());
+        let mut m = TerrainMaterial::soil();
         m.gait.speed_scale = -0.5;
         assert!(matches!(
             m.validate(),
@@ -232,6 +272,27 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn presets_have_their_layers_and_data_without_a_layer_load() {
+        let layers = TerrainMaterial::presets().map(|m| m.layer);
+        assert_eq!(layers, [0.05, 0.04, 0.15, 0.30]);
+        let sand = r#"{"name": "sand", "depth": 0.2, "compression": 0.5,
+            "smoothness": 1.0, "repose_deg": 40.0}"#;
+        let m: TerrainMaterial = serde_json::from_str(sand).unwrap();
+        assert_eq!(m.layer, 0.05);
+        let ash = sand.replace("\"sand\"", "\"ash\"");
+        let m: TerrainMaterial = serde_json::from_str(&ash).unwrap();
+        assert!((m.layer - 0.02).abs() < 1e-7);
+        let thick = ash.replace("40.0}", "40.0, \"layer\": 0.5}");
+        let m: TerrainMaterial = serde_json::from_str(&thick).unwrap();
+        assert_eq!(m.layer, 0.5);
+        let back: TerrainMaterial =
+            serde_json::from_str(&serde_json::to_string(&m).unwrap()).unwrap();
+        assert_eq!(back, m);
+        let e = serde_json::from_str::<TerrainMaterial>(&ash.replace("40.0}", "40.0, \"x\": 1}"));
+        assert!(e.is_err());
     }
 
     #[test]

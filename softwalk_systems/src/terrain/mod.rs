@@ -2,11 +2,16 @@
 //! material per sample, and the stages a stance foot drives each step:
 //!
 //! 1. [`carve`]: the sole presses its footprint in, up to the material's
-//!    print depth; c_t of the volume is compacted, the rest goes to the rim;
+//!    print depth and never below the firm floor under the loose layer;
+//!    c_t of the volume is compacted, the rest goes to the rim;
 //! 2. [`smooth`]: the paper's Gaussian filter of strength s_t, as
 //!    conservative diffusion in the dirty window;
 //! 3. [`settle`] (beyond the paper): disturbed slopes steeper than the angle
 //!    of repose slump (Sumner 1999), mass-conserving.
+//!
+//! Every parameter is in metres and seconds ([`REFERENCE_CELL_M`] and
+//! [`REFERENCE_RATE_HZ`] state the paper's cell- and step-based ones), so the
+//! same scene gives the same prints at any grid resolution and step rate.
 //!
 //! Each stage returns the rectangle it may have changed and reports it with
 //! [`Heightfield::mark_dirty`]; the BVH refit reads [`Heightfield::take_dirty`].
@@ -32,14 +37,18 @@ mod footprint;
 pub mod generate;
 mod heightfield;
 mod material;
+mod material_data;
 mod material_table;
 pub mod noise;
 mod patch;
 mod settle;
 mod smooth;
 mod step;
+mod units;
 
-pub use carve::{CONTACT_TOLERANCE, FootPrint, RIM_MIN_CELLS, RIM_WIDTH_FRACTION, carve};
+pub use carve::{
+    CONTACT_TOLERANCE, FootPrint, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, rim_width,
+};
 pub use error::TerrainError;
 pub use footprint::Footprint;
 pub use heightfield::{
@@ -48,9 +57,13 @@ pub use heightfield::{
 pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
 pub use material_table::{MaterialId, MaterialTable};
 pub use settle::{
-    SETTLE_MARGIN_CELLS, SETTLE_MAX_SWEEPS, SETTLE_OVERRELAXATION, SETTLE_RELEASE_SCAN_VISITS,
-    SETTLE_STEP_VISITS, SETTLE_TOLERANCE, settle, settle_from, settle_pending, settle_step,
-    stage_window,
+    SETTLE_AREA_RATE_M2_S, SETTLE_MARGIN_M, SETTLE_MAX_SWEEPS, SETTLE_OVERRELAXATION,
+    SETTLE_RUNOUT_SLOPE, SETTLE_TOLERANCE, settle, settle_from, settle_margin_cells,
+    settle_max_sweeps, settle_pending, settle_step, settle_step_visits, stage_window,
 };
-pub use smooth::{DIFFUSION_RATE, smooth, smoothing_radius};
+pub use smooth::{
+    DIFFUSION_RATE, MAX_SMOOTHING_PASSES, smooth, smoothing_duration, smoothing_pass_equivalent,
+    smoothing_radius, smoothing_reach_m, smoothing_variance_rate,
+};
 pub use step::{FootSize, FootholdReport, plant_foothold, sole_on_ground, step_foot};
+pub use units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};

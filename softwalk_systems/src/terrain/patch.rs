@@ -31,6 +31,9 @@ pub(crate) struct Patch {
     /// Samples per local row: the window width plus the frame.
     pub stride: usize,
     pub heights: Vec<f32>,
+    /// Firm floor per sample ([`super::Heightfield::firm_floor`]; the frame's
+    /// equals its height 0, so it has nothing to give).
+    pub floor: Vec<f32>,
     pub disturbed: Vec<u8>,
     /// [`DISTURBED`] and [`FIXED`] bits, plus bits of the stage's own.
     pub flags: Vec<u8>,
@@ -52,14 +55,19 @@ impl Patch {
         }
         self.flags.clear();
         self.flags.resize(len, FIXED);
-        self.heights.clear();
-        self.heights.resize(len, 0.0);
+        for buf in [&mut self.heights, &mut self.floor] {
+            buf.clear();
+            buf.resize(len, 0.0);
+        }
         for (r, j) in (rect.j0..rect.j1).enumerate() {
             let grid = j * nx + rect.i0..j * nx + rect.i1;
             let local = (r + 1) * stride + 1..(r + 2) * stride - 1;
             self.heights[local.clone()].copy_from_slice(&parts.heights[grid.clone()]);
             self.disturbed[local.clone()].copy_from_slice(&parts.disturbed[grid.clone()]);
-            self.material[local.clone()].copy_from_slice(&parts.material[grid]);
+            self.material[local.clone()].copy_from_slice(&parts.material[grid.clone()]);
+            for (f, k) in self.floor[local.clone()].iter_mut().zip(grid) {
+                *f = parts.floor(k);
+            }
             for (f, &d) in self.flags[local.clone()]
                 .iter_mut()
                 .zip(&self.disturbed[local])

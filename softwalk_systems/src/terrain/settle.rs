@@ -9,15 +9,30 @@ use super::heightfield::{DISTURBED_SLUMPED, Heightfield, StageBuffers};
 use super::material::TerrainMaterial;
 use super::patch::{DISTURBED, FIXED, Patch, edge_moves};
 use super::smooth::smoothing_radius;
+use super::units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};
 
-/// Settling stops when no slope exceeds the repose slope by more than this (m/m).
+/// Settling stops when no slope exceeds the repose slope by more than this
+/// (a slope, m/m: times the cell size, the height difference it allows
+/// between neighbours at any spacing).
 pub const SETTLE_TOLERANCE: f32 = 1e-3;
-/// How far beyond the carve rectangle settling may move material, in samples:
-/// room for a slump's runout on a slope (16 cm at the paper's 2 cm spacing).
-pub const SETTLE_MARGIN_CELLS: usize = 8;
+/// How far beyond the carve rectangle settling may move material, metres:
+/// room for a slump's runout on a slope (8 reference cells, about 16 cm).
+pub const SETTLE_MARGIN_M: f32 = 8.0 * REFERENCE_CELL_M;
 
-/// Upper bound on relaxation sweeps per call.
+/// Upper bound on relaxation sweeps per call at the reference spacing
+/// ([`REFERENCE_CELL_M`]): a sweep carries a slump about one sample, so the
+/// bound is a reach of 256 reference cells (5 m), converted to sweeps on
+/// each grid by [`settle_max_sweeps`].
 pub const SETTLE_MAX_SWEEPS: usize = 256;
+
+/// [`SETTLE_MAX_SWEEPS`] on this grid: 256 reference cells in samples.
+pub fn settle_max_sweeps(hf: &Heightfield) -> usize {
+    cells_covering(
+        SETTLE_MAX_SWEEPS as f32 * REFERENCE_CELL_M,
+        hf.grid().cell_size(),
+    )
+    .max(1)
+}
 
 /// Over-relaxation of a settling transfer: a pair steeper than repose by
 /// `excess` gives up `SETTLE_OVERRELAXATION / 2` of it instead of half, so it
@@ -25,15 +40,29 @@ pub const SETTLE_MAX_SWEEPS: usize = 256;
 /// repose. Like a real avalanche, which stops at a slope a few degrees below
 /// the steepest stable one, a slump runs a little past repose; the walls
 /// then need about a third of the transfers and sweeps. In `[1, 2)`:
-/// 1 puts every pair exactly at repose.
+/// 1 puts every pair exactly at repose. The run past repose is at most
+/// [`SETTLE_RUNOUT_SLOPE`].
 pub const SETTLE_OVERRELAXATION: f32 = 1.5;
+
+/// The furthest a settling transfer leaves a pair below the angle of repose,
+/// as a slope (m/m; 0.1 is about 4 degrees below sand's 34): the same at
+/// any grid spacing, where [`SETTLE_OVERRELAXATION`]'s share of the excess
+/// alone would leave coarse grids' walls shallower (their excesses are
+/// larger in metres per pair).
+pub const SETTLE_RUNOUT_SLOPE: f32 = 0.1;
+
+/// [`SETTLE_MARGIN_M`] in samples of this grid (rounded up).
+pub fn settle_margin_cells(hf: &Heightfield) -> usize {
+    cells_covering(SETTLE_MARGIN_M, hf.grid().cell_size())
+}
 
 /// The window the smoothing and settling stages of one step may change
 /// around a carve rectangle: grown by the larger of the smoothing radius and
-/// [`SETTLE_MARGIN_CELLS`], clipped to the grid (empty for an empty rectangle).
+/// the settling margin (both in metres, converted to this grid's samples),
+/// clipped to the grid (empty for an empty rectangle).
 pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
     let g = hf.grid();
-    let margin = smoothing_radius(hf).max(SETTLE_MARGIN_CELLS);
+    let margin = smoothing_radius(hf).max(settle_margin_cells(hf));
     carved
         .intersect(&g.full_rect())
         .expand(margin, g.nx(), g.nz())
@@ -52,7 +81,7 @@ pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
 /// sample moved by the previous sweep are revisited (a work list, sorted
 /// into row-major order each sweep). Sweeps stop when nothing moves (no
 /// slope above repose by more than [`SETTLE_TOLERANCE`]) or after
-/// [`SETTLE_MAX_SWEEPS`]. Everything is in a fixed order, so the result is
+/// [`settle_max_sweeps`]. Everything is in a fixed order, so the result is
 /// deterministic.
 ///
 /// Guards against creeping over natural terrain:
@@ -63,7 +92,10 @@ pub fn stage_window(hf: &Heightfield, carved: GridRect) -> GridRect {
 ///   steep dune stops at the window (in the usual chain, [`stage_window`]:
 ///   the carve rectangle grown by a fixed margin);
 /// - samples held by a sole this step (see [`super::StepChanges::held`]) do
-///   not move: the foot supports the walls, as Sumner's steeper in-contact angle.
+///   not move: the foot supports the walls, as Sumner's steeper in-contact angle;
+/// - a transfer never takes a sample below its firm floor
+///   ([`Heightfield::firm_floor`]): firm ground holds any slope, and material
+///   may still slide onto it.
 pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
     settle_from(hf, window, window)
 }
@@ -79,9 +111,9 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
     }
 }
 
-/// [`settle_from`] for one fixed step: stops once the step's sample visits
-/// reach [`SETTLE_STEP_VISITS`] (or at the end of the row of the first sweep
-/// that reaches it) and leaves the rest of the work pending in the terrain, for
+/// [`settle_from`] for one fixed step of `dt` seconds: stops once the step's
+/// sample visits reach [`settle_step_visits`] (or at the end of the row of
+/// the first sweep that reaches it) and leaves the rest of the work pending in the terrain, for
 /// [`settle_pending`] to continue in the next steps. Returns the rectangle
 /// of samples that changed.
 ///
@@ -93,7 +125,7 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
 /// whole print. The end state meets the same stopping rule as [`settle_from`]
 /// (no moving slope above repose by more than [`SETTLE_TOLERANCE`]); the
 /// order of the transfers differs slightly when a sweep is cut.
-pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
+pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect, dt: f32) -> GridRect {
     let Some((w, first)) = first_sweep(hf, window, seeds) else {
         return GridRect::EMPTY;
     };
@@ -105,23 +137,25 @@ pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
         });
         return GridRect::EMPTY;
     }
-    let outcome = relax_window(hf, w, &Start::Scan(first), SETTLE_STEP_VISITS, 0);
+    let budget = settle_step_visits(hf, dt);
+    let outcome = relax_window(hf, w, &Start::Scan(first), budget, 0);
     hf.pending_settle_mut().extend(outcome.left);
     outcome.changed
 }
 
 /// Continues the settling work that earlier [`settle_step`] calls left
-/// pending, each window for up to [`SETTLE_STEP_VISITS`] sample visits
-/// ([`SETTLE_RELEASE_SCAN_VISITS`] for a released print's first sweep);
-/// returns the rectangle of samples that changed. Call it once per step
-/// (the terrain systems and [`super::step_foot`] do).
-pub fn settle_pending(hf: &mut Heightfield) -> GridRect {
+/// pending, each window for up to [`settle_step_visits`] sample visits in
+/// this step of `dt` seconds (half as many for a released print's first
+/// sweep); returns the rectangle of samples that changed. Call it once per
+/// step (the terrain systems and [`super::step_foot`] do).
+pub fn settle_pending(hf: &mut Heightfield, dt: f32) -> GridRect {
     let pending = std::mem::take(hf.pending_settle_mut());
     let mut changed = GridRect::EMPTY;
+    let visits = settle_step_visits(hf, dt);
     for work in pending {
         let budget = match work.start {
-            Start::Scan(_) => SETTLE_RELEASE_SCAN_VISITS,
-            Start::Queued(_) => SETTLE_STEP_VISITS,
+            Start::Scan(_) => release_scan_visits(visits),
+            Start::Queued(_) => visits,
         };
         let outcome = relax_window(hf, work.window, &work.start, budget, work.sweeps);
         changed = changed.union(&outcome.changed);
@@ -130,17 +164,35 @@ pub fn settle_pending(hf: &mut Heightfield) -> GridRect {
     changed
 }
 
-/// Sample visits after which a [`settle_step`] or [`settle_pending`] call
-/// stops (a row of the first sweep is finished first) and leaves the rest for
-/// the next step. A released dry-sand print at the paper's spacing (the
-/// heaviest case: the whole print's walls slump at once) needs about 500
-/// visits, so it slumps over about six steps (0.1 s at 60 Hz).
-pub const SETTLE_STEP_VISITS: usize = 96;
+/// The ground area settling may visit per second, m²/s: 96 sample visits
+/// per step at the reference grid and rate (about 2.2 m²/s). A released
+/// dry-sand print at the reference spacing (the heaviest case: the whole
+/// print's walls slump at once) needs about 500 visits, so it slumps in about
+/// 0.1 s.
+pub const SETTLE_AREA_RATE_M2_S: f32 =
+    96.0 * REFERENCE_RATE_HZ * REFERENCE_CELL_M * REFERENCE_CELL_M;
+
+/// Sample visits after which a [`settle_step`] or [`settle_pending`] call in
+/// a step of `dt` seconds stops (a row of the first sweep is finished
+/// first) and leaves the rest for the next step: [`SETTLE_AREA_RATE_M2_S`]
+/// × `dt` in this grid's cells (at least 1). So a slump takes the same time
+/// at any resolution and step rate (96 visits at the reference grid and rate).
+pub fn settle_step_visits(hf: &Heightfield, dt: f32) -> usize {
+    let cell = hf.grid().cell_size();
+    let visits = SETTLE_AREA_RATE_M2_S * dt.max(0.0) / (cell * cell);
+    if visits.is_finite() {
+        (visits.round() as usize).max(1)
+    } else {
+        usize::MAX
+    }
+}
 
 /// Sample visits of the step that starts settling a print released in the
-/// step before (see [`settle_step`]): that step also scans the whole print
-/// for its first sweep, which costs about as much as 48 visits.
-pub const SETTLE_RELEASE_SCAN_VISITS: usize = SETTLE_STEP_VISITS / 2;
+/// step before (see [`settle_step`]), out of a step's `visits`: half of
+/// them, as that step also scans the whole print for its first sweep.
+fn release_scan_visits(visits: usize) -> usize {
+    (visits / 2).max(1)
+}
 
 /// Settling work left for later steps: a window (grid samples) and where
 /// its next sweep starts.
@@ -148,7 +200,7 @@ pub const SETTLE_RELEASE_SCAN_VISITS: usize = SETTLE_STEP_VISITS / 2;
 pub(crate) struct PendingSettle {
     window: GridRect,
     start: Start,
-    /// Sweeps made so far (the run stops at [`SETTLE_MAX_SWEEPS`]).
+    /// Sweeps made so far (the run stops at [`settle_max_sweeps`]).
     sweeps: usize,
 }
 
@@ -200,6 +252,7 @@ fn relax_window(
     sweeps_done: usize,
 ) -> Outcome {
     let cell = hf.grid().cell_size();
+    let max_sweeps = settle_max_sweeps(hf);
     let mut buffers = hf.take_buffers();
     let outcome = {
         let mut parts = hf.parts_mut();
@@ -233,19 +286,22 @@ fn relax_window(
         let stride = patch.stride;
         let mut relax = Relaxation {
             heights: &mut patch.heights,
+            floor: &patch.floor,
             flags: &mut patch.flags,
             limit,
             next,
             next_words: 0..0,
             stride,
             settle_to: SETTLE_TOLERANCE * cell,
+            runout: SETTLE_RUNOUT_SLOPE * cell,
             transfers: 0,
             visits: 0,
         };
         for l in queued_local {
             relax.queue(l);
         }
-        let sweeps = relax.run(first, steep, now, SETTLE_MAX_SWEEPS - sweeps_done, budget);
+        let cap = max_sweeps.saturating_sub(sweeps_done);
+        let sweeps = relax.run(first, steep, now, cap, budget);
         let left = relax.queued();
         let (transfers, visits) = (relax.transfers, relax.visits);
         let changed = if transfers > 0 {
@@ -259,7 +315,7 @@ fn relax_window(
             patch.store(&mut parts, changed);
         }
         let sweeps = sweeps_done + sweeps;
-        let left = (!left.is_empty() && sweeps < SETTLE_MAX_SWEEPS).then(|| PendingSettle {
+        let left = (!left.is_empty() && sweeps < max_sweeps).then(|| PendingSettle {
             window: w,
             start: Start::Queued(left.into_iter().map(|l| patch.grid_index(l, nx)).collect()),
             sweeps,
@@ -313,6 +369,8 @@ impl SettleBuffers {
 /// of a [`Patch`] (framed, so every neighbour of a window sample exists).
 struct Relaxation<'p> {
     heights: &'p mut [f32],
+    /// Firm floor per sample: a transfer never takes a sample below it.
+    floor: &'p [f32],
     /// [`DISTURBED`], [`FIXED`] and [`MOVED`] bits per sample.
     flags: &'p mut [u8],
     /// Steepest stable side difference per sample, metres.
@@ -324,6 +382,8 @@ struct Relaxation<'p> {
     stride: usize,
     /// How far below the limit a transfer leaves a pair, per unit length, metres.
     settle_to: f32,
+    /// The most a transfer leaves a pair below the limit, per unit length, metres.
+    runout: f32,
     transfers: usize,
     visits: usize,
 }
@@ -463,11 +523,20 @@ impl Relaxation<'_> {
         }
     }
 
-    /// Moves [`SETTLE_OVERRELAXATION`] / 2 of `excess` from `hi` to `lo` and
-    /// queues the samples whose edges this touches.
+    /// Moves [`SETTLE_OVERRELAXATION`] / 2 of `excess` from `hi` to `lo` (its
+    /// run past repose capped at [`SETTLE_RUNOUT_SLOPE`]), or
+    /// what `hi` has above its firm floor if less, and queues the samples
+    /// whose edges this touches.
     #[cold]
     fn transfer(&mut self, hi: usize, lo: usize, excess: f32, length: f32) {
-        let moved = 0.5 * SETTLE_OVERRELAXATION * (excess + self.settle_to * length);
+        let base = excess + self.settle_to * length;
+        let past = ((SETTLE_OVERRELAXATION - 1.0) * base).min(self.runout * length);
+        let wanted = 0.5 * (base + past);
+        let moved = wanted.min(self.heights[hi] - self.floor[hi]);
+        // `moved` is finite: heights and floors are.
+        if moved <= 0.0 {
+            return;
+        }
         self.heights[hi] -= moved;
         self.heights[lo] += moved;
         self.transfers += 1;
@@ -536,6 +605,8 @@ mod tests {
     use super::*;
     use crate::terrain::generate::{GridSpec, flat};
     use crate::terrain::{MaterialId, MaterialTable};
+
+    const DT: f32 = 1.0 / 60.0;
 
     fn pillar(material: u8) -> Heightfield {
         let grid = flat(GridSpec::square(1.0, 41), 1.0).unwrap();
@@ -611,18 +682,27 @@ mod tests {
         hf
     }
 
+    /// The step whose settling budget on `hf`'s grid is 96 visits, as at
+    /// the reference grid and rate.
+    fn budget_dt(hf: &Heightfield) -> f32 {
+        let cell = hf.grid().cell_size();
+        96.0 * cell * cell / SETTLE_AREA_RATE_M2_S
+    }
+
     /// Runs [`settle_step`] then [`settle_pending`] step by step until
     /// nothing is pending; returns the number of steps.
     fn settle_in_steps(hf: &mut Heightfield, window: GridRect) -> usize {
+        let dt = budget_dt(hf);
+        assert_eq!(settle_step_visits(hf, dt), 96);
         hf.begin_step();
-        settle_step(hf, window, GridRect::new(18, 18, 23, 23));
+        settle_step(hf, window, GridRect::new(18, 18, 23, 23), dt);
         let mut steps = 1;
         while hf.settling_pending() {
             // Each step stays within the budget (plus the rest of the row of
             // the first sweep that reaches it).
-            assert!(hf.changes().settle_visits <= SETTLE_STEP_VISITS + window.width());
+            assert!(hf.changes().settle_visits <= settle_step_visits(hf, dt) + window.width());
             hf.begin_step();
-            settle_pending(hf);
+            settle_pending(hf, dt);
             steps += 1;
         }
         steps
@@ -659,18 +739,19 @@ mod tests {
         let before = deferred.grid().clone();
         deferred.begin_step();
         deferred.parts_mut().changes.released = seeds;
-        assert!(settle_step(&mut deferred, window, seeds).is_empty());
+        assert!(settle_step(&mut deferred, window, seeds, DT).is_empty());
         assert_eq!(deferred.grid(), &before);
         assert_eq!(deferred.changes().settle_visits, 0);
         assert!(deferred.settling_pending());
         // The next step scans the print and relaxes it on a smaller budget.
         deferred.begin_step();
-        assert!(!settle_pending(&mut deferred).is_empty());
+        assert!(!settle_pending(&mut deferred, DT).is_empty());
         let visits = deferred.changes().settle_visits;
-        assert!(visits > 0 && visits <= SETTLE_RELEASE_SCAN_VISITS + window.width());
+        let budget = release_scan_visits(settle_step_visits(&deferred, DT));
+        assert!(visits > 0 && visits <= budget + window.width());
         while deferred.settling_pending() {
             deferred.begin_step();
-            settle_pending(&mut deferred);
+            settle_pending(&mut deferred, DT);
         }
         // It ends stable, as a settling started in the release step would.
         assert!(settle(&mut deferred, window).is_empty());
@@ -687,5 +768,42 @@ mod tests {
                 assert_eq!(hf.grid().height(i, j), 1.0);
             }
         }
+    }
+
+    #[test]
+    fn settling_never_takes_a_sample_below_its_floor() {
+        // Trodden sand at its initial height beside ground cut 30 cm lower
+        // (below its own floor): without a floor the edge would slump far
+        // down; with it, the loose 5 cm slide and firm ground holds the step.
+        let mut hf = pillar(0);
+        hf.grid_mut().set_height(20, 20, 1.0);
+        for (i, j) in GridRect::new(20, 0, 41, 41).iter() {
+            hf.grid_mut().set_height(i, j, 0.7);
+        }
+        hf.parts_mut().disturbed.fill(255);
+        let before = hf.grid().clone();
+        settle(&mut hf, GridRect::new(5, 5, 36, 36));
+        for k in 0..41 * 41 {
+            let (h, was) = (hf.grid().heights()[k], before.heights()[k]);
+            assert!(h >= hf.firm_floor(k).min(was) - 1e-6, "sample {k}: {h}");
+        }
+        // The loose layer did slide onto the lower ground.
+        assert!(hf.grid().height(19, 20) < 1.0 && hf.grid().height(20, 20) > 0.7);
+        assert!(((hf.grid().volume() - before.volume()) / before.volume()).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_budget_is_an_area_per_second() {
+        let at = |cells: usize, dt: f32| {
+            let grid = flat(GridSpec::square(10.0, cells), 1.0).unwrap();
+            let hf =
+                Heightfield::from_grid(grid, MaterialTable::with_presets(), MaterialId(0)).unwrap();
+            settle_step_visits(&hf, dt)
+        };
+        assert_eq!(at(513, DT), 96);
+        assert_eq!(at(1025, DT), 384);
+        assert_eq!(at(257, DT), 24);
+        assert_eq!(at(513, 1.0 / 120.0), 48);
+        assert_eq!(at(513, 1.0 / 20.0), 288);
     }
 }

@@ -17,8 +17,8 @@ use crate::foot::FootSole;
 /// earlier steps changed; empty when nothing).
 ///
 /// The usual chain of the carve, smooth and settle systems, for one foot:
-/// `let r = carve(..)?; let s = smooth(hf, r); settle_pending(hf);
-/// settle_step(hf, stage_window(hf, r), s)`. Settling is spread over steps
+/// `let r = carve(..)?; let s = smooth(hf, r, dt); settle_pending(hf, dt);
+/// settle_step(hf, stage_window(hf, r), s, dt)`. Settling is spread over steps
 /// ([`settle_step`]): after a release, keep stepping (the foot lifted) until
 /// [`Heightfield::settling_pending`] is false for the print's final shape.
 pub fn step_foot(
@@ -32,14 +32,14 @@ pub fn step_foot(
     let smoothed = if carved.is_empty() {
         GridRect::EMPTY
     } else {
-        smooth(hf, carved)
+        smooth(hf, carved, dt)
     };
-    let earlier = settle_pending(hf);
+    let earlier = settle_pending(hf, dt);
     if carved.is_empty() {
         return Ok(earlier);
     }
     let window = stage_window(hf, carved);
-    settle_step(hf, window, smoothed);
+    settle_step(hf, window, smoothed, dt);
     Ok(window.union(&earlier))
 }
 
