@@ -5,7 +5,7 @@ use std::fs;
 use std::path::Path;
 
 use demos::cli::{ArgsError, Cli, CliError, Command, error_line, execute};
-use demos::output::METRICS_HEADER;
+use demos::output::metrics_header;
 use demos::scene::{Scene, builtin_scenes};
 
 fn parse(args: &[&str]) -> Result<Cli, ArgsError> {
@@ -174,7 +174,7 @@ fn run_writes_metrics_and_summary() {
     ]);
     result.unwrap();
     let metrics = fs::read_to_string(out.join("metrics.csv")).unwrap();
-    assert_eq!(metrics.lines().next(), Some(METRICS_HEADER));
+    assert_eq!(metrics.lines().next(), Some(metrics_header().as_str()));
     let summary = fs::read_to_string(out.join("summary.json")).unwrap();
     assert!(summary.contains("\"scene\": \"morphology\""), "{summary}");
     assert!(
