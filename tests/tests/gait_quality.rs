@@ -8,7 +8,7 @@
 //! `demos/src/paper/gait_quality.rs`, `gait_figures.rs` and `stillness.rs`.
 //! Run with `--nocapture` to see every measured figure.
 
-use demos::paper::gait_figures::GaitFigures;
+use demos::paper::gait_figures::{GaitFigures, within};
 use demos::paper::gait_quality::{SOLE_BELOW_GOAL_CM, deepest_sole};
 use demos::paper::recorded_run::{RecordedRun, record_run};
 use demos::paper::stillness::Stillness;
@@ -162,14 +162,14 @@ fn standing_still_after_a_short_walk_on_snow() {
     if !still.path_finished {
         failures.push("the path had not ended 60 s before the run's end".to_owned());
     }
-    if !(still.com_travel_m <= STANDING_TRAVEL_M) {
+    if !within(still.com_travel_m, STANDING_TRAVEL_M) {
         failures.push(format!(
             "COM travelled {:.2} cm while standing (goal ≤ {} cm)",
             100.0 * still.com_travel_m,
             100.0 * STANDING_TRAVEL_M
         ));
     }
-    if !(still.distance_walked_m <= STANDING_TRAVEL_M) {
+    if !within(still.distance_walked_m, STANDING_TRAVEL_M) {
         failures.push(format!(
             "distance walked grew by {:.2} cm while standing (goal ≤ {} cm)",
             100.0 * still.distance_walked_m,
@@ -214,6 +214,29 @@ fn edge_scene() -> Scene {
     checked(scene).unwrap()
 }
 
+/// Heel and toe heights of both feet against the ground under them.
+fn sole_detail(m: &softwalk_systems::sim::WalkerMetrics) -> String {
+    let parts: Vec<String> = (0..2)
+        .map(|k| {
+            let (sole, ground) = (m.character.soles[k], m.sole_ground[k]);
+            format!(
+                "{} heel ({:.2}, {:.3}, {:.2}) over ground {:.3}, toe ({:.2}, {:.3}, {:.2}) over ground {:.3}, contact {}",
+                ["left", "right"][k],
+                sole.heel.x,
+                sole.heel.y,
+                sole.heel.z,
+                ground.heel,
+                sole.toe.x,
+                sole.toe.y,
+                sole.toe.z,
+                ground.toe,
+                m.character.contact[k]
+            )
+        })
+        .collect();
+    parts.join("; ")
+}
+
 #[test]
 fn starts_at_the_terrain_edges_keep_every_sole_out_of_the_ground() {
     let scene = edge_scene();
@@ -225,13 +248,15 @@ fn starts_at_the_terrain_edges_keep_every_sole_out_of_the_ground() {
             |a, (s, d)| if d > a.1 { (s, d) } else { a },
         );
         let cm = 100.0 * deepest;
+        let detail = sole_detail(&run.walkers[c][step]);
         println!(
-            "edge start {}: deepest sole {cm:.2} cm below the ground (step {step})",
+            "edge start {}: deepest sole {cm:.2} cm below the ground at step {step} ({detail})",
             spec.name
         );
-        if !(cm <= SOLE_BELOW_GOAL_CM) {
+        if !within(cm, SOLE_BELOW_GOAL_CM) {
             failures.push(format!(
-                "{}: a sole point {cm:.2} cm below the ground at step {step} (goal ≤ {SOLE_BELOW_GOAL_CM} cm)",
+                "{}: a sole point {cm:.2} cm below the ground at step {step} \
+                 (goal ≤ {SOLE_BELOW_GOAL_CM} cm; {detail})",
                 spec.name
             ));
         }

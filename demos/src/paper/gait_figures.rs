@@ -73,7 +73,7 @@ impl GaitFigures {
     pub fn differences(&self, reference: &GaitFigures) -> Vec<String> {
         let mut out = Vec::new();
         let depth = (self.print_depth_m - reference.print_depth_m).abs();
-        if !(depth <= DEPTH_TOLERANCE * reference.print_depth_m) {
+        if !within(depth, DEPTH_TOLERANCE * reference.print_depth_m) {
             out.push(format!(
                 "print depth {:.2} cm vs {:.2} cm (more than {:.0} % apart)",
                 100.0 * self.print_depth_m,
@@ -81,7 +81,10 @@ impl GaitFigures {
                 100.0 * DEPTH_TOLERANCE
             ));
         }
-        if !((self.pelvis_mean_m - reference.pelvis_mean_m).abs() <= PELVIS_TOLERANCE_M) {
+        if !within(
+            (self.pelvis_mean_m - reference.pelvis_mean_m).abs(),
+            PELVIS_TOLERANCE_M,
+        ) {
             out.push(format!(
                 "mean pelvis {:.3} m vs {:.3} m (more than {} cm apart)",
                 self.pelvis_mean_m,
@@ -90,7 +93,7 @@ impl GaitFigures {
             ));
         }
         let knee = self.swing_peak_knee_deg - reference.swing_peak_knee_deg;
-        if !(knee.abs() <= SWING_KNEE_TOLERANCE_DEG) || self.swings == 0 {
+        if !within(knee.abs(), SWING_KNEE_TOLERANCE_DEG) || self.swings == 0 {
             out.push(format!(
                 "swing-peak knee {:.1}° ({} swings) vs {:.1}° (more than {SWING_KNEE_TOLERANCE_DEG}° apart, or no swing)",
                 self.swing_peak_knee_deg, self.swings, reference.swing_peak_knee_deg
@@ -98,6 +101,11 @@ impl GaitFigures {
         }
         out
     }
+}
+
+/// True when `value` is at most `limit`; NaN is never within.
+pub fn within(value: f32, limit: f32) -> bool {
+    value <= limit
 }
 
 impl fmt::Display for GaitFigures {

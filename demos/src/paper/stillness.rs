@@ -19,6 +19,9 @@ pub struct Stillness {
     pub distance_walked_m: f32,
     /// Growth of the gait's distance along its path over the window, metres.
     pub path_distance_added_m: f32,
+    /// Straight-line distance between the centre of mass at the window's
+    /// start and at its end, metres (drift, as opposed to jitter).
+    pub com_displacement_m: f32,
 }
 
 impl Stillness {
@@ -46,6 +49,7 @@ impl Stillness {
             com_travel_m: travel as f32,
             distance_walked_m: walked as f32,
             path_distance_added_m: last.path_distance - first.path_distance,
+            com_displacement_m: last.character.com.distance(first.character.com),
         }
     }
 }
@@ -54,10 +58,11 @@ impl fmt::Display for Stillness {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "over the last {:.1} s (path ended: {}): COM travel {:.2} cm, distance walked +{:.2} cm, path distance +{:.2} cm",
+            "over the last {:.1} s (path ended: {}): COM travel {:.2} cm (net {:.2} cm), distance walked +{:.2} cm, path distance +{:.2} cm",
             self.window_s,
             self.path_finished,
             100.0 * self.com_travel_m,
+            100.0 * self.com_displacement_m,
             100.0 * self.distance_walked_m,
             100.0 * self.path_distance_added_m
         )
@@ -86,6 +91,7 @@ mod tests {
         assert!((still.com_travel_m - 0.05).abs() < 1e-5, "{still}");
         assert_eq!(still.distance_walked_m, 0.0);
         assert_eq!(still.path_distance_added_m, 0.0);
+        assert!((still.com_displacement_m - 0.01).abs() < 1e-5);
         let all = Stillness::measure(&series, 0.5, 100.0);
         assert!(!all.path_finished);
         assert_eq!(all.window_s, 4.5);
