@@ -23,9 +23,9 @@ pub const STRIP_FRAME_SIZE: (u32, u32) = (200, 150);
 /// Simulated time of the strip's first frame, seconds.
 pub const STRIP_AT_S: f32 = 3.0;
 /// Height of the camera's aim above the ground under the pelvis (about the knees), metres.
-const AIM_HEIGHT: f32 = 0.45;
+const AIM_HEIGHT: f32 = 0.4;
 /// Eye position relative to the aim (beside the walk, slightly ahead), metres.
-const EYE_OFFSET: [f32; 3] = [0.25, 0.15, 1.6];
+const EYE_OFFSET: [f32; 3] = [0.25, 0.2, 1.9];
 
 /// Keeps the frames of steps `from..from + count`.
 struct StripFrames {
