@@ -146,7 +146,7 @@ pub fn metrics_system(world: &mut World) {
         &Feet,
         &Gait,
         &FootRays,
-        &WalkPath,
+        Option<&WalkPath>,
         Option<&Platforms>,
         &mut WalkerMetrics,
     )>();
@@ -172,7 +172,7 @@ pub fn metrics_system(world: &mut World) {
             velocity: glam::Vec3::new(gait.velocity.x, 0.0, gait.velocity.y),
             sole_ground,
             path_distance: gait.distance,
-            path_finished: path.is_finished(gait.distance),
+            path_finished: path.is_some_and(|p| p.is_finished(gait.distance)),
         };
     }
 }
