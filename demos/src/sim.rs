@@ -365,7 +365,7 @@ pub(crate) mod test_records {
     use glam::Vec3;
     use softwalk_systems::character::CharacterMetrics;
     use softwalk_systems::foot::FootSole;
-    use softwalk_systems::sim::WalkerMetrics;
+    use softwalk_systems::sim::{SoleGround, WalkerMetrics};
 
     /// A character standing at the origin on flat bare ground; tests adjust
     /// the fields they check with struct update syntax.
@@ -393,6 +393,9 @@ pub(crate) mod test_records {
             grass_height: 0.0,
             ground_y: 0.0,
             velocity: Vec3::ZERO,
+            sole_ground: [SoleGround::default(); 2],
+            path_distance: 0.0,
+            path_finished: false,
         }
     }
 }

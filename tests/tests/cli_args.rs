@@ -5,7 +5,7 @@ use std::fs;
 use std::path::Path;
 
 use demos::cli::{ArgsError, Cli, CliError, Command, error_line, execute};
-use demos::output::METRICS_HEADER;
+use demos::output::metrics_header;
 use demos::scene::{Scene, builtin_scenes};
 
 fn parse(args: &[&str]) -> Result<Cli, ArgsError> {
@@ -174,7 +174,25 @@ fn run_writes_metrics_and_summary() {
     ]);
     result.unwrap();
     let metrics = fs::read_to_string(out.join("metrics.csv")).unwrap();
-    assert_eq!(metrics.lines().next(), Some(METRICS_HEADER));
+    assert_eq!(metrics.lines().next(), Some(metrics_header().as_str()));
+    let columns = metrics_header().split(',').count();
+    assert!(
+        metrics.lines().all(|l| l.split(',').count() == columns),
+        "every row has one cell per column"
+    );
+    let cell = |row: &str, name: &str| -> f32 {
+        let k = demos::output::metric_column(name).unwrap();
+        row.split(',').nth(k).unwrap().parse().unwrap()
+    };
+    let last = metrics.lines().last().unwrap();
+    for side in ["l", "r"] {
+        let ground = cell(last, &format!("{side}ground_y"));
+        let heel = cell(last, &format!("{side}heel_y"));
+        assert!(
+            (heel - ground).abs() < 1.0,
+            "{side}: heel {heel} near ground {ground}"
+        );
+    }
     let summary = fs::read_to_string(out.join("summary.json")).unwrap();
     assert!(summary.contains("\"scene\": \"morphology\""), "{summary}");
     assert!(

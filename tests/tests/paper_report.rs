@@ -2,7 +2,9 @@
 //! measured from it, the Markdown it renders, a gallery frame, the command line.
 
 use demos::cli::{Cli, Command};
+use demos::paper::gait_section::{GAIT_SECTION_TITLE, gait_quality_claim};
 use demos::paper::gallery::render_at;
+use demos::paper::gallery_strip::render_strip;
 use demos::paper::measure::stance_errors;
 use demos::paper::trace::trace;
 use demos::paper::{Check, Claim, GalleryImage, Report, character};
@@ -60,6 +62,57 @@ fn a_gallery_frame_has_the_asked_size() {
     scene.terrain.resolution = 65;
     let image = render_at(&scene, 0.1, 64, 36).unwrap();
     assert_eq!(image.dimensions(), (64, 36));
+}
+
+#[test]
+fn the_gait_quality_section_checks_every_goal_of_every_character() {
+    let mut scene = demos::scene::Scene::builtin("morphology").unwrap();
+    scene.terrain.resolution = 101;
+    let claim = gait_quality_claim(&scene, 1.5).unwrap();
+    assert_eq!(claim.title, "Gait quality: morphology");
+    let figures = [
+        "pelvis step",
+        "knee step",
+        "stance knee reversals",
+        "stance knee mean",
+        "knee max",
+        "sole below ground",
+    ];
+    assert_eq!(claim.checks.len(), 3 * figures.len(), "{claim:?}");
+    for (k, character) in ["small", "medium", "tall"].iter().enumerate() {
+        for (g, figure) in figures.iter().enumerate() {
+            let check = &claim.checks[k * figures.len() + g];
+            assert_eq!(check.quantity, format!("{character}: {figure}"));
+            assert!(check.threshold.starts_with("≤ "), "{check:?}");
+        }
+    }
+    let report = Report {
+        sections: vec![(GAIT_SECTION_TITLE.into(), vec![claim.clone()])],
+        gallery: Vec::new(),
+        provenance: "test".into(),
+    };
+    let md = report.to_markdown();
+    let verdict = if claim.passes() { "pass" } else { "**FAIL**" };
+    assert!(
+        md.contains(&format!(
+            "| Gait quality | Gait quality: morphology | {verdict} |"
+        )),
+        "{md}"
+    );
+    assert!(md.contains("| small: pelvis step | "), "{md}");
+}
+
+#[test]
+fn the_snow_strip_is_eight_consecutive_frames_side_by_side() {
+    let mut scene = demos::scene::Scene::builtin("snow-flat").unwrap();
+    scene.terrain.resolution = 65;
+    let strip = render_strip(&scene, 0.2, 8, 20, 15).unwrap();
+    assert_eq!(strip.dimensions(), (160, 15));
+    let frame = |k: u32| image::imageops::crop_imm(&strip, 20 * k, 0, 20, 15).to_image();
+    assert!(
+        (0..8).all(|k| frame(k).pixels().any(|p| p.0 != [0, 0, 0, 0])),
+        "every slot holds a rendered frame"
+    );
 }
 
 #[test]

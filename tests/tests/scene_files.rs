@@ -220,6 +220,41 @@ fn out_of_range_numbers_are_refused() {
 }
 
 #[test]
+fn dt_outside_1_240_to_1_20_is_refused_naming_sim_dt() {
+    for dt in ["0.004", "0.0001", "0.051", "0.1", "1.0"] {
+        let e = error_with("dt = 0.02", &format!("dt = {dt}"));
+        assert!(
+            e.starts_with(&format!(
+                "sim.dt: {} s is outside [1/240, 1/20] s",
+                dt.trim_end_matches(".0")
+            )),
+            "{dt}: {e}"
+        );
+    }
+    for dt in [
+        "0.004166667",
+        "0.0041666668",
+        "0.008333334",
+        "0.016666668",
+        "0.033333335",
+        "0.05",
+    ] {
+        let text = BASE.replacen("dt = 0.02", &format!("dt = {dt}"), 1);
+        assert!(parse(&text).is_ok(), "dt = {dt} should be accepted");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fast.toml");
+    fs::write(&path, BASE.replacen("dt = 0.02", "dt = 0.2", 1)).unwrap();
+    let e = Scene::load(&path).unwrap_err();
+    assert_eq!(e.field(), Some("sim.dt"));
+    let text = e.to_string();
+    assert!(
+        text.contains("fast.toml") && text.contains("sim.dt: 0.2 s is outside"),
+        "{text}"
+    );
+}
+
+#[test]
 fn nan_is_refused() {
     assert_eq!(
         error_with("alpha = 30.0", "alpha = nan"),

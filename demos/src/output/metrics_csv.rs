@@ -7,10 +7,8 @@ use std::path::{Path, PathBuf};
 
 use engine::io::WriteError;
 
+use super::metrics_columns::{MetricRow, metrics_header, metrics_line};
 use crate::sim::{ObserverError, RunObserver, StepRecord};
-
-/// The header line of `metrics.csv` (without the newline).
-pub const METRICS_HEADER: &str = "t,character,com_x,com_y,com_z,tilt,tilt_rate,torque,pelvis_y,lfoot_x,lfoot_y,lfoot_z,rfoot_x,rfoot_y,rfoot_z,lcontact,rcontact,ltarget_y,rtarget_y,lplatform_y,rplatform_y,knee_l,knee_r,grass_height,terrain_volume";
 
 /// Streams metric rows; [`MetricsCsv::finish`] makes the file appear.
 /// Dropped without `finish`, it removes its temporary file and the target is untouched.
@@ -35,7 +33,7 @@ impl MetricsCsv {
             source,
         };
         let mut writer = BufWriter::new(File::create(&tmp).map_err(err)?);
-        if let Err(e) = writeln!(writer, "{METRICS_HEADER}") {
+        if let Err(e) = writeln!(writer, "{}", metrics_header()) {
             let _ = fs::remove_file(&tmp);
             return Err(err(e));
         }
@@ -64,39 +62,11 @@ impl MetricsCsv {
             path: self.path.clone(),
             source: io::Error::other("metrics file already finished"),
         })?;
-        let platform = |p: Option<f32>| p.map_or_else(String::new, |v| v.to_string());
-        let (w, m) = (&r.walker, &r.walker.character);
-        let [lf, rf] = m.feet;
-        writeln!(
-            writer,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            r.t,
-            name,
-            m.com.x,
-            m.com.y,
-            m.com.z,
-            m.tilt,
-            m.tilt_rate,
-            m.torque,
-            m.pelvis_y,
-            lf.x,
-            lf.y,
-            lf.z,
-            rf.x,
-            rf.y,
-            rf.z,
-            u8::from(m.contact[0]),
-            u8::from(m.contact[1]),
-            m.ik_target_y[0],
-            m.ik_target_y[1],
-            platform(w.platform_y[0]),
-            platform(w.platform_y[1]),
-            m.knee_flexion[0],
-            m.knee_flexion[1],
-            w.grass_height,
-            r.terrain_volume,
-        )
-        .map_err(|source| WriteError {
+        let line = metrics_line(&MetricRow {
+            name: &name,
+            record: r,
+        });
+        writeln!(writer, "{line}").map_err(|source| WriteError {
             path: self.path.clone(),
             source,
         })?;
@@ -143,7 +113,8 @@ impl RunObserver for MetricsCsv {
 mod tests {
     use glam::Vec3;
     use softwalk_systems::character::CharacterMetrics;
-    use softwalk_systems::sim::WalkerMetrics;
+    use softwalk_systems::foot::FootSole;
+    use softwalk_systems::sim::{SoleGround, WalkerMetrics};
 
     use super::*;
     use crate::sim::test_records;
@@ -165,10 +136,27 @@ mod tests {
                     contact: [true, false],
                     ik_target_y: [0.0, 0.05],
                     knee_flexion: [0.2, 0.6],
+                    soles: [
+                        standing.character.soles[0],
+                        FootSole {
+                            toe: Vec3::new(0.1, 0.01, 0.15),
+                            ..standing.character.soles[1]
+                        },
+                    ],
                     ..standing.character
                 },
                 platform_y: [None, Some(0.3)],
                 grass_height: 0.0,
+                sole_ground: [
+                    SoleGround {
+                        centre: -0.01,
+                        ..SoleGround::default()
+                    },
+                    SoleGround {
+                        centre: 0.02,
+                        ..SoleGround::default()
+                    },
+                ],
                 ..standing
             },
             terrain_volume: 12.5,
@@ -189,13 +177,14 @@ mod tests {
         assert_eq!(csv.finish().unwrap(), 6);
         let text = fs::read_to_string(&path).unwrap();
         let lines: Vec<&str> = text.lines().collect();
-        assert_eq!(lines[0], METRICS_HEADER);
+        assert_eq!(lines[0], metrics_header());
         assert_eq!(lines.len(), 7);
         assert_eq!(
             lines[1],
-            "0.5,a,1,0.9,2,0.1,-0.2,3,0.95,1,0,1.9,1.2,0.1,2.1,1,0,0,0.05,,0.3,0.2,0.6,0,12.5"
+            "0.5,a,1,0.9,2,0.1,-0.2,3,0.95,1,0,1.9,1.2,0.1,2.1,1,0,0,0.05,,0.3,0.2,0.6,0,12.5,\
+             -0.01,0.02,-0.1,0,-0.1,-0.1,0,0.15,0.1,0,-0.1,0.1,0.01,0.15"
         );
-        let columns = METRICS_HEADER.split(',').count();
+        let columns = metrics_header().split(',').count();
         assert!(lines.iter().all(|l| l.split(',').count() == columns));
         assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
     }

@@ -8,6 +8,7 @@ mod character_stats;
 mod frames;
 mod heightmaps;
 mod last_frame;
+mod metrics_columns;
 mod metrics_csv;
 mod plots;
 mod run_report;
@@ -18,7 +19,10 @@ pub use character_stats::{CharacterStats, StatsCollector};
 pub use frames::FrameWriter;
 pub use heightmaps::HeightmapWriter;
 pub use last_frame::LastFrame;
-pub use metrics_csv::{METRICS_HEADER, MetricsCsv};
+pub use metrics_columns::{
+    METRIC_COLUMNS, MetricColumn, MetricRow, metric_column, metrics_header, metrics_line,
+};
+pub use metrics_csv::MetricsCsv;
 pub use plots::PlotCollector;
 pub use run_report::{
     CharacterReport, HeightmapReport, RunReport, TerrainReport, TimingReport, write_summary_json,

@@ -1,9 +1,11 @@
-//! The gallery: one rendered frame per scene, after a few seconds of walking.
+//! The gallery: one rendered frame per scene, after a few seconds of walking,
+//! and a strip of consecutive frames of a walk in snow ([`super::gallery_strip`]).
 
 use std::path::Path;
 
 use image::RgbaImage;
 
+use super::gallery_strip::write_strip;
 use super::report::GalleryImage;
 use super::variants::builtin;
 use super::{PaperError, PaperOptions};
@@ -73,23 +75,29 @@ pub fn write_gallery(dir: &Path, options: &PaperOptions) -> Result<Vec<GalleryIm
         let scene = builtin(name)?;
         options.say(&format!("rendering {name}"));
         let image = render_at(&scene, GALLERY_AT_S, GALLERY_SIZE.0, GALLERY_SIZE.1)?;
-        let path = dir.join(format!("{name}.png"));
-        let mut bytes = Vec::new();
-        image::DynamicImage::ImageRgba8(image)
-            .to_rgb8()
-            .write_to(
-                &mut std::io::Cursor::new(&mut bytes),
-                image::ImageFormat::Png,
-            )
-            .map_err(|e| PaperError::Encode {
-                path: path.clone(),
-                reason: e.to_string(),
-            })?;
-        engine::io::write_bytes_atomic(&path, &bytes)?;
+        write_png(&dir.join(format!("{name}.png")), image)?;
         images.push(GalleryImage {
             name: name.to_owned(),
             caption: caption.to_owned(),
         });
     }
+    images.push(write_strip(dir, options)?);
     Ok(images)
+}
+
+/// Writes `image` as an opaque PNG at `path`, whole or not at all.
+pub fn write_png(path: &Path, image: RgbaImage) -> Result<(), PaperError> {
+    let mut bytes = Vec::new();
+    image::DynamicImage::ImageRgba8(image)
+        .to_rgb8()
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .map_err(|e| PaperError::Encode {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        })?;
+    engine::io::write_bytes_atomic(path, &bytes)?;
+    Ok(())
 }

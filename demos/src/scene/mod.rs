@@ -41,7 +41,7 @@ pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, PathSpec
 pub use error::SceneError;
 pub use grass::{GrassPatchSpec, GrassPreset};
 pub use render_settings::{MAX_FRAME_SIDE, RenderSettings};
-pub use sim_settings::{MAX_STEPS, SimSettings};
+pub use sim_settings::{MAX_DT, MAX_STEPS, MIN_DT, SimSettings};
 pub use terrain::{
     MAX_RESOLUTION, MAX_TERRAIN_SIZE, MaterialRegion, Slope, TerrainShape, TerrainSpec,
 };

@@ -11,10 +11,11 @@ use super::components::{
 use super::error::SimError;
 use super::ground_view::SceneGround;
 use super::pipeline::add_pipeline;
+use super::sole_ground::SoleGround;
 use super::systems_terrain::TerrainWindows;
 use super::timing::SystemTimings;
 use crate::character::{Character, CharacterDesc, WalkPath};
-use crate::foot::Side;
+use crate::foot::{FootSole, Side};
 use crate::terrain::Heightfield;
 use crate::vegetation::{GrassPatch, GrassSettings, VegetationFriction, VirtualPlatform, XzRect};
 
@@ -90,6 +91,9 @@ impl SimBuilder {
             grass_height: 0.0,
             ground_y: c.rays.body.point.y,
             velocity: glam::Vec3::ZERO,
+            sole_ground: self.ground_under(&c.metrics.soles),
+            path_distance: c.gait.distance,
+            path_finished: path.is_finished(c.gait.distance),
         };
         let world = &mut self.app.world;
         let entity = world.spawn((
@@ -127,6 +131,16 @@ impl SimBuilder {
     }
 
     /// Runs `f` with the scene's current ground (terrain and meshes).
+    /// The terrain heights under each sole (the soles' own heights without a terrain).
+    fn ground_under(&self, soles: &[FootSole; 2]) -> [SoleGround; 2] {
+        let mut terrains = self.app.world.query::<&Heightfield>();
+        let grid = terrains.iter().next().map(|t| t.grid());
+        soles.map(|sole| match grid {
+            Some(grid) => SoleGround::under(grid, &sole),
+            None => SoleGround::flush(&sole),
+        })
+    }
+
     fn with_ground<T>(&self, f: impl FnOnce(&SceneGround<'_>) -> T) -> T {
         let world = &self.app.world;
         let scene = world.resource::<RayScene>();

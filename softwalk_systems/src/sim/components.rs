@@ -2,6 +2,7 @@
 
 use glam::Vec3;
 
+use super::sole_ground::SoleGround;
 use crate::character::CharacterMetrics;
 use crate::foot::FootState;
 use crate::terrain::FootPrint;
@@ -46,6 +47,12 @@ pub struct WalkerMetrics {
     pub ground_y: f32,
     /// Velocity of the centre of mass over the path (world XZ, y = 0).
     pub velocity: Vec3,
+    /// Terrain heights under each sole's heel, centre and toe (left first).
+    pub sole_ground: [SoleGround; 2],
+    /// Distance the gait has covered along its path, metres.
+    pub path_distance: f32,
+    /// True once the gait has reached the end of its path (never for a looped path).
+    pub path_finished: bool,
 }
 
 /// Resource: the terrain's total volume, kept up to date from what each step

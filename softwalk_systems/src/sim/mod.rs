@@ -46,6 +46,7 @@ mod ground_view;
 pub mod labels;
 mod pipeline;
 mod run;
+mod sole_ground;
 mod systems_character;
 mod systems_terrain;
 mod systems_vegetation;
@@ -61,6 +62,7 @@ pub use error::SimError;
 pub use ground_view::SceneGround;
 pub use pipeline::add_pipeline;
 pub use run::{run_steps, step};
+pub use sole_ground::{SoleGround, clamped_height};
 pub use systems_character::{
     balance_system, foot_ik_system, foot_raycast_system, gait_system, ground_response_system,
     metrics_system,

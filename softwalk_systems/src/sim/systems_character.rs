@@ -7,6 +7,7 @@ use engine::schedule::Time;
 use super::components::{BaseGains, Feet, Platforms, SystemFault, WalkerMetrics};
 use super::ground_view::SceneGround;
 use super::labels;
+use super::sole_ground::SoleGround;
 use crate::character::{
     Balance, CharacterBody, CharacterMetrics, FootIK, FootRays, Gait, GaitModifiers, Pose,
     RigidProxy, WalkPath, balance_stage, foot_ik_stage, foot_raycast_stage, gait_stage,
@@ -130,10 +131,13 @@ pub fn foot_ik_system(world: &mut World) {
     }
 }
 
-/// System `metrics`: records each character's [`WalkerMetrics`] for this step.
+/// System `metrics`: records each character's [`WalkerMetrics`] for this step,
+/// with the terrain heights under each sole (x, z clamped into the grid).
 pub fn metrics_system(world: &mut World) {
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();
+    let mut terrains = world.query::<&Heightfield>();
+    let grid = terrains.iter().next().map(|t| t.grid());
     let mut walkers = world.query::<(
         &CharacterBody,
         &Pose,
@@ -142,10 +146,11 @@ pub fn metrics_system(world: &mut World) {
         &Feet,
         &Gait,
         &FootRays,
+        Option<&WalkPath>,
         Option<&Platforms>,
         &mut WalkerMetrics,
     )>();
-    for (body, pose, proxy, ik, feet, gait, rays, platforms, out) in walkers.iter() {
+    for (body, pose, proxy, ik, feet, gait, rays, path, platforms, out) in walkers.iter() {
         let character = CharacterMetrics::capture(body, pose, proxy, ik, &feet.0);
         let platform_y = match platforms {
             Some(p) => p.0.each_ref().map(|pl| {
@@ -155,12 +160,19 @@ pub fn metrics_system(world: &mut World) {
             }),
             None => [None, None],
         };
+        let sole_ground = character.soles.map(|sole| match grid {
+            Some(grid) => SoleGround::under(grid, &sole),
+            None => SoleGround::flush(&sole),
+        });
         *out = WalkerMetrics {
             character,
             platform_y,
             grass_height: sensed_vegetation(&patches, character.com.x, character.com.z),
             ground_y: rays.body.point.y,
             velocity: glam::Vec3::new(gait.velocity.x, 0.0, gait.velocity.y),
+            sole_ground,
+            path_distance: gait.distance,
+            path_finished: path.is_some_and(|p| p.is_finished(gait.distance)),
         };
     }
 }

@@ -1,0 +1,85 @@
+//! The report's gait-quality section: every built-in scene, every character
+//! in it, each figure of [`GaitQuality`] against the design's goal.
+
+use super::gait_quality::GaitQuality;
+use super::recorded_run::record_run;
+use super::report::{Check, Claim};
+use super::variants::builtin;
+use super::walking_samples::SETTLE_S;
+use super::{PaperError, PaperOptions};
+use crate::scene::{Scene, builtin_scenes};
+
+/// Title of the report's section.
+pub const GAIT_SECTION_TITLE: &str = "Gait quality";
+/// Longest walk measured per scene with `--quick`, seconds.
+const QUICK_GAIT_S: f32 = 6.0;
+
+/// What each scene's claim states (the design's "gait quality on every scene").
+const STATEMENT: &str = "Every character walks without a pelvis pop, a knee flicker or a buried \
+                         sole: at 60 Hz a pelvis step ≤ 1 cm, a knee step ≤ 10°, stance knee \
+                         reversals ≤ 1 %, a mean stance knee ≤ 25°, a knee ≤ 120° anywhere and no \
+                         heel or toe more than 2 cm below the ground.";
+
+/// Walks `scene` headless for `seconds` at its own step and turns every
+/// character's [`GaitQuality`] into a claim (one check per character and goal).
+pub fn gait_quality_claim(scene: &Scene, seconds: f32) -> Result<Claim, PaperError> {
+    let steps = scene.sim.steps_for(f64::from(seconds));
+    let run = record_run(scene, steps).map_err(|source| PaperError::Run {
+        scene: scene.name.clone(),
+        source,
+    })?;
+    let mut checks = Vec::new();
+    for (c, spec) in scene.characters.iter().enumerate() {
+        checks.extend(character_checks(&spec.name, &run.quality(c)));
+    }
+    Ok(Claim {
+        title: format!("{GAIT_SECTION_TITLE}: {}", scene.name),
+        statement: STATEMENT.into(),
+        method: format!(
+            "Scene `{}` headless, {seconds} s at dt {:.4} s; walking samples from {SETTLE_S} s \
+             until the path's end (figures defined in `demos/src/paper/gait_quality.rs`).",
+            scene.name, scene.sim.dt
+        ),
+        checks,
+    })
+}
+
+/// The checks of one character: one per goal, or one failing check when
+/// nothing was walking.
+fn character_checks(name: &str, q: &GaitQuality) -> Vec<Check> {
+    if q.walking_samples == 0 {
+        return vec![Check::new(
+            format!("{name}: walking samples"),
+            "0",
+            "> 0",
+            false,
+        )];
+    }
+    q.goals()
+        .iter()
+        .map(|g| {
+            Check::new(
+                format!("{name}: {}", g.figure),
+                g.measured(),
+                g.threshold(),
+                g.met(),
+            )
+        })
+        .collect()
+}
+
+/// One claim per built-in scene, each walked for its own duration (at most
+/// [`QUICK_GAIT_S`] with `--quick`).
+pub fn gait_quality_claims(options: &PaperOptions) -> Result<Vec<Claim>, PaperError> {
+    let mut claims = Vec::new();
+    for b in builtin_scenes() {
+        let scene = builtin(&b.name)?;
+        let seconds = match options.quick {
+            true => scene.sim.duration.min(QUICK_GAIT_S),
+            false => scene.sim.duration,
+        };
+        options.say(&format!("gait quality on {}", b.name));
+        claims.push(gait_quality_claim(&scene, seconds)?);
+    }
+    Ok(claims)
+}

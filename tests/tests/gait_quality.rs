@@ -1,0 +1,277 @@
+//! Gait quality: the design's goals asserted on every built-in scene, and the
+//! gait's independence of the step rate, of the terrain resolution, standing
+//! still after the path's end and starts at the terrain's edges.
+//!
+//! These assert the real goals (issue 19): a walk on loose ground must not pop
+//! its pelvis or flicker its knees. Every test reports all of its failures, with
+//! the scene and character named, before failing. The figures are defined in
+//! `demos/src/paper/gait_quality.rs`, `gait_figures.rs` and `stillness.rs`.
+//! Run with `--nocapture` to see every measured figure.
+
+use demos::paper::gait_figures::{GaitFigures, within};
+use demos::paper::gait_quality::{SOLE_BELOW_GOAL_CM, deepest_sole};
+use demos::paper::recorded_run::{RecordedRun, record_run};
+use demos::paper::stillness::Stillness;
+use demos::paper::variants::checked;
+use demos::scene::{PathSpec, Scene, builtin_scenes};
+use rayon::prelude::*;
+
+/// Length of each built-in scene's measured walk, seconds (at its own 60 Hz step).
+const SCENE_WALK_S: f32 = 5.0;
+/// Length of the walks compared across rates and resolutions, seconds.
+const COMPARED_WALK_S: f32 = 5.0;
+/// Length of the 10 m walks compared across resolutions, seconds: long
+/// enough to reach the path's end at 0.75 m/s.
+const TEN_METRE_WALK_S: f32 = 14.0;
+/// How long the standing walker is watched after the path's end, seconds.
+const STANDING_S: f32 = 60.0;
+/// Largest accepted COM travel while standing, metres.
+const STANDING_TRAVEL_M: f32 = 0.01;
+
+fn builtin(name: &str) -> Scene {
+    Scene::builtin(name).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// Runs `scene` headless for `seconds` at its own step.
+fn walk(scene: &Scene, seconds: f32) -> RecordedRun {
+    record_run(scene, scene.sim.steps_for(f64::from(seconds)))
+        .unwrap_or_else(|e| panic!("{}: {e}", scene.name))
+}
+
+/// Panics listing every failure when there is any.
+fn assert_none(what: &str, failures: &[String]) {
+    assert!(
+        failures.is_empty(),
+        "{what}: {} failure(s):\n  {}",
+        failures.len(),
+        failures.join("\n  ")
+    );
+}
+
+#[test]
+fn every_builtin_scene_meets_the_gait_goals_at_60_hz() {
+    let names: Vec<String> = builtin_scenes().into_iter().map(|b| b.name).collect();
+    let measured: Vec<(String, Vec<(String, _)>)> = names
+        .par_iter()
+        .map(|name| {
+            let scene = builtin(name);
+            let run = walk(&scene, SCENE_WALK_S);
+            let per_character = scene
+                .characters
+                .iter()
+                .enumerate()
+                .map(|(c, spec)| (spec.name.clone(), run.quality(c)))
+                .collect();
+            (name.clone(), per_character)
+        })
+        .collect();
+    let mut failures = Vec::new();
+    for (scene, characters) in &measured {
+        for (character, q) in characters {
+            println!("{scene}/{character}: {q}");
+            failures.extend(
+                q.failures()
+                    .into_iter()
+                    .map(|f| format!("{scene}/{character}: {f}")),
+            );
+        }
+    }
+    assert_none("gait goals on the built-in scenes", &failures);
+}
+
+/// `scene` stepped at `dt` seconds.
+fn at_rate(scene: &Scene, dt: f32) -> Scene {
+    let mut s = scene.clone();
+    s.sim.dt = dt;
+    checked(s).unwrap()
+}
+
+#[test]
+fn sand_and_snow_walks_do_not_depend_on_the_step_rate() {
+    let mut failures = Vec::new();
+    for name in ["sand-flat", "snow-flat"] {
+        let scene = builtin(name);
+        let figures: Vec<(u32, GaitFigures)> = [30u32, 60, 120]
+            .par_iter()
+            .map(|&hz| {
+                (
+                    hz,
+                    walk(&at_rate(&scene, 1.0 / hz as f32), COMPARED_WALK_S).figures(0),
+                )
+            })
+            .collect();
+        let reference = figures[1].1;
+        for (hz, f) in &figures {
+            println!("{name} at {hz} Hz: {f}");
+            failures.extend(
+                f.differences(&reference)
+                    .into_iter()
+                    .map(|d| format!("{name} at {hz} Hz vs 60 Hz: {d}")),
+            );
+        }
+    }
+    assert_none("step-rate independence", &failures);
+}
+
+/// The built-in snow walk on a 12 x 3 m terrain of `resolution` samples along
+/// X, walking 10 m along +X.
+fn ten_metre_snow_walk(resolution: u32) -> Scene {
+    let mut scene = builtin("snow-flat");
+    scene.name = format!("snow-10m-{resolution}");
+    scene.terrain.size_x = 12.0;
+    scene.terrain.size_z = 3.0;
+    scene.terrain.resolution = resolution;
+    scene.characters[0].path = PathSpec::Straight {
+        start: [1.0, 1.5],
+        heading_deg: 0.0,
+        length: 10.0,
+    };
+    checked(scene).unwrap()
+}
+
+#[test]
+fn a_ten_metre_walk_does_not_depend_on_the_terrain_resolution() {
+    let figures: Vec<(u32, bool, GaitFigures)> = [256u32, 512, 1024]
+        .par_iter()
+        .map(|&r| {
+            let run = walk(&ten_metre_snow_walk(r), TEN_METRE_WALK_S);
+            let finished = run.walkers[0].last().is_some_and(|m| m.path_finished);
+            (r, finished, run.figures(0))
+        })
+        .collect();
+    let reference = figures[1].2;
+    let mut failures = Vec::new();
+    for (r, finished, f) in &figures {
+        if !finished {
+            failures.push(format!(
+                "{r} samples: the 10 m path was not finished in {TEN_METRE_WALK_S} s"
+            ));
+        }
+        println!("snow 10 m walk at {r} samples: {f}");
+        failures.extend(
+            f.differences(&reference)
+                .into_iter()
+                .map(|d| format!("{r} samples vs 512: {d}")),
+        );
+    }
+    assert_none("resolution independence", &failures);
+}
+
+#[test]
+fn standing_still_after_a_short_walk_on_snow() {
+    let mut scene = builtin("snow-flat");
+    scene.name = "snow-stand".into();
+    let PathSpec::Straight { length, .. } = &mut scene.characters[0].path else {
+        panic!("snow-flat walks a straight line");
+    };
+    *length = 3.0;
+    let scene = checked(scene).unwrap();
+    // 3 m at about 1.2 m/s ends before 4 s; then a minute of standing.
+    let run = walk(&scene, 4.0 + STANDING_S);
+    let still = Stillness::measure(&run.walkers[0], run.dt, STANDING_S);
+    println!("snow-stand: {still}");
+    let mut failures = Vec::new();
+    if !still.path_finished {
+        failures.push("the path had not ended 60 s before the run's end".to_owned());
+    }
+    if !within(still.com_travel_m, STANDING_TRAVEL_M) {
+        failures.push(format!(
+            "COM travelled {:.2} cm while standing (goal ≤ {} cm)",
+            100.0 * still.com_travel_m,
+            100.0 * STANDING_TRAVEL_M
+        ));
+    }
+    if !within(still.distance_walked_m, STANDING_TRAVEL_M) {
+        failures.push(format!(
+            "distance walked grew by {:.2} cm while standing (goal ≤ {} cm)",
+            100.0 * still.distance_walked_m,
+            100.0 * STANDING_TRAVEL_M
+        ));
+    }
+    if still.path_distance_added_m != 0.0 {
+        failures.push(format!(
+            "the gait's path distance grew by {} m after the end",
+            still.path_distance_added_m
+        ));
+    }
+    assert_none("standing still", &failures);
+}
+
+/// `sand-down` with four walkers starting 0.05 m from each edge: heading away
+/// from the west and east edges, along the south and north edges.
+fn edge_scene() -> Scene {
+    let mut scene = builtin("sand-down");
+    scene.name = "sand-down-edges".into();
+    let template = scene.characters[0].clone();
+    let size = [scene.terrain.size_x, scene.terrain.size_z];
+    let starts = [
+        ("west", [0.05, 0.5 * size[1]], 0.0),
+        ("east", [size[0] - 0.05, 0.5 * size[1]], 180.0),
+        ("south", [1.5, 0.05], 0.0),
+        ("north", [1.5, size[1] - 0.05], 0.0),
+    ];
+    scene.characters = starts
+        .iter()
+        .map(|&(name, start, heading_deg)| {
+            let mut c = template.clone();
+            c.name = name.into();
+            c.path = PathSpec::Straight {
+                start,
+                heading_deg,
+                length: 3.0,
+            };
+            c
+        })
+        .collect();
+    checked(scene).unwrap()
+}
+
+/// Heel and toe heights of both feet against the ground under them.
+fn sole_detail(m: &softwalk_systems::sim::WalkerMetrics) -> String {
+    let parts: Vec<String> = (0..2)
+        .map(|k| {
+            let (sole, ground) = (m.character.soles[k], m.sole_ground[k]);
+            format!(
+                "{} heel ({:.2}, {:.3}, {:.2}) over ground {:.3}, toe ({:.2}, {:.3}, {:.2}) over ground {:.3}, contact {}",
+                ["left", "right"][k],
+                sole.heel.x,
+                sole.heel.y,
+                sole.heel.z,
+                ground.heel,
+                sole.toe.x,
+                sole.toe.y,
+                sole.toe.z,
+                ground.toe,
+                m.character.contact[k]
+            )
+        })
+        .collect();
+    parts.join("; ")
+}
+
+#[test]
+fn starts_at_the_terrain_edges_keep_every_sole_out_of_the_ground() {
+    let scene = edge_scene();
+    let run = walk(&scene, 3.0);
+    let mut failures = Vec::new();
+    for (c, spec) in scene.characters.iter().enumerate() {
+        let (step, deepest) = run.walkers[c].iter().map(deepest_sole).enumerate().fold(
+            (0, f32::NEG_INFINITY),
+            |a, (s, d)| if d > a.1 { (s, d) } else { a },
+        );
+        let cm = 100.0 * deepest;
+        let detail = sole_detail(&run.walkers[c][step]);
+        println!(
+            "edge start {}: deepest sole {cm:.2} cm below the ground at step {step} ({detail})",
+            spec.name
+        );
+        if !within(cm, SOLE_BELOW_GOAL_CM) {
+            failures.push(format!(
+                "{}: a sole point {cm:.2} cm below the ground at step {step} \
+                 (goal ≤ {SOLE_BELOW_GOAL_CM} cm; {detail})",
+                spec.name
+            ));
+        }
+    }
+    assert_none("starts at the terrain edges", &failures);
+}
