@@ -67,6 +67,7 @@ pub struct FootState {
     pub velocity: Vec3,
     /// Phase of the walk cycle.
     pub phase: FootPhase,
-    /// True when the sole touches the ground (planted, bearing weight).
+    /// True when the sole presses the ground: planted (bearing weight), or
+    /// pushing into soft ground at the end of its swing. Carving reads it.
     pub contact: bool,
 }

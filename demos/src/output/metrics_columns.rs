@@ -102,6 +102,8 @@ pub const METRIC_COLUMNS: &[MetricColumn] = &[
     column!("rfoot_z", |r| r.m().feet[1].z),
     column!("lcontact", |r| r.m().contact[0]),
     column!("rcontact", |r| r.m().contact[1]),
+    column!("lplanted", |r| r.m().planted[0]),
+    column!("rplanted", |r| r.m().planted[1]),
     column!("ltarget_y", |r| r.m().ik_target_y[0]),
     column!("rtarget_y", |r| r.m().ik_target_y[1]),
     column!("lplatform_y", |r| r.w().platform_y[0]),

@@ -6,10 +6,11 @@
 //!   consecutive walking samples, cm (goal ≤ 1 cm);
 //! - knee step: the largest change of either knee's flexion between two
 //!   consecutive walking samples, degrees (goal ≤ 10°);
-//! - knee reversals: the share of stance foot-samples whose knee is more than
+//! - knee reversals: the share of planted foot-samples whose knee is more than
 //!   10° above both neighbouring samples or more than 10° below both (a
 //!   flicker), percent (goal ≤ 1 %);
-//! - stance knee: the mean knee flexion of planted legs, degrees (goal ≤ 25°);
+//! - stance knee: the mean knee flexion of planted legs (in the stance of
+//!   their walk cycle, bearing weight), degrees (goal ≤ 25°);
 //! - knee max: the largest knee flexion of either leg, degrees (goal ≤ 120°);
 //! - sole below ground: how far the heel or toe sits below the terrain under
 //!   it, at worst, cm (goal ≤ 2 cm).
@@ -117,7 +118,7 @@ impl GaitQuality {
             q.sole_below_cm = q.sole_below_cm.max(100.0 * deepest_sole(m));
             for (k, &knee) in c.knee_flexion.iter().enumerate() {
                 q.knee_max_deg = q.knee_max_deg.max(knee.to_degrees());
-                if c.contact[k] {
+                if c.planted[k] {
                     q.stance_samples += 1;
                     stance_sum += f64::from(knee.to_degrees());
                     reversals += usize::from(knee_reversal(series, s, k));

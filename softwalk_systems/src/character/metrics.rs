@@ -7,7 +7,7 @@ use super::body::CharacterBody;
 use super::foot_ik::FootIK;
 use super::pose::Pose;
 use super::skeleton::Joint;
-use crate::foot::{FootSole, FootState};
+use crate::foot::{FootPhase, FootSole, FootState};
 
 /// Measurements of one character after a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,8 +28,12 @@ pub struct CharacterMetrics {
     pub feet: [Vec3; 2],
     /// Each sole after IK (left first), heel and toe.
     pub soles: [FootSole; 2],
-    /// Whether each foot is planted.
+    /// Whether each foot presses the ground (see [`FootState::contact`]).
     pub contact: [bool; 2],
+    /// Whether each foot is planted: in the stance of its walk cycle, bearing
+    /// weight (a foot pushing into soft ground at the end of its swing presses
+    /// the ground, see `contact`, but is not planted yet).
+    pub planted: [bool; 2],
     /// Height of each foot's IK target (sole centre: ground key plus swing lift).
     pub ik_target_y: [f32; 2],
     /// Knee flexion of each leg, radians (0 = straight).
@@ -56,6 +60,7 @@ impl CharacterMetrics {
             feet: ik.contact_points,
             soles: feet.map(|f| f.sole),
             contact: feet.map(|f| f.contact),
+            planted: feet.map(|f| f.phase == FootPhase::Stance),
             ik_target_y: ik.sole_targets.map(|t| t.y),
             knee_flexion: pose.knee_flexion(),
             ground_slope: proxy.slope,

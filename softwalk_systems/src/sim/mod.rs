@@ -62,7 +62,7 @@ pub use error::SimError;
 pub use ground_view::SceneGround;
 pub use pipeline::add_pipeline;
 pub use run::{run_steps, step};
-pub use sole_ground::{SoleGround, clamped_height};
+pub use sole_ground::{SoleGround, clamped_height, sole_ends};
 pub use systems_character::{
     balance_system, foot_ik_system, foot_raycast_system, gait_system, ground_response_system,
     metrics_system,

@@ -1,45 +1,62 @@
 //! The ground under a sole: terrain heights under its heel, centre and toe,
 //! recorded each step so sliding and burying can be measured from the metrics.
+//!
+//! A sole is a rounded rectangle, and so is its print. Its very tips lie on
+//! the print's wall, which a height grid can only draw as a slope one cell
+//! wide between carved and uncarved samples, so the heel and toe are measured
+//! at the centres of the sole's rounded ends (half a sole width in from the
+//! tips): the last points whose ground the print fully carves.
 
 use engine::geom::HeightGrid;
 use glam::Vec3;
 
 use crate::foot::FootSole;
 
-/// Terrain heights under one sole (heel, centre, toe), metres.
+/// Terrain heights under one sole (heel end, centre, toe end), metres.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SoleGround {
-    /// Terrain height under the heel.
+    /// Terrain height under the centre of the heel's rounded end.
     pub heel: f32,
     /// Terrain height under the sole centre.
     pub centre: f32,
-    /// Terrain height under the toe.
+    /// Terrain height under the centre of the toe's rounded end.
     pub toe: f32,
 }
 
+/// The centres of a sole's rounded heel and toe ends: half the sole width
+/// in from its tips along the sole (the centre for a sole shorter than wide).
+pub fn sole_ends(sole: &FootSole) -> [Vec3; 2] {
+    let along = sole.toe - sole.heel;
+    let inset = (0.5 * sole.width / along.length().max(f32::EPSILON)).min(0.5);
+    [sole.heel + along * inset, sole.toe - along * inset]
+}
+
 impl SoleGround {
-    /// Samples `grid` under the heel, centre and toe of `sole`.
+    /// Samples `grid` under the heel end, centre and toe end of `sole`.
     pub fn under(grid: &HeightGrid, sole: &FootSole) -> SoleGround {
+        let [heel, toe] = sole_ends(sole);
         SoleGround {
-            heel: clamped_height(grid, sole.heel),
+            heel: clamped_height(grid, heel),
             centre: clamped_height(grid, sole.center()),
-            toe: clamped_height(grid, sole.toe),
+            toe: clamped_height(grid, toe),
         }
     }
 
     /// The sole's own heights, as if it stood exactly on the ground (no terrain known).
     pub fn flush(sole: &FootSole) -> SoleGround {
+        let [heel, toe] = sole_ends(sole);
         SoleGround {
-            heel: sole.heel.y,
+            heel: heel.y,
             centre: sole.center().y,
-            toe: sole.toe.y,
+            toe: toe.y,
         }
     }
 
-    /// How far the lower of heel and toe sits below the ground under it,
-    /// metres (negative when both are above).
+    /// How far the lower of the sole's heel and toe ends sits below the
+    /// ground under it, metres (negative when both are above).
     pub fn buried(&self, sole: &FootSole) -> f32 {
-        (self.heel - sole.heel.y).max(self.toe - sole.toe.y)
+        let [heel, toe] = sole_ends(sole);
+        (self.heel - heel.y).max(self.toe - toe.y)
     }
 }
 
@@ -67,12 +84,15 @@ mod tests {
             width: 0.1,
         };
         let g = SoleGround::under(&grid, &sole);
-        assert!((g.heel - 0.02).abs() < 1e-6);
+        let [heel, toe] = sole_ends(&sole);
+        assert!((heel.distance(sole.heel) - 0.05).abs() < 1e-6);
+        assert!((toe.distance(sole.toe) - 0.05).abs() < 1e-6);
+        assert!((g.heel - 0.1 * heel.x).abs() < 1e-6);
         assert!((g.centre - 0.03).abs() < 1e-6);
-        assert!((g.toe - 0.04).abs() < 1e-6);
+        assert!((g.toe - 0.1 * toe.x).abs() < 1e-6);
         assert!(
-            (g.buried(&sole) - 0.02).abs() < 1e-6,
-            "the heel is 2 cm under"
+            (g.buried(&sole) - (0.1 * heel.x - heel.y)).abs() < 1e-6,
+            "the heel end is under"
         );
         assert_eq!(SoleGround::flush(&sole).buried(&sole), 0.0);
     }
