@@ -241,23 +241,23 @@ pub fn foot_ik_stage(
         } else {
             plan.pitch
         };
-        let wanted = pitch - plan.pitch;
+        let mut wanted = pitch - plan.pitch;
+        // A planted foot rolls only about the part its ray stands on (a roll
+        // about the other part unwinds at the pitch rate, never at once).
+        if !swinging {
+            wanted = if plan.contact_along > 0.0 {
+                wanted.min(0.0)
+            } else {
+                wanted.max(0.0)
+            };
+        }
         let step = if dt > 0.0 {
             MAX_PITCH_RATE * dt
         } else {
             f32::INFINITY
         };
         let last = ik.extra_pitch[k];
-        let mut extra = wanted.clamp(last - step, last + step);
-        // A planted foot rolls only about the part its ray stands on.
-        if !swinging {
-            extra = if plan.contact_along > 0.0 {
-                extra.min(0.0)
-            } else {
-                extra.max(0.0)
-            };
-        }
-        ik.extra_pitch[k] = extra;
+        ik.extra_pitch[k] = wanted.clamp(last - step, last + step);
         frame.place(body, plan.pitch + ik.extra_pitch[k])
     });
 

@@ -33,6 +33,7 @@ mod desc;
 mod error;
 mod foot_ik;
 mod gait;
+mod ground_cross;
 mod ik;
 mod mesh;
 mod metrics;

@@ -6,6 +6,7 @@ use glam::{Vec2, Vec3};
 use super::body::CharacterBody;
 use super::foot_ik::sole_direction;
 use super::gait::Gait;
+use super::ground_cross::GroundCross;
 use super::support::{FootSupport, SupportPoint};
 use crate::ground::Ground;
 
@@ -65,9 +66,14 @@ impl FootRays {
         for (support, plan) in rays.support.iter_mut().zip(&gait.feet) {
             let at = plan.from;
             let found = ground.cast_down(at.x, at.y, FIRST_RAY_HEIGHT);
+            // A character starts standing on the surface: its first prints
+            // are pressed when its feet next land.
             let point = found.map_or(
                 SupportPoint::rigid(Vec3::new(at.x, rays.body.point.y, at.y)),
-                SupportPoint::from_hit,
+                |hit| SupportPoint {
+                    give: 0.0,
+                    ..SupportPoint::from_hit(hit)
+                },
             );
             *support = FootSupport::planted_on(point);
         }
@@ -81,7 +87,7 @@ impl FootRays {
         for k in 0..2 {
             let plan = &gait.feet[k];
             let (centre, normal, pressing) =
-                self.support[k].advance(plan, &gait.params, ground, from_y);
+                self.support[k].advance(plan, &gait.params, body, ground, from_y);
             let along = sole_direction(plan.heading, normal);
             self.feet[k] = GroundKey {
                 point: centre + along * plan.contact_along,
@@ -96,46 +102,28 @@ impl FootRays {
 
 /// The body's ground: the mean floor (surface minus give) under the pelvis
 /// and four points around it, with the normal of the plane through them.
-/// Rays that find nothing are left out; when all miss, `last` moves along.
+/// When every ray misses, `last` moves along.
 fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -> GroundKey {
     let at = gait.pelvis.position;
-    let forward = gait.pelvis.heading;
-    let right = Vec2::new(-forward.y, forward.x);
     let floor = |p: Vec2| {
         ground
             .cast_down(p.x, p.y, from_y)
-            .map(|h| h.point.y - h.give.max(0.0))
+            .map(|h| (h.point.y - h.give.max(0.0), 0.0))
     };
-    let r = BODY_SAMPLE_REACH;
-    let samples = [
-        floor(at),
-        floor(at + forward * r),
-        floor(at - forward * r),
-        floor(at + right * r),
-        floor(at - right * r),
-    ];
-    let found: Vec<f32> = samples.iter().flatten().copied().collect();
-    if found.is_empty() {
-        return GroundKey {
+    let reach = BODY_SAMPLE_REACH;
+    match GroundCross::sample(floor, at, gait.pelvis.heading, reach, reach) {
+        Some(cross) => GroundKey {
+            point: Vec3::new(at.x, cross.mean, at.y),
+            normal: cross.normal,
+            hit: true,
+            pressing: false,
+            platform: None,
+        },
+        None => GroundKey {
             point: Vec3::new(at.x, last.point.y, at.y),
             hit: false,
             ..last
-        };
-    }
-    let mean = found.iter().sum::<f32>() / found.len() as f32;
-    let grade = |ahead: Option<f32>, behind: Option<f32>| match (ahead, behind) {
-        (Some(a), Some(b)) => (a - b) / (2.0 * r),
-        _ => 0.0,
-    };
-    let along = grade(samples[1], samples[2]);
-    let across = grade(samples[3], samples[4]);
-    let rise = Vec3::new(forward.x, 0.0, forward.y) * along + Vec3::new(right.x, 0.0, right.y) * across;
-    GroundKey {
-        point: Vec3::new(at.x, mean, at.y),
-        normal: (Vec3::Y - rise).normalize(),
-        hit: true,
-        pressing: false,
-        platform: None,
+        },
     }
 }
 

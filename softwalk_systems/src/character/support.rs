@@ -14,7 +14,9 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
+use super::body::CharacterBody;
 use super::gait::{FootPlan, GaitParams};
+use super::ground_cross::GroundCross;
 use crate::terrain::SINK_TIME_S;
 use crate::foot::FootPhase;
 use crate::ground::{Ground, GroundHit};
@@ -119,7 +121,8 @@ impl FootSupport {
     }
 
     /// Advances the support for `plan` under `params` (the swing lift, the
-    /// swing's duration), casting rays from `from_y`; returns the ground
+    /// swing's duration) for a foot of `body`, casting rays from `from_y`
+    /// (the landing's normal is the slope of the patch under the sole); returns the ground
     /// point under the sole centre its lift is measured from, its normal, and
     /// whether the foot presses the ground (planted, or pushing in at the end
     /// of its swing).
@@ -127,6 +130,7 @@ impl FootSupport {
         &mut self,
         plan: &FootPlan,
         params: &GaitParams,
+        body: &CharacterBody,
         ground: &dyn Ground,
         from_y: f32,
     ) -> (Vec3, Vec3, bool) {
@@ -151,6 +155,7 @@ impl FootSupport {
         // then on it is carved, and must not be read back.
         if u <= pushing_from {
             self.hit = self.landing.update(plan.foothold, cast(plan.foothold));
+            self.aim_at_patch(plan, body, &cast);
         }
         let normal = self
             .left
@@ -167,6 +172,24 @@ impl FootSupport {
         // Ground rising above the path between the two footholds lifts the foot.
         let height = cast(plan.target).map_or(height, |h| height.max(h.point.y));
         (at(height), normal, false)
+    }
+
+    /// Reads the landing's slope and give over the patch the sole will cover
+    /// (a single ray reads a print's wall, or the softer of two grounds
+    /// where the sole spans both).
+    fn aim_at_patch(
+        &mut self,
+        plan: &FootPlan,
+        body: &CharacterBody,
+        cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+    ) {
+        let surface = |p: Vec2| cast(p).map(|h| (h.point.y, h.give.max(0.0)));
+        let (along, across) = (0.5 * body.foot_length, 0.5 * body.foot_width);
+        let heading = plan.foothold_heading;
+        if let Some(patch) = GroundCross::sample(surface, plan.foothold, heading, along, across) {
+            self.landing.normal = patch.normal;
+            self.landing.give = self.landing.give.min(patch.give);
+        }
     }
 
     /// Time the foot takes to push into its landing, seconds: as long as
