@@ -67,7 +67,9 @@ pub struct FootState {
     pub velocity: Vec3,
     /// Phase of the walk cycle.
     pub phase: FootPhase,
-    /// True when the sole presses the ground: planted (bearing weight), or
-    /// pushing into soft ground at the end of its swing. Carving reads it.
+    /// True when the sole presses the ground: planted (bearing weight),
+    /// pushing into soft ground at the end of its swing, or still rising out
+    /// of its print at the start of the swing. Carving reads it (a print is
+    /// released when its foot is out).
     pub contact: bool,
 }

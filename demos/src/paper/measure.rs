@@ -61,13 +61,14 @@ pub struct LiftOffs {
 }
 
 impl LiftOffs {
-    /// Records the prints of the feet that left the ground in this step.
+    /// Records the prints of the feet that lifted off in this step (left
+    /// their stance): where their lowest point is, at the print's front.
     pub fn observe(&mut self, m: &CharacterMetrics) {
         for (k, was_down) in self.was_down.iter_mut().enumerate() {
-            if *was_down && !m.contact[k] {
+            if *was_down && !m.planted[k] {
                 self.prints.push(m.feet[k]);
             }
-            *was_down = m.contact[k];
+            *was_down = m.planted[k];
         }
     }
 }
@@ -75,14 +76,20 @@ impl LiftOffs {
 /// Half extents of the window searched for a print's floor (along X, along Z), metres.
 const PRINT_WINDOW: Vec2 = Vec2::new(0.08, 0.05);
 
-/// Depth of the print at `c`: height before minus the lowest height near `c` after.
+/// Depth of the print at `c`, measured against the surface each sample had
+/// before: the largest drop of a sample near `c` (0 where nothing was
+/// carved, on a slope as on flat ground). `before` and `after` are the same
+/// grid at two moments.
 pub fn print_depth(before: &HeightGrid, after: &HeightGrid, c: Vec2) -> Option<f32> {
     let rect = after.rect_covering(c - PRINT_WINDOW, c + PRINT_WINDOW);
-    if rect.is_empty() {
+    if rect.is_empty() || before.nx() != after.nx() || before.nz() != after.nz() {
         return None;
     }
-    let (floor, _) = after.min_max_in(&rect);
-    Some((before.height_at(c.x, c.y)? - floor).max(0.0))
+    let drop = rect
+        .iter()
+        .map(|(i, j)| before.height(i, j) - after.height(i, j))
+        .fold(0.0f32, f32::max);
+    Some(drop)
 }
 
 /// Sharpness of a print walked along +X: the steepest wall slope across it

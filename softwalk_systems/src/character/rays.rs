@@ -25,8 +25,8 @@ pub struct GroundKey {
     pub normal: Vec3,
     /// False when the ray found nothing this step (no ground there).
     pub hit: bool,
-    /// True while the foot presses the ground: planted, or pushing into its
-    /// landing at the end of the swing.
+    /// True while the foot presses the ground: planted, pushing into its
+    /// landing at the end of the swing, or rising out of its print.
     pub pressing: bool,
     /// Top of a virtual platform under the foot (set by the vegetation's
     /// platform system): the sole centre stays on or above it.

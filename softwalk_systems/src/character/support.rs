@@ -124,8 +124,8 @@ impl FootSupport {
     /// swing's duration) for a foot of `body`, casting rays from `from_y`
     /// (the landing's normal is the slope of the patch under the sole); returns the ground
     /// point under the sole centre its lift is measured from, its normal, and
-    /// whether the foot presses the ground (planted, or pushing in at the end
-    /// of its swing).
+    /// whether the foot presses the ground (planted, pushing in at the end of
+    /// its swing, or still rising out of its print).
     pub fn advance(
         &mut self,
         plan: &FootPlan,
@@ -171,7 +171,9 @@ impl FootSupport {
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
         // Ground rising above the path between the two footholds lifts the foot.
         let height = cast(plan.target).map_or(height, |h| height.max(h.point.y));
-        (at(height), normal, false)
+        // Until the sole is out of its print, the print stays held: its walls
+        // do not slump onto the rising foot.
+        (at(height), normal, height < self.left_rim)
     }
 
     /// Reads the landing's slope and give over the patch the sole will cover

@@ -109,7 +109,8 @@ impl FootPrint {
 /// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below
 /// `sole - sink step` (the foot pushes the ground one step ahead of itself,
 /// so the print takes the sole's tilt; samples under a raised toe are left
-/// alone), never below the print depth under the surface this contact first
+/// alone; a fully covered sample the sole has gone below is pressed down to
+/// the sole at once), never below the print depth under the surface this contact first
 /// touched, and never below its firm floor ([`Heightfield::firm_floor`]: the
 /// loose layer is all there is to press). The print's edge is anti-aliased:
 /// a sample within half a cell of it goes the share of that way its cell
@@ -199,7 +200,10 @@ pub fn carve(
             let floor = (reference - cover * (reference - full))
                 .max(sole_y - step)
                 .max(parts.floor(k));
-            let new_h = (h - step).max(floor);
+            // A sole that went deeper than one step presses a fully covered
+            // sample down to itself: the ground never lags the foot.
+            let pressed_to = if cover >= 1.0 { sole_y } else { h };
+            let new_h = (h - step).min(pressed_to).max(floor);
             parts.disturbed[k] = DISTURBED_PRESSED;
             if new_h < h {
                 parts.heights[k] = new_h;
