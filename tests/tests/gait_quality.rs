@@ -166,8 +166,10 @@ fn standing_still_after_a_short_walk_on_snow() {
     };
     *length = 3.0;
     let scene = checked(scene).unwrap();
-    // 3 m at about 1.2 m/s ends before 4 s; then a minute of standing.
-    let run = walk(&scene, 4.0 + STANDING_S);
+    // 3 m at about 0.8 m/s (snow slows the walk) ends before 4 s; the last
+    // step lands and the feet roll flat within a second; then a minute of
+    // standing, measured.
+    let run = walk(&scene, 5.0 + STANDING_S);
     let still = Stillness::measure(&run.walkers[0], run.dt, STANDING_S);
     println!("snow-stand: {still}");
     let mut failures = Vec::new();

@@ -71,6 +71,12 @@ const MAX_HEEL_LIFT: f32 = 1.1;
 const MAX_TOE_LIFT: f32 = 0.6;
 /// Fastest change of the extra foot pitch, rad/s (ankle speeds of real gait).
 const MAX_PITCH_RATE: f32 = 6.0;
+/// Length of a planted leg (hip to ankle, a fraction of its reach) past
+/// which the pelvis rises to straighten it: a knee bent about 20°.
+const STANDING_LEG: f32 = 0.985;
+/// The most the pelvis rises above its walking height for bent planted legs,
+/// a fraction of the leg reach.
+const MAX_PELVIS_RAISE: f32 = 0.15;
 /// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
 /// peaks at about 400–450°/s).
 pub const MAX_KNEE_SPEED: f32 = 9.5;
@@ -261,16 +267,26 @@ pub fn foot_ik_stage(
         frame.place(body, plan.pitch + ik.extra_pitch[k])
     });
 
+    // Lowered as far as the farther foot needs; raised (as far as every
+    // planted leg allows) where the planted legs would bend more than a
+    // standing leg does, as behind the hip on a downhill.
+    let rise = |k: usize, length: f32| {
+        let d = feet[k].ankle - hips[k];
+        let r = Vec2::new(d.x, d.z).length().min(length);
+        d.y + (length * length - r * r).sqrt()
+    };
     let needed = (0..2)
-        .map(|k| {
-            let d = feet[k].ankle - hips[k];
-            let r = Vec2::new(d.x, d.z).length().min(reach);
-            -d.y - (reach * reach - r * r).sqrt()
-        })
+        .map(|k| -rise(k, reach))
         .fold(0.0f32, f32::max)
         .min(0.6 * body.leg_reach());
+    let standing = STANDING_LEG * body.leg_reach();
+    let raise = (0..2)
+        .filter(|&k| gait.feet[k].phase == FootPhase::Stance)
+        .map(|k| rise(k, standing))
+        .fold(f32::INFINITY, f32::min)
+        .clamp(0.0, MAX_PELVIS_RAISE * body.leg_reach());
     let ground_y = rays.body.point.y;
-    ik.pelvis_drop = ground_y - ik.pelvis.follow(ground_y - needed, dt);
+    ik.pelvis_drop = ground_y - ik.pelvis.follow(ground_y - needed + raise, dt);
     pelvis.y -= ik.pelvis_drop;
 
     // Legs.
