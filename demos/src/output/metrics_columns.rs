@@ -114,8 +114,10 @@ pub const METRIC_COLUMNS: &[MetricColumn] = &[
     column!("terrain_volume", |r| r.record.terrain_volume),
     column!("lground_y", |r| r.w().sole_ground[0].centre),
     column!("rground_y", |r| r.w().sole_ground[1].centre),
-    column!("lsole_below", |r| r.w().sole_ground[0].buried(&r.m().soles[0])),
-    column!("rsole_below", |r| r.w().sole_ground[1].buried(&r.m().soles[1])),
+    column!("lsole_below", |r| r.w().sole_ground[0]
+        .buried(&r.m().soles[0])),
+    column!("rsole_below", |r| r.w().sole_ground[1]
+        .buried(&r.m().soles[1])),
     column!("lheel_x", |r| r.m().soles[0].heel.x),
     column!("lheel_y", |r| r.m().soles[0].heel.y),
     column!("lheel_z", |r| r.m().soles[0].heel.z),
@@ -168,7 +170,13 @@ mod tests {
         }
         for side in ["l", "r"] {
             for part in [
-                "ground_y", "sole_below", "heel_x", "heel_y", "heel_z", "toe_x", "toe_y",
+                "ground_y",
+                "sole_below",
+                "heel_x",
+                "heel_y",
+                "heel_z",
+                "toe_x",
+                "toe_y",
                 "toe_z",
             ] {
                 assert!(

@@ -55,20 +55,26 @@ pub fn lift_offs<'a>(metrics: impl IntoIterator<Item = &'a CharacterMetrics>) ->
 /// Streaming form of [`lift_offs`]: feed one step's metrics at a time.
 #[derive(Debug, Clone, Default)]
 pub struct LiftOffs {
-    was_down: [bool; 2],
+    /// Lowest sole point of each planted foot when it was planted.
+    landed: [Option<Vec3>; 2],
     /// The print centres found so far, in the order the feet lifted.
     pub prints: Vec<Vec3>,
 }
 
 impl LiftOffs {
     /// Records the prints of the feet that lifted off in this step (left
-    /// their stance): where their lowest point is, at the print's front.
+    /// their stance): midway between the lowest sole point when the foot was
+    /// planted (its heel) and when it lifted (its toe), the print's middle.
     pub fn observe(&mut self, m: &CharacterMetrics) {
-        for (k, was_down) in self.was_down.iter_mut().enumerate() {
-            if *was_down && !m.planted[k] {
-                self.prints.push(m.feet[k]);
+        for k in 0..2 {
+            match (self.landed[k], m.planted[k]) {
+                (None, true) => self.landed[k] = Some(m.feet[k]),
+                (Some(heel), false) => {
+                    self.prints.push(0.5 * (heel + m.feet[k]));
+                    self.landed[k] = None;
+                }
+                _ => {}
             }
-            *was_down = m.planted[k];
         }
     }
 }

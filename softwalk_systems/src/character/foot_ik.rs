@@ -71,12 +71,18 @@ const MAX_HEEL_LIFT: f32 = 1.1;
 const MAX_TOE_LIFT: f32 = 0.6;
 /// Fastest change of the extra foot pitch, rad/s (ankle speeds of real gait).
 const MAX_PITCH_RATE: f32 = 6.0;
+/// Fastest change of a planted foot's extra pitch, rad/s: its toe or heel
+/// comes down onto ground that gives no faster than the ground is pressed.
+const MAX_PLANTED_PITCH_RATE: f32 = 3.0;
 /// Length of a planted leg (hip to ankle, a fraction of its reach) past
 /// which the pelvis rises to straighten it: a knee bent about 20°.
 const STANDING_LEG: f32 = 0.985;
 /// The most the pelvis rises above its walking height for bent planted legs,
 /// a fraction of the leg reach.
 const MAX_PELVIS_RAISE: f32 = 0.15;
+/// The most a knee bends while walking, radians (about 117°: high stepping
+/// out of deep snow reaches 100–110°).
+pub const MAX_KNEE_FLEXION: f32 = 2.05;
 /// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
 /// peaks at about 400–450°/s).
 pub const MAX_KNEE_SPEED: f32 = 9.5;
@@ -257,11 +263,12 @@ pub fn foot_ik_stage(
                 wanted.max(0.0)
             };
         }
-        let step = if dt > 0.0 {
-            MAX_PITCH_RATE * dt
+        let rate = if swinging {
+            MAX_PITCH_RATE
         } else {
-            f32::INFINITY
+            MAX_PLANTED_PITCH_RATE
         };
+        let step = if dt > 0.0 { rate * dt } else { f32::INFINITY };
         let last = ik.extra_pitch[k];
         ik.extra_pitch[k] = wanted.clamp(last - step, last + step);
         frame.place(body, plan.pitch + ik.extra_pitch[k])
@@ -310,9 +317,12 @@ pub fn foot_ik_stage(
     for (k, &(hip, knee, ankle, toe)) in legs.iter().enumerate() {
         let hip_at = hips[k] - Vec3::Y * ik.pelvis_drop;
         let pole = hip_at + forward * body.leg_reach();
-        let mut ankle_target = feet[k].ankle;
+        let (l1, l2) = (body.thigh, body.shank);
+        // The knee's range, then its speed.
+        let mut ankle_target =
+            limit_flexion_change(hip_at, feet[k].ankle, 0.0, MAX_KNEE_FLEXION, l1, l2);
         if let (Some(last), true) = (ik.knee_flexion, dt > 0.0) {
-            let (step, l1, l2) = (MAX_KNEE_SPEED * dt, body.thigh, body.shank);
+            let step = MAX_KNEE_SPEED * dt;
             ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
         }
         let s = solve_two_bone(hip_at, ankle_target, pole, body.thigh, body.shank);

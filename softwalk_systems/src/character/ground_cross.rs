@@ -71,7 +71,10 @@ mod tests {
         let plane = |p: Vec2| Some((0.2 * p.x - 0.1 * p.y + 1.0, 0.1 + 0.01 * p.x));
         let c = GroundCross::sample(plane, Vec2::new(1.0, 2.0), Vec2::Y, 0.3, 0.2).unwrap();
         assert!((c.mean - plane(Vec2::new(1.0, 2.0)).unwrap().0).abs() < 1e-5);
-        assert!((c.give - (0.1 + 0.01 * 0.8)).abs() < 1e-6, "the firmest sample");
+        assert!(
+            (c.give - (0.1 + 0.01 * 0.8)).abs() < 1e-6,
+            "the firmest sample"
+        );
         let expected = Vec3::new(-0.2, 1.0, 0.1).normalize();
         assert!(c.normal.distance(expected) < 1e-5, "{}", c.normal);
         let pit = |p: Vec2| Some((if p.length() < 0.01 { -0.5 } else { 0.0 }, 0.0));

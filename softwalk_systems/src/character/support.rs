@@ -17,13 +17,13 @@ use glam::{Vec2, Vec3};
 use super::body::CharacterBody;
 use super::gait::{FootPlan, GaitParams};
 use super::ground_cross::GroundCross;
-use crate::terrain::SINK_TIME_S;
 use crate::foot::FootPhase;
 use crate::ground::{Ground, GroundHit};
+use crate::terrain::SINK_TIME_S;
 
 /// Least height of a swinging foot over the higher of the print's rim it
 /// leaves and the ground it lands on, metres.
-pub const RIM_CLEARANCE: f32 = 0.03;
+pub const RIM_CLEARANCE: f32 = 0.02;
 /// Fraction of the swing over which a foot rises out of a print (and, at
 /// the end, comes down into a lower landing).
 const STEP_OUT_TIME: f32 = 0.3;
@@ -166,7 +166,11 @@ impl FootSupport {
         let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
         if u > pushing_from {
             let pushed = (u - pushing_from) / (1.0 - pushing_from);
-            return (at(self.landing.point.y - self.landing.give * pushed), normal, true);
+            return (
+                at(self.landing.point.y - self.landing.give * pushed),
+                normal,
+                true,
+            );
         }
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
         // Ground rising above the path between the two footholds lifts the foot.
