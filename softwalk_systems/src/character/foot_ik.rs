@@ -293,7 +293,10 @@ pub fn foot_ik_stage(
         .fold(f32::INFINITY, f32::min)
         .clamp(0.0, MAX_PELVIS_RAISE * body.leg_reach());
     let ground_y = rays.body.point.y;
-    ik.pelvis_drop = ground_y - ik.pelvis.follow(ground_y - needed + raise, dt);
+    let n = rays.body.normal;
+    let ground_rate = -(n.x * gait.velocity.x + n.z * gait.velocity.y) / n.y.max(0.1);
+    let base = ik.pelvis.follow(ground_y - needed + raise, ground_rate, dt);
+    ik.pelvis_drop = ground_y - base;
     pelvis.y -= ik.pelvis_drop;
 
     // Legs.

@@ -7,7 +7,8 @@
 /// Time constant of the follower, seconds (critically damped: no overshoot
 /// without the bounds).
 pub const PELVIS_RESPONSE_TIME: f32 = 0.08;
-/// Fastest the pelvis base moves, m/s (the gait's bob comes on top).
+/// Fastest the pelvis base moves relative to the ground's own rise under
+/// the walk, m/s (the gait's bob comes on top).
 pub const PELVIS_MAX_SPEED: f32 = 0.3;
 /// Largest acceleration of the pelvis base, m/s².
 pub const PELVIS_MAX_ACCELERATION: f32 = 6.0;
@@ -27,25 +28,28 @@ pub struct PelvisFollower {
 }
 
 impl PelvisFollower {
-    /// Moves towards `target` over `dt` seconds; a `dt` of 0 (or the first
-    /// call) jumps to it at rest.
-    pub fn follow(&mut self, target: f32, dt: f32) -> f32 {
+    /// Moves towards `target` over `dt` seconds while the ground under the
+    /// body rises at `ground_rate` m/s (its slope times the walking speed):
+    /// the bounds apply to the motion relative to that ground, so a steep
+    /// slope is followed at its own pace. A `dt` of 0 (or the first call)
+    /// jumps to the target at rest.
+    pub fn follow(&mut self, target: f32, ground_rate: f32, dt: f32) -> f32 {
         if dt <= 0.0 || !self.placed {
             *self = PelvisFollower {
                 height: target,
-                speed: 0.0,
+                speed: ground_rate,
                 last_target: target,
                 placed: true,
             };
             return self.height;
         }
+        let (lo, hi) = (ground_rate - PELVIS_MAX_SPEED, ground_rate + PELVIS_MAX_SPEED);
         let w = 1.0 / PELVIS_RESPONSE_TIME;
-        let target_speed =
-            ((target - self.last_target) / dt).clamp(-PELVIS_MAX_SPEED, PELVIS_MAX_SPEED);
+        let target_speed = ((target - self.last_target) / dt).clamp(lo, hi);
         self.last_target = target;
         let pull = w * w * (target - self.height) + 2.0 * w * (target_speed - self.speed);
         let accel = pull.clamp(-PELVIS_MAX_ACCELERATION, PELVIS_MAX_ACCELERATION);
-        self.speed = (self.speed + accel * dt).clamp(-PELVIS_MAX_SPEED, PELVIS_MAX_SPEED);
+        self.speed = (self.speed + accel * dt).clamp(lo, hi);
         self.height += self.speed * dt;
         self.height
     }
@@ -58,11 +62,11 @@ mod tests {
     #[test]
     fn a_step_in_the_target_is_followed_within_the_bounds() {
         let mut p = PelvisFollower::default();
-        p.follow(1.0, 0.0);
+        p.follow(1.0, 0.0, 0.0);
         let dt = 1.0 / 60.0;
         let mut last = p.height;
         for _ in 0..120 {
-            let h = p.follow(0.7, dt);
+            let h = p.follow(0.7, 0.0, dt);
             assert!((last - h).abs() <= PELVIS_MAX_SPEED * dt + 1e-6);
             assert!(h >= 0.7 - 1e-3, "no undershoot: {h}");
             last = h;
@@ -73,9 +77,21 @@ mod tests {
     #[test]
     fn zero_dt_places_at_rest() {
         let mut p = PelvisFollower::default();
-        p.follow(0.5, 1.0 / 60.0);
+        p.follow(0.5, 0.0, 1.0 / 60.0);
         assert_eq!(p.height, 0.5);
-        p.follow(0.2, 0.0);
+        p.follow(0.2, 0.0, 0.0);
         assert_eq!((p.height, p.speed), (0.2, 0.0));
+    }
+
+    #[test]
+    fn a_steep_slope_is_followed_at_its_own_pace() {
+        let mut p = PelvisFollower::default();
+        let dt = 1.0 / 60.0;
+        let rate = -0.45;
+        p.follow(0.0, rate, 0.0);
+        for k in 1..=120 {
+            p.follow(rate * dt * k as f32, rate, dt);
+        }
+        assert!((p.height - rate * 2.0).abs() < 0.01, "{}", p.height);
     }
 }

@@ -177,7 +177,8 @@ impl FootSupport {
         let height = cast(plan.target).map_or(height, |h| height.max(h.point.y));
         // Until the sole is out of its print, the print stays held: its walls
         // do not slump onto the rising foot.
-        (at(height), normal, height < self.left_rim)
+        let in_print = self.left.give > 0.0 && u < 0.5 && height < self.left_rim;
+        (at(height), normal, in_print)
     }
 
     /// Reads the landing's slope and give over the patch the sole will cover
