@@ -4,7 +4,7 @@
 
 use std::f32::consts::{PI, TAU};
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
 use super::path::{PathPoint, WalkPath};
@@ -23,6 +23,10 @@ const FOOT_FLAT_AT: f32 = 0.15;
 const HEEL_RISE_AT: f32 = 0.7;
 /// Midstance leg length (hip to ankle) as a fraction of the leg reach: nearly straight (knee flexion about 0.2 rad).
 const MIDSTANCE_LEG: f32 = 0.995;
+/// How much steps shorten per unit of downhill grade (a 10° descent
+/// shortens them by about a fifth, a 20° one by about a third), as
+/// people's do.
+const DOWNHILL_STEP_SHORTENING: f32 = 1.5;
 /// Time over which the feet roll flat once the walk has stopped, seconds.
 const STOP_SETTLE_TIME: f32 = 0.25;
 
@@ -76,6 +80,21 @@ pub struct GaitModifiers {
     pub step_length_scale: f32,
     /// Added to the swing-foot clearance, metres (clamped to `[0, 0.5]`).
     pub extra_clearance: f32,
+    /// Grade of the ground along the walking direction under the body (rise
+    /// over run, negative downhill; non-finite reads as 0): steps shorten
+    /// downhill, as people's do.
+    pub grade: f32,
+}
+
+impl GaitModifiers {
+    /// These modifiers on ground of unit `normal`, walking along `heading` (x, z).
+    pub fn on_ground(self, normal: Vec3, heading: Vec2) -> Self {
+        let along = normal.x * heading.x + normal.z * heading.y;
+        GaitModifiers {
+            grade: -along / normal.y.max(0.1),
+            ..self
+        }
+    }
 }
 
 impl Default for GaitModifiers {
@@ -84,6 +103,7 @@ impl Default for GaitModifiers {
             speed_scale: 1.0,
             step_length_scale: 1.0,
             extra_clearance: 0.0,
+            grade: 0.0,
         }
     }
 }
@@ -137,7 +157,9 @@ impl GaitParams {
         let length_scale = sane(modifiers.step_length_scale, 0.3, 1.5, 1.0);
         let speed = (body.desc.froude * 9.81 * ht).sqrt() * speed_scale;
         let rv = speed / ht;
-        let stride = 1.346 * rv.sqrt() * ht * length_scale;
+        let grade = sane(modifiers.grade, -2.0, 2.0, 0.0);
+        let slope_scale = 1.0 / (1.0 + DOWNHILL_STEP_SHORTENING * (-grade).max(0.0));
+        let stride = 1.346 * rv.sqrt() * ht * length_scale * slope_scale;
         let cycle = stride / speed;
         let duty = ((0.752 * cycle - 0.143) / cycle).clamp(0.55, 0.7);
         GaitParams {
@@ -428,7 +450,6 @@ pub fn gait_stage(
 mod tests {
     use super::*;
     use crate::character::CharacterDesc;
-    use glam::Vec3;
 
     #[test]
     fn adult_walk_matches_boulic_figures() {

@@ -16,6 +16,8 @@ pub(crate) struct GroundCross {
     /// The least give found, metres: a sole across two grounds rests on the
     /// firmer one.
     pub give: f32,
+    /// The mean give found, metres: the patch's mean floor is `mean - mean_give`.
+    pub mean_give: f32,
 }
 
 impl GroundCross {
@@ -42,11 +44,9 @@ impl GroundCross {
         if heights.is_empty() {
             return None;
         }
-        let give = found
-            .iter()
-            .flatten()
-            .map(|&(_, give)| give)
-            .fold(f32::INFINITY, f32::min);
+        let gives: Vec<f32> = found.iter().flatten().map(|&(_, give)| give).collect();
+        let give = gives.iter().copied().fold(f32::INFINITY, f32::min);
+        let mean_give = gives.iter().sum::<f32>() / gives.len() as f32;
         let grade = |ahead: Option<f32>, behind: Option<f32>, reach: f32| match (ahead, behind) {
             (Some(a), Some(b)) if reach > 0.0 => (a - b) / (2.0 * reach),
             _ => 0.0,
@@ -58,6 +58,7 @@ impl GroundCross {
             mean: heights.iter().sum::<f32>() / heights.len() as f32,
             normal: Vec3::new(-rise.x, 1.0, -rise.y).normalize(),
             give,
+            mean_give,
         })
     }
 }

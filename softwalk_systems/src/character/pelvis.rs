@@ -9,7 +9,7 @@
 pub const PELVIS_RESPONSE_TIME: f32 = 0.08;
 /// Fastest the pelvis base moves relative to the ground's own rise under
 /// the walk, m/s (the gait's bob comes on top).
-pub const PELVIS_MAX_SPEED: f32 = 0.3;
+pub const PELVIS_MAX_SPEED: f32 = 0.2;
 /// Largest acceleration of the pelvis base, m/s².
 pub const PELVIS_MAX_ACCELERATION: f32 = 6.0;
 

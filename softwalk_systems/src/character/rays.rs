@@ -101,19 +101,21 @@ impl FootRays {
 }
 
 /// The body's ground: the mean floor (surface minus give) under the pelvis
-/// and four points around it, with the normal of the plane through them.
+/// and four points around it, with the normal of the surface's plane
+/// through them (so the edge between two grounds of different give is not
+/// read as a slope).
 /// When every ray misses, `last` moves along.
 fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -> GroundKey {
     let at = gait.pelvis.position;
-    let floor = |p: Vec2| {
+    let surface = |p: Vec2| {
         ground
             .cast_down(p.x, p.y, from_y)
-            .map(|h| (h.point.y - h.give.max(0.0), 0.0))
+            .map(|h| (h.point.y, h.give.max(0.0)))
     };
     let reach = BODY_SAMPLE_REACH;
-    match GroundCross::sample(floor, at, gait.pelvis.heading, reach, reach) {
+    match GroundCross::sample(surface, at, gait.pelvis.heading, reach, reach) {
         Some(cross) => GroundKey {
-            point: Vec3::new(at.x, cross.mean, at.y),
+            point: Vec3::new(at.x, cross.mean - cross.mean_give, at.y),
             normal: cross.normal,
             hit: true,
             pressing: false,

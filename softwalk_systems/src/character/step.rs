@@ -77,7 +77,8 @@ impl Character {
 /// then records the metrics.
 pub fn step_character(character: &mut Character, path: &WalkPath, ground: &dyn Ground, dt: f32) {
     let c = character;
-    gait_stage(&mut c.gait, &c.body, path, &c.modifiers, dt);
+    let modifiers = c.modifiers.on_ground(c.rays.body.normal, c.gait.pelvis.heading);
+    gait_stage(&mut c.gait, &c.body, path, &modifiers, dt);
     foot_raycast_stage(&mut c.rays, &c.gait, &c.body, ground);
     balance_stage(&mut c.proxy, &c.balance, &c.body, &c.gait, &c.rays, dt);
     c.feet = foot_ik_stage(

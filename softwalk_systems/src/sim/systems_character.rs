@@ -57,8 +57,9 @@ pub fn ground_response_system(world: &mut World) {
     let terrain = terrains.iter().next();
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();
-    let mut walkers = world.query::<(&Gait, &mut GaitModifiers, &mut Balance, &BaseGains)>();
-    for (gait, modifiers, balance, base) in walkers.iter() {
+    let mut walkers =
+        world.query::<(&Gait, &FootRays, &mut GaitModifiers, &mut Balance, &BaseGains)>();
+    for (gait, rays, modifiers, balance, base) in walkers.iter() {
         let p = gait.pelvis.position;
         let response = terrain
             .and_then(|t| t.material_at(p.x, p.y))
@@ -67,7 +68,9 @@ pub fn ground_response_system(world: &mut World) {
             speed_scale: response.speed_scale,
             step_length_scale: response.step_length_scale,
             extra_clearance: response.extra_clearance,
-        };
+            grade: 0.0,
+        }
+        .on_ground(rays.body.normal, gait.pelvis.heading);
         let h = sensed_vegetation(&patches, p.x, p.y);
         let beta = base.beta * friction.beta(h) / friction.beta_bare;
         if let Err(e) = balance.set_gains(base.alpha, beta) {
