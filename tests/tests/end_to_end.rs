@@ -5,7 +5,7 @@ use demos::scene::{Scene, builtin_scenes};
 use engine::ecs::World;
 use engine::geom::HeightGrid;
 use softwalk_systems::character::CharacterMetrics;
-use softwalk_systems::sim::{WalkerMetrics, run_steps};
+use softwalk_systems::sim::{WalkerMetrics, run_steps, sole_ends};
 use softwalk_systems::terrain::Heightfield;
 
 const STEPS: u64 = 150;
@@ -49,13 +49,23 @@ fn every_builtin_scene_walks_sanely() {
                 );
                 for k in 0..2 {
                     let f = m.character.feet[k];
-                    // A foot standing on a falling virtual platform is still above the grass.
-                    if !m.character.contact[k] || m.platform_y[k].is_some() {
+                    // A foot standing on a falling virtual platform is still above
+                    // the grass; the first second presses the first prints.
+                    if !m.character.planted[k] || m.platform_y[k].is_some() || step < 60 {
                         continue;
                     }
-                    let Some(ground) = hf.grid().height_at(f.x, f.z) else {
+                    // The sole's tip lies on its print's wall (a one-cell slope on
+                    // the grid): the floor is the lower of the heights under the
+                    // tip and under the centre of the sole's rounded end there.
+                    let [heel, toe] = sole_ends(&m.character.soles[k]);
+                    let end = if heel.y < toe.y { heel } else { toe };
+                    let (Some(tip), Some(inside)) = (
+                        hf.grid().height_at(f.x, f.z),
+                        hf.grid().height_at(end.x, end.z),
+                    ) else {
                         continue;
                     };
+                    let ground = tip.min(inside);
                     // Sanity, not the 1 cm claim (tests/tests/character_claims.rs): this step may
                     // have sunk the ground under the sole by one sink step, or piled a rim near it.
                     let sink = hf.material_at(f.x, f.z).map_or(0.0, |mat| mat.sink_speed()) / 60.0;

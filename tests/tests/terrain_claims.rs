@@ -240,7 +240,7 @@ fn claim5_one_step_changes_only_the_print_its_rim_and_the_stage_margin() {
     for step in 0..=STANCE_STEPS {
         let contact = step < STANCE_STEPS;
         hf.begin_step();
-        let sole = sole_on_ground(&hf, center, Vec2::X, size).unwrap();
+        let sole = press_into(&hf, sole_on_ground(&hf, center, Vec2::X, size).unwrap(), DT);
         let touched = print.touched();
         let before = hf.grid().clone();
         step_foot(&mut hf, &mut print, &sole, contact, DT).unwrap();

@@ -109,6 +109,7 @@ fn a_planted_foot_stops_at_the_print_depth() {
         for _ in 0..600 {
             hf.begin_step();
             let sole = sole_on_ground(&hf, c, Vec2::X, FootSize::default()).unwrap();
+            let sole = press_into(&hf, sole, DT);
             step_foot(&mut hf, &mut print, &sole, true, DT).unwrap();
         }
         let lowest = hf.grid().min_max_in(&hf.grid().full_rect()).0;

@@ -222,6 +222,7 @@ fn give_is_the_print_depth_on_fresh_ground_and_nothing_on_the_floor() {
         for _ in 0..30 {
             hf.begin_step();
             let sole = sole_on_ground(&hf, CENTER, Vec2::X, FootSize::default()).unwrap();
+            let sole = press_into(&hf, sole, 1.0 / 60.0);
             step_foot(&mut hf, &mut print, &sole, true, 1.0 / 60.0).unwrap();
         }
         assert_eq!(hf.give_at(CENTER.x, CENTER.y), Some(0.0), "{}", m.name);

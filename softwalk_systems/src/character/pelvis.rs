@@ -43,7 +43,10 @@ impl PelvisFollower {
             };
             return self.height;
         }
-        let (lo, hi) = (ground_rate - PELVIS_MAX_SPEED, ground_rate + PELVIS_MAX_SPEED);
+        let (lo, hi) = (
+            ground_rate - PELVIS_MAX_SPEED,
+            ground_rate + PELVIS_MAX_SPEED,
+        );
         let w = 1.0 / PELVIS_RESPONSE_TIME;
         let target_speed = ((target - self.last_target) / dt).clamp(lo, hi);
         self.last_target = target;

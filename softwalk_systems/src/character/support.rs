@@ -122,7 +122,8 @@ impl FootSupport {
 
     /// Advances the support for `plan` under `params` (the swing lift, the
     /// swing's duration) for a foot of `body`, casting rays from `from_y`
-    /// (the landing's normal is the slope of the patch under the sole); returns the ground
+    /// (the landing's normal is the slope of the patch under the sole);
+    /// returns the ground
     /// point under the sole centre its lift is measured from, its normal, and
     /// whether the foot presses the ground (planted, pushing in at the end of
     /// its swing, or still rising out of its print).

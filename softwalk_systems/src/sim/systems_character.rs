@@ -57,8 +57,13 @@ pub fn ground_response_system(world: &mut World) {
     let terrain = terrains.iter().next();
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();
-    let mut walkers =
-        world.query::<(&Gait, &FootRays, &mut GaitModifiers, &mut Balance, &BaseGains)>();
+    let mut walkers = world.query::<(
+        &Gait,
+        &FootRays,
+        &mut GaitModifiers,
+        &mut Balance,
+        &BaseGains,
+    )>();
     for (gait, rays, modifiers, balance, base) in walkers.iter() {
         let p = gait.pelvis.position;
         let response = terrain

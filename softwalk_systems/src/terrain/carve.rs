@@ -106,11 +106,11 @@ impl FootPrint {
 /// One step of carving by one foot; returns the rectangle to smooth and settle.
 ///
 /// With `contact`, each sample under the [`Footprint`] sinks by the
-/// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below
-/// `sole - sink step` (the foot pushes the ground one step ahead of itself,
-/// so the print takes the sole's tilt; samples under a raised toe are left
-/// alone; a fully covered sample the sole has gone below is pressed down to
-/// the sole at once), never below the print depth under the surface this contact first
+/// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below the
+/// sole (the foot sets how deep it presses, so the print takes the sole's
+/// tilt; samples under a raised toe are left alone; a fully covered sample
+/// the sole has gone below is pressed down to the sole at once), never below
+/// the print depth under the surface this contact first
 /// touched, and never below its firm floor ([`Heightfield::firm_floor`]: the
 /// loose layer is all there is to press). The print's edge is anti-aliased:
 /// a sample within half a cell of it goes the share of that way its cell
@@ -198,7 +198,7 @@ pub fn carve(
             let reference = print.reference[local];
             let full = (reference - material.print_depth()).max(parts.floor(k));
             let floor = (reference - cover * (reference - full))
-                .max(sole_y - step)
+                .max(sole_y)
                 .max(parts.floor(k));
             // A sole that went deeper than one step presses a fully covered
             // sample down to itself: the ground never lags the foot.

@@ -65,5 +65,5 @@ pub use smooth::{
     DIFFUSION_RATE, MAX_SMOOTHING_PASSES, smooth, smoothing_duration, smoothing_pass_equivalent,
     smoothing_radius, smoothing_reach_m, smoothing_variance_rate,
 };
-pub use step::{FootSize, FootholdReport, plant_foothold, sole_on_ground, step_foot};
+pub use step::{FootSize, FootholdReport, plant_foothold, press_into, sole_on_ground, step_foot};
 pub use units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};

@@ -132,8 +132,24 @@ impl FootholdReport {
     }
 }
 
+/// `sole` pushed one step of `dt` into the ground under its centre (the
+/// nearest point of the grid when off it): lowered by that material's [`super::TerrainMaterial::sink_speed`] × `dt` (a
+/// synthetic foot pressing the ground as a character's does).
+pub fn press_into(hf: &Heightfield, mut sole: FootSole, dt: f32) -> FootSole {
+    let grid = hf.grid();
+    let c = sole.center();
+    let at = Vec2::new(c.x, c.z).clamp(grid.origin(), grid.origin() + grid.extent());
+    let sink = hf
+        .material_at(at.x, at.y)
+        .map_or(0.0, |m| m.sink_speed() * dt);
+    sole.heel.y -= sink;
+    sole.toe.y -= sink;
+    sole
+}
+
 /// Plants a synthetic foot at `center` for `steps` steps of `dt`, re-laying
-/// the sole on the ground each step (the ray -> carve -> lower foot feedback),
+/// the sole on the ground each step and pushing it one sink step into it
+/// (the ray -> carve -> lower foot feedback),
 /// then lifts it (one release step) and keeps it lifted until the print has
 /// settled ([`Heightfield::settling_pending`] is false). Each step starts with
 /// [`Heightfield::begin_step`].
@@ -150,7 +166,7 @@ pub fn plant_foothold(
     let mut k = 0;
     while k <= steps || hf.settling_pending() {
         hf.begin_step();
-        let sole = sole_on_ground(hf, center, heading, size)?;
+        let sole = press_into(hf, sole_on_ground(hf, center, heading, size)?, dt);
         let rect = step_foot(hf, print, &sole, k < steps, dt)?;
         report.add(rect, hf.changes());
         k += 1;
