@@ -2,6 +2,7 @@
 //! the slope with the controller, a higher COM tilts and oscillates more,
 //! stance feet neither slide nor float, and long walks stay bounded.
 
+use demos::paper::character::{LOOP_FLOAT_LIMIT, STANCE_LIMIT, float_limit};
 use demos::paper::stats::{mean, peak_to_peak, std_dev};
 use engine::geom::HeightGrid;
 use glam::{Vec2, Vec3};
@@ -152,32 +153,15 @@ fn stance_errors(metrics: &[CharacterMetrics], ground: &HeightGrid) -> (f32, f32
     (drift, gap)
 }
 
-/// Largest gap allowed between a foot on the ground and the ground, metres.
-///
-/// On level and bumpy ground and up a 10° slope a foot on the ground
-/// touches it (1 cm). On steeper ground and down a slope the pelvis, which
-/// moves at a bounded speed, reaches the height a foot needs a little after
-/// the foot arrives: the foot hangs above the ground for a few steps, at
-/// most about 4 cm down 10°, 4 cm up 20° and 8 cm down 20° (a known limit of
-/// the bounded pelvis, recorded on issue 19).
-fn landing_float_limit(ground: &str) -> f32 {
-    match ground {
-        "slope -10°" => 0.045,
-        "slope 20°" => 0.045,
-        "slope -20°" => 0.09,
-        _ => 0.01,
-    }
-}
-
 #[test]
 fn stance_feet_neither_slide_nor_float() {
     let path = straight(9.0);
-    let mut grounds: Vec<(String, HeightGrid)> = [-20.0f32, -10.0, 0.0, 10.0, 20.0]
+    let mut grounds: Vec<(String, HeightGrid, f32)> = [-20.0f32, -10.0, 0.0, 10.0, 20.0]
         .iter()
-        .map(|&d| (format!("slope {d}°"), ramp(d)))
+        .map(|&d| (format!("slope {d}°"), ramp(d), float_limit(d)))
         .collect();
-    grounds.push(("bumpy".into(), bumpy()));
-    for (name, ground) in &grounds {
+    grounds.push(("bumpy".into(), bumpy(), STANCE_LIMIT));
+    for (name, ground, limit) in &grounds {
         for desc in [CharacterDesc::adult(), CharacterDesc::child()] {
             let m = walk(desc, &path, ground, 10.0, true);
             let (drift, gap) = stance_errors(&m, ground);
@@ -185,11 +169,8 @@ fn stance_feet_neither_slide_nor_float() {
                 "{name} h={}: drift {:.4} m, gap {:.4} m",
                 desc.height, drift, gap
             );
-            assert!(drift <= 0.01, "{name}: stance drift {drift} m");
-            assert!(
-                gap <= landing_float_limit(name),
-                "{name}: sole-ground gap {gap} m"
-            );
+            assert!(drift <= STANCE_LIMIT, "{name}: stance drift {drift} m");
+            assert!(gap <= *limit, "{name}: sole-ground gap {gap} m");
         }
     }
 }
