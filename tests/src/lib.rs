@@ -85,3 +85,14 @@ pub fn walk(app: &mut App, steps: usize) -> Vec<WalkerMetrics> {
 }
 
 pub use demos::paper::stats::{mean, std_dev};
+
+/// The steepest wall slope (m/m) across a print walked along +X: between
+/// neighbouring samples along Z within 0.2 m of `c`, on the column through it.
+pub fn steepest_wall_across(grid: &engine::geom::HeightGrid, c: Vec2) -> f32 {
+    let i = grid.to_grid(c.x, c.y).round().x as usize;
+    let j0 = grid.to_grid(c.x, c.y - 0.2).y as usize;
+    let j1 = grid.to_grid(c.x, c.y + 0.2).y as usize;
+    (j0..j1)
+        .map(|j| (grid.height(i, j + 1) - grid.height(i, j)).abs() / grid.cell_size())
+        .fold(0.0, f32::max)
+}

@@ -218,7 +218,7 @@ fn ten_minutes_of_walking_stay_bounded_for_every_morphology() {
         // The loop's descents leave landing feet briefly above the ground
         // (see `landing_float_limit`).
         assert!(
-            drift <= 0.01 && gap <= 0.065,
+            drift <= STANCE_LIMIT && gap <= LOOP_FLOAT_LIMIT,
             "drift {drift} m, gap {gap} m"
         );
         let last = m.last().unwrap();

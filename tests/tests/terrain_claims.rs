@@ -7,6 +7,7 @@ use demos::paper::stats::mean;
 use glam::Vec2;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::*;
+use softwalk_tests::steepest_wall_across;
 
 const DT: f32 = 1.0 / 60.0;
 /// 0.3 s of stance at 60 Hz.
@@ -73,14 +74,7 @@ fn print_depth(hf: &Heightfield, c: Vec2) -> f32 {
 /// Sharpness of a print: steepest wall slope across it (perpendicular to the
 /// walk) divided by its depth, in 1/m: how abruptly the floor meets the surface.
 fn sharpness(hf: &Heightfield, c: Vec2) -> f32 {
-    let g = hf.grid();
-    let i = g.to_grid(c.x, c.y).round().x as usize;
-    let j0 = g.to_grid(c.x, c.y - 0.2).y as usize;
-    let j1 = g.to_grid(c.x, c.y + 0.2).y as usize;
-    let steepest = (j0..j1)
-        .map(|j| (g.height(i, j + 1) - g.height(i, j)).abs() / g.cell_size())
-        .fold(0.0, f32::max);
-    steepest / print_depth(hf, c)
+    steepest_wall_across(hf.grid(), c) / print_depth(hf, c)
 }
 
 #[test]

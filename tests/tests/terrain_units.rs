@@ -7,6 +7,7 @@
 use glam::Vec2;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::*;
+use softwalk_tests::steepest_wall_across;
 
 const BASE: f32 = 1.0;
 /// Contact time of a planted foot, seconds.
@@ -83,12 +84,7 @@ fn measure_at(hf: &Heightfield, center: Vec2) -> Print {
             below -= d;
         }
     }
-    let i = g.to_grid(center.x, center.y).round().x as usize;
-    let j0 = g.to_grid(center.x, center.y - 0.2).y as usize;
-    let j1 = g.to_grid(center.x, center.y + 0.2).y as usize;
-    let steepest = (j0..j1)
-        .map(|j| (g.height(i, j + 1) - g.height(i, j)).abs() / g.cell_size())
-        .fold(0.0, f32::max);
+    let steepest = steepest_wall_across(g, center);
     Print {
         depth,
         rim_fraction: above / below,

@@ -37,7 +37,7 @@ pub const LOOP_FLOAT_LIMIT: f32 = 0.065;
 pub fn float_limit(angle_deg: f32) -> f32 {
     if angle_deg <= -15.0 {
         0.09
-    } else if angle_deg < -5.0 || angle_deg >= 15.0 {
+    } else if !(-5.0..15.0).contains(&angle_deg) {
         0.045
     } else {
         STANCE_LIMIT
