@@ -277,3 +277,48 @@ fn starts_at_the_terrain_edges_keep_every_sole_out_of_the_ground() {
     }
     assert_none("starts at the terrain edges", &failures);
 }
+
+/// Ten minutes round and round one loop on snow: the prints stop at the
+/// loose layer (snow's 0.3 m) and the pelvis stays above the original
+/// surface (flat at height 0 in `snow-flat`).
+#[test]
+fn ten_minutes_on_one_snow_loop_stop_at_the_loose_layer() {
+    let mut scene = builtin("snow-flat");
+    scene.name = "snow-loop".into();
+    let lap = [
+        [2.0, 4.6],
+        [8.0, 4.6],
+        [8.6, 5.0],
+        [8.0, 5.4],
+        [2.0, 5.4],
+        [1.4, 5.0],
+    ];
+    let mut points: Vec<[f32; 2]> = lap.iter().copied().cycle().take(6 * 60).collect();
+    points.push(lap[0]);
+    scene.characters[0].path = PathSpec::Waypoints {
+        points,
+        corner_radius: 0.3,
+    };
+    scene.sim.duration = 600.0;
+    let scene = checked(scene).unwrap();
+    let run = walk(&scene, 600.0);
+    let depth = &run.summary.print_depth[0];
+    let lowest_pelvis = run.walkers[0]
+        .iter()
+        .map(|m| m.character.pelvis_y)
+        .fold(f32::INFINITY, f32::min);
+    println!(
+        "snow loop: {} prints, deepest {:.3} m, lowest pelvis {lowest_pelvis:.3} m",
+        depth.prints, depth.max_m
+    );
+    assert!(
+        depth.prints > 500,
+        "the loop was walked: {} prints",
+        depth.prints
+    );
+    assert!(depth.max_m <= 0.3 + 1e-3, "a print {} m deep", depth.max_m);
+    assert!(
+        lowest_pelvis > 0.3,
+        "the pelvis went down to {lowest_pelvis} m"
+    );
+}
