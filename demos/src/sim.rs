@@ -231,10 +231,10 @@ pub fn run(
     observer: &mut dyn RunObserver,
 ) -> Result<RunSummary, SimError> {
     let (mut app, walkers) = scene.build_sim().map_err(SimError::Setup)?;
-    let initial = terrain_grid(&app.world);
-    observer
-        .on_terrain(TerrainMoment::Initial, &initial)
-        .map_err(SimError::Observer)?;
+    with_terrain(&app.world, |t| {
+        observer.on_terrain(TerrainMoment::Initial, t.initial())
+    })
+    .map_err(SimError::Observer)?;
     let mut view = match options.render {
         true => Some(
             SceneView::new(
@@ -287,10 +287,11 @@ pub fn run(
         }
         observer.on_step_end(step, t).map_err(SimError::Observer)?;
     }
-    let last = terrain_grid(&app.world);
-    observer
-        .on_terrain(TerrainMoment::Final, &last)
-        .map_err(SimError::Observer)?;
+    let print_depth = with_terrain(&app.world, |t| {
+        observer.on_terrain(TerrainMoment::Final, t.grid())?;
+        Ok(prints.depths(t.initial(), t.grid()))
+    })
+    .map_err(SimError::Observer)?;
     let timings = app
         .world
         .get_resource::<SystemTimings>()
@@ -308,19 +309,23 @@ pub fn run(
         steps: options.steps,
         sim_seconds: options.steps as f64 * options.dt,
         world_hash: options.hash.then(|| world_hash(&app.world)),
-        print_depth: prints.depths(&initial, &last),
+        print_depth,
         timings,
     })
 }
 
-/// A copy of the terrain's heights.
-pub fn terrain_grid(world: &World) -> HeightGrid {
+/// Runs `f` with the terrain of a world built by [`Scene::build_sim`].
+fn with_terrain<T>(world: &World, f: impl FnOnce(&Heightfield) -> T) -> T {
     let mut terrains = world.query::<&Heightfield>();
-    terrains
+    f(terrains
         .iter()
         .next()
-        .map(|t| t.grid().clone())
-        .expect("build_sim always adds a terrain")
+        .expect("build_sim always adds a terrain"))
+}
+
+/// A copy of the terrain's heights.
+pub fn terrain_grid(world: &World) -> HeightGrid {
+    with_terrain(world, |t| t.grid().clone())
 }
 
 /// Where each character's feet lifted off (the prints they left), to measure print depths at the end.

@@ -36,6 +36,14 @@ impl Ground for engine::geom::HeightGrid {
     }
 }
 
+/// How fast ground of unit `normal` rises when crossed along `direction`
+/// (x, z): rise per unit of `direction`'s length (a grade for a unit
+/// direction, a rate in m/s for a velocity); the normal's tilt is capped so
+/// a near-vertical normal gives a large but finite value.
+pub fn rise_along(normal: Vec3, direction: glam::Vec2) -> f32 {
+    -(normal.x * direction.x + normal.z * direction.y) / normal.y.max(0.1)
+}
+
 /// Flat ground at a fixed height (handy in tests).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlatGround(pub f32);

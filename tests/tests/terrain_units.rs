@@ -77,7 +77,7 @@ fn measure_at(hf: &Heightfield, center: Vec2) -> Print {
     let rect = g.rect_covering(center - Vec2::splat(0.35), center + Vec2::splat(0.35));
     let (mut above, mut below) = (0.0f64, 0.0f64);
     for (i, j) in rect.iter() {
-        let d = f64::from(g.height(i, j) - hf.initial_heights()[g.index(i, j)]);
+        let d = f64::from(g.height(i, j) - hf.initial().height(i, j));
         if d > 0.0 {
             above += d;
         } else {
@@ -223,7 +223,7 @@ fn give_is_the_print_depth_on_fresh_ground_and_nothing_on_the_floor() {
         }
         assert_eq!(hf.give_at(CENTER.x, CENTER.y), Some(0.0), "{}", m.name);
         assert!(hf.give_at(-1.0, 0.0).is_none());
-        assert_eq!(hf.initial_height_at(CENTER.x, CENTER.y), Some(BASE));
+        assert_eq!(hf.initial().height_at(CENTER.x, CENTER.y), Some(BASE));
     }
 }
 

@@ -13,6 +13,7 @@ use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
 use crate::foot::{FootPhase, FootSole, FootState, Side};
+use crate::ground::rise_along;
 
 /// Foot IK state: the pelvis follower, the foot roll added for reach, and
 /// last ankle positions.
@@ -26,7 +27,8 @@ pub struct FootIK {
     /// Foot pitch each leg added to its scheduled roll this step so that it
     /// reaches its foot without lowering the pelvis, radians: negative is
     /// more heel lift (a trailing leg), positive more toe lift (a leading leg).
-    /// It changes by at most 6 rad/s; the pelvis drop covers the rest.
+    /// It changes by at most 6 rad/s in the swing and 3 rad/s on the ground;
+    /// the pelvis drop covers the rest.
     pub extra_pitch: [f32; 2],
     /// Sole-centre target of each foot this step (world).
     pub sole_targets: [Vec3; 2],
@@ -202,8 +204,9 @@ pub(crate) fn sole_direction(heading: Vec2, normal: Vec3) -> Vec3 {
 /// reports zero velocities.
 ///
 /// Each foot rolls as the gait schedules it (heel strike about the heel,
-/// heel rise about the toe); a trailing stance leg that still cannot reach
-/// lifts its heel further (up to about 63°) before the pelvis is lowered.
+/// heel rise about the toe), and further where a leg cannot reach its foot;
+/// the pelvis follows the height the legs need at a bounded speed
+/// ([`PelvisFollower`]); the knees stay within their range and speed.
 pub fn foot_ik_stage(
     ik: &mut FootIK,
     pose: &mut Pose,
@@ -227,13 +230,30 @@ pub fn foot_ik_stage(
         pelvis - right * body.hip_half_width,
         pelvis + right * body.hip_half_width,
     ];
-    let reach = REACH_MARGIN * body.leg_reach();
+    let feet = place_feet(ik, body, gait, rays, &hips, forward, dt);
+    ik.pelvis_drop = follow_pelvis(ik, body, gait, rays, &hips, &feet, dt);
+    pelvis.y -= ik.pelvis_drop;
+    let soles = solve_legs(ik, pose, body, &hips, &feet, forward, dt);
+    pose_upper_body(pose, body, gait, proxy, pelvis, forward, right);
+    foot_states(ik, pose, gait, rays, &feet, &soles, dt)
+}
 
-    // Feet: the scheduled roll, plus the roll a leg needs to reach its foot
-    // before the pelvis drops: more heel lift behind the hip, more toe lift
-    // ahead of it. A planted foot only rolls further about the point its
-    // scheduled roll already stands on (where its ray was cast), so a flat
-    // planted foot does not rock.
+/// Places each foot on its key with the scheduled roll, plus the roll a
+/// leg needs to reach its foot before the pelvis drops: more heel lift
+/// behind the hip, more toe lift ahead of it. A planted foot only rolls
+/// further about the point its scheduled roll already stands on (where its
+/// ray was cast), so a flat planted foot does not rock. Records the targets
+/// in `ik`.
+fn place_feet(
+    ik: &mut FootIK,
+    body: &CharacterBody,
+    gait: &Gait,
+    rays: &FootRays,
+    hips: &[Vec3; 2],
+    forward: Vec3,
+    dt: f32,
+) -> [FootPlacement; 2] {
+    let reach = REACH_MARGIN * body.leg_reach();
     let mut flat_heights = [0.0; 2];
     let feet = [0, 1].map(|k| {
         let plan = &gait.feet[k];
@@ -273,10 +293,26 @@ pub fn foot_ik_stage(
         ik.extra_pitch[k] = wanted.clamp(last - step, last + step);
         frame.place(body, plan.pitch + ik.extra_pitch[k])
     });
+    ik.flat_heights = Some(flat_heights);
+    ik.sole_targets = [feet[0].centre, feet[1].centre];
+    feet
+}
 
-    // Lowered as far as the farther foot needs; raised (as far as every
-    // planted leg allows) where the planted legs would bend more than a
-    // standing leg does, as behind the hip on a downhill.
+/// Moves the pelvis follower one step and returns how far the pelvis is
+/// below its walking height. The target is lowered as far as the farther
+/// foot needs, and raised (as far as every planted leg allows) where the
+/// planted legs would bend more than a standing leg does, as behind the hip
+/// on a downhill; the bounds are relative to the ground's rise under the walk.
+fn follow_pelvis(
+    ik: &mut FootIK,
+    body: &CharacterBody,
+    gait: &Gait,
+    rays: &FootRays,
+    hips: &[Vec3; 2],
+    feet: &[FootPlacement; 2],
+    dt: f32,
+) -> f32 {
+    let reach = REACH_MARGIN * body.leg_reach();
     let rise = |k: usize, length: f32| {
         let d = feet[k].ankle - hips[k];
         let r = Vec2::new(d.x, d.z).length().min(length);
@@ -293,13 +329,22 @@ pub fn foot_ik_stage(
         .fold(f32::INFINITY, f32::min)
         .clamp(0.0, MAX_PELVIS_RAISE * body.leg_reach());
     let ground_y = rays.body.point.y;
-    let n = rays.body.normal;
-    let ground_rate = -(n.x * gait.velocity.x + n.z * gait.velocity.y) / n.y.max(0.1);
-    let base = ik.pelvis.follow(ground_y - needed + raise, ground_rate, dt);
-    ik.pelvis_drop = ground_y - base;
-    pelvis.y -= ik.pelvis_drop;
+    let ground_rate = rise_along(rays.body.normal, gait.velocity);
+    ground_y - ik.pelvis.follow(ground_y - needed + raise, ground_rate, dt)
+}
 
-    // Legs.
+/// Solves both legs from the hips (lowered by `ik.pelvis_drop`) to their
+/// ankles, the knees within their range and speed, into `pose`; returns the
+/// soles moved to follow the ankles the legs really reached.
+fn solve_legs(
+    ik: &mut FootIK,
+    pose: &mut Pose,
+    body: &CharacterBody,
+    hips: &[Vec3; 2],
+    feet: &[FootPlacement; 2],
+    forward: Vec3,
+    dt: f32,
+) -> [FootSole; 2] {
     let legs = [
         (
             Joint::HipLeft,
@@ -328,8 +373,8 @@ pub fn foot_ik_stage(
             let step = MAX_KNEE_SPEED * dt;
             ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
         }
-        let s = solve_two_bone(hip_at, ankle_target, pole, body.thigh, body.shank);
-        knees[k] = flexion_at_distance(s.end.distance(hip_at), body.thigh, body.shank);
+        let s = solve_two_bone(hip_at, ankle_target, pole, l1, l2);
+        knees[k] = flexion_at_distance(s.end.distance(hip_at), l1, l2);
         // The foot follows the ankle the IK really reached.
         let miss = s.end - feet[k].ankle;
         soles[k].heel += miss;
@@ -339,8 +384,21 @@ pub fn foot_ik_stage(
         pose.joints[ankle as usize] = s.end;
         pose.joints[toe as usize] = soles[k].toe + feet[k].normal * foot_radius;
     }
+    ik.knee_flexion = Some(knees);
+    soles
+}
 
-    // Upper body, rotated by the proxy's tilt about the hips.
+/// Poses the trunk, head and arms over `pelvis`, rotated by the proxy's
+/// tilt about the hips.
+fn pose_upper_body(
+    pose: &mut Pose,
+    body: &CharacterBody,
+    gait: &Gait,
+    proxy: &RigidProxy,
+    pelvis: Vec3,
+    forward: Vec3,
+    right: Vec3,
+) {
     let lean = Quat::from_axis_angle(right, -proxy.tilt);
     let up = lean * Vec3::Y;
     let neck = pelvis + up * body.trunk;
@@ -374,12 +432,23 @@ pub fn foot_ik_stage(
     }
     pose.forward = forward;
     pose.right = right;
+}
 
+/// Each foot's state after the pose (left first); records the lowest sole
+/// points and the ankles in `ik`.
+fn foot_states(
+    ik: &mut FootIK,
+    pose: &Pose,
+    gait: &Gait,
+    rays: &FootRays,
+    feet: &[FootPlacement; 2],
+    soles: &[FootSole; 2],
+    dt: f32,
+) -> [FootState; 2] {
     let ankles = [pose.joint(Joint::AnkleLeft), pose.joint(Joint::AnkleRight)];
     ik.contact_points = [0, 1].map(|k| feet[k].lowest + (soles[k].heel - feet[k].sole.heel));
     let states = Side::BOTH.map(|side| {
         let k = side.index();
-        let plan = &gait.feet[k];
         FootState {
             side,
             sole: soles[k],
@@ -389,13 +458,10 @@ pub fn foot_ik_stage(
             } else {
                 Vec3::ZERO
             },
-            phase: plan.phase,
+            phase: gait.feet[k].phase,
             contact: rays.feet[k].hit && rays.feet[k].pressing,
         }
     });
     ik.last_ankles = ankles;
-    ik.sole_targets = [feet[0].centre, feet[1].centre];
-    ik.flat_heights = Some(flat_heights);
-    ik.knee_flexion = Some(knees);
     states
 }

@@ -9,6 +9,7 @@ use glam::{Vec2, Vec3};
 use super::body::CharacterBody;
 use super::path::{PathPoint, WalkPath};
 use crate::foot::{FootPhase, Side};
+use crate::ground::rise_along;
 
 /// The largest time step a stage accepts; longer steps are clamped to it.
 pub const MAX_STEP_DT: f32 = 0.05;
@@ -30,7 +31,8 @@ const DOWNHILL_STEP_SHORTENING: f32 = 1.5;
 /// Time over which the feet roll flat once the walk has stopped, seconds.
 const STOP_SETTLE_TIME: f32 = 0.25;
 
-fn smoothstep(t: f32) -> f32 {
+/// Hermite ease from 0 to 1 over `t` in `[0, 1]` (clamped outside).
+pub(crate) fn smoothstep(t: f32) -> f32 {
     let t = t.clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
 }
@@ -89,9 +91,8 @@ pub struct GaitModifiers {
 impl GaitModifiers {
     /// These modifiers on ground of unit `normal`, walking along `heading` (x, z).
     pub fn on_ground(self, normal: Vec3, heading: Vec2) -> Self {
-        let along = normal.x * heading.x + normal.z * heading.y;
         GaitModifiers {
-            grade: -along / normal.y.max(0.1),
+            grade: rise_along(normal, heading),
             ..self
         }
     }

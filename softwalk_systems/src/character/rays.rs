@@ -42,7 +42,7 @@ pub struct FootRays {
     pub support: [FootSupport; 2],
     /// The body's ground: the floor a planted foot would sink to, averaged
     /// over a cross of samples around the pelvis (so prints and rims under
-    /// the pelvis do not jolt it), and the slope of that floor.
+    /// the pelvis do not jolt it), and the slope of the surface there.
     pub body: GroundKey,
 }
 
@@ -107,13 +107,9 @@ impl FootRays {
 /// When every ray misses, `last` moves along.
 fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -> GroundKey {
     let at = gait.pelvis.position;
-    let surface = |p: Vec2| {
-        ground
-            .cast_down(p.x, p.y, from_y)
-            .map(|h| (h.point.y, h.give.max(0.0)))
-    };
+    let cast = |p: Vec2| ground.cast_down(p.x, p.y, from_y);
     let reach = BODY_SAMPLE_REACH;
-    match GroundCross::sample(surface, at, gait.pelvis.heading, reach, reach) {
+    match GroundCross::sample(cast, at, gait.pelvis.heading, reach, reach) {
         Some(cross) => GroundKey {
             point: Vec3::new(at.x, cross.mean - cross.mean_give, at.y),
             normal: cross.normal,

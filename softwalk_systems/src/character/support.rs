@@ -15,7 +15,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
-use super::gait::{FootPlan, GaitParams};
+use super::gait::{FootPlan, GaitParams, smoothstep};
 use super::ground_cross::GroundCross;
 use crate::foot::FootPhase;
 use crate::ground::{Ground, GroundHit};
@@ -30,11 +30,6 @@ const STEP_OUT_TIME: f32 = 0.3;
 /// Give of a landing (metres) from which a foot pushes into it for the
 /// ground's whole [`SINK_TIME_S`]; a landing that gives less takes less.
 pub const FULL_PUSH_GIVE: f32 = 0.02;
-
-fn smoothstep(t: f32) -> f32 {
-    let t = t.clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
 
 /// A ground point under a sole centre, with its normal and how far it gives.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,18 +110,12 @@ impl FootSupport {
         }
     }
 
-    /// The floor height this foot stands on, or (swinging) will stand on.
-    pub fn floor(&self) -> f32 {
-        self.landing.floor().y
-    }
-
     /// Advances the support for `plan` under `params` (the swing lift, the
-    /// swing's duration) for a foot of `body`, casting rays from `from_y`
-    /// (the landing's normal is the slope of the patch under the sole);
-    /// returns the ground
-    /// point under the sole centre its lift is measured from, its normal, and
-    /// whether the foot presses the ground (planted, pushing in at the end of
-    /// its swing, or still rising out of its print).
+    /// swing's duration) for a foot of `body`, casting rays from `from_y`.
+    /// Returns the ground point under the sole centre that the swing's lift
+    /// is measured from, its normal, and whether the foot presses the ground
+    /// (planted, pushing in at the end of its swing, or still rising out of
+    /// its print).
     pub fn advance(
         &mut self,
         plan: &FootPlan,
@@ -155,8 +144,7 @@ impl FootSupport {
         // The landing is aimed until the foot starts pushing into it; from
         // then on it is carved, and must not be read back.
         if u <= pushing_from {
-            self.hit = self.landing.update(plan.foothold, cast(plan.foothold));
-            self.aim_at_patch(plan, body, &cast);
+            self.aim(plan, body, &cast);
         }
         let normal = self
             .left
@@ -182,19 +170,23 @@ impl FootSupport {
         (at(height), normal, in_print)
     }
 
-    /// Reads the landing's slope and give over the patch the sole will cover
-    /// (a single ray reads a print's wall, or the softer of two grounds
-    /// where the sole spans both).
-    fn aim_at_patch(
+    /// Aims the landing at `plan`'s foothold: the surface under the sole
+    /// centre, with the slope and give read over the patch the sole will
+    /// cover (a single ray reads a print's wall, or the softer of two
+    /// grounds where the sole spans both).
+    fn aim(
         &mut self,
         plan: &FootPlan,
         body: &CharacterBody,
         cast: &dyn Fn(Vec2) -> Option<GroundHit>,
     ) {
-        let surface = |p: Vec2| cast(p).map(|h| (h.point.y, h.give.max(0.0)));
         let (along, across) = (0.5 * body.foot_length, 0.5 * body.foot_width);
         let heading = plan.foothold_heading;
-        if let Some(patch) = GroundCross::sample(surface, plan.foothold, heading, along, across) {
+        let patch = GroundCross::sample(cast, plan.foothold, heading, along, across);
+        self.hit = self
+            .landing
+            .update(plan.foothold, patch.and_then(|p| p.centre));
+        if let Some(patch) = patch {
             self.landing.normal = patch.normal;
             self.landing.give = self.landing.give.min(patch.give);
         }

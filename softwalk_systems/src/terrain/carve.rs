@@ -25,8 +25,8 @@ pub fn rim_width(radius: f32) -> f32 {
 }
 
 /// Per-foot carving state: the surface each sample had when this contact first
-/// touched it, so a planted foot stops at the print depth instead of sinking
-/// forever through the ray -> carve -> lower foot feedback.
+/// touched it, so a foot pressed again and again stops at the print depth
+/// instead of sinking forever.
 #[derive(Debug, Clone, Default)]
 pub struct FootPrint {
     active: bool,
@@ -105,13 +105,13 @@ impl FootPrint {
 
 /// One step of carving by one foot; returns the rectangle to smooth and settle.
 ///
-/// With `contact`, each sample under the [`Footprint`] sinks by the
-/// material's [`super::TerrainMaterial::sink_speed`] × `dt`, never below the
-/// sole (the foot sets how deep it presses, so the print takes the sole's
-/// tilt; samples under a raised toe are left alone; a fully covered sample
-/// the sole has gone below is pressed down to the sole at once), never below
-/// the print depth under the surface this contact first
-/// touched, and never below its firm floor ([`Heightfield::firm_floor`]: the
+/// With `contact`, each sample under the [`Footprint`] that the sole reaches
+/// goes down to the sole (the foot sets the pace and the print takes the
+/// sole's tilt; samples under a raised toe are left alone), a sample on the
+/// print's edge at most by the material's
+/// [`super::TerrainMaterial::sink_speed`] × `dt` a step; never below the
+/// print depth under the surface this contact first touched, and never below
+/// its firm floor ([`Heightfield::firm_floor`]: the
 /// loose layer is all there is to press). The print's edge is anti-aliased:
 /// a sample within half a cell of it goes the share of that way its cell
 /// is covered (`0.5 + (radius - distance) / cell`, at most 1), so a print
@@ -200,10 +200,13 @@ pub fn carve(
             let floor = (reference - cover * (reference - full))
                 .max(sole_y)
                 .max(parts.floor(k));
-            // A sole that went deeper than one step presses a fully covered
-            // sample down to itself: the ground never lags the foot.
-            let pressed_to = if cover >= 1.0 { sole_y } else { h };
-            let new_h = (h - step).min(pressed_to).max(floor);
+            // A fully covered sample goes down with the sole (the foot sets
+            // the pace); a partly covered one sinks at the material's speed.
+            let new_h = if cover >= 1.0 {
+                floor
+            } else {
+                (h - step).max(floor)
+            };
             parts.disturbed[k] = DISTURBED_PRESSED;
             if new_h < h {
                 parts.heights[k] = new_h;

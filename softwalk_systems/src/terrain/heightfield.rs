@@ -130,15 +130,10 @@ impl Heightfield {
         &mut self.grid
     }
 
-    /// The heights the terrain was created with, row-major like the heights.
-    pub fn initial_heights(&self) -> &[f32] {
-        self.initial.heights()
-    }
-
-    /// The initial surface's height at world `(x, z)`, interpolated like
-    /// [`HeightGrid::height_at`]; `None` off the grid.
-    pub fn initial_height_at(&self, x: f32, z: f32) -> Option<f32> {
-        self.initial.height_at(x, z)
+    /// The heights the terrain was created with (the same grid shape as
+    /// [`Heightfield::grid`]).
+    pub fn initial(&self) -> &HeightGrid {
+        &self.initial
     }
 
     /// The firm floor of sample index `k`: its initial height minus the layer
@@ -424,9 +419,9 @@ mod tests {
         hf.grid_mut().set_height(20, 20, 0.7);
         assert_eq!(hf.give_at(2.0, 2.0), Some(0.0));
         assert_eq!(hf.give_at(-1.0, 2.0), None);
-        assert_eq!(hf.initial_height_at(2.0, 2.0), Some(1.0));
-        assert_eq!(hf.initial_height_at(5.0, 2.0), None);
-        assert!(hf.initial_heights().iter().all(|&h| h == 1.0));
+        assert_eq!(hf.initial().height_at(2.0, 2.0), Some(1.0));
+        assert_eq!(hf.initial().height_at(5.0, 2.0), None);
+        assert!(hf.initial().heights().iter().all(|&h| h == 1.0));
     }
 
     #[test]

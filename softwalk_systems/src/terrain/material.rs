@@ -11,9 +11,11 @@ use super::material_data::TerrainMaterialData;
 /// (the authors' Unity code uses the same 0.1 m factor).
 pub const DEPTH_SCALE_M: f32 = 0.1;
 
-/// Time in seconds a planted foot takes to press a print to its full depth:
-/// contact cells sink at `print_depth / SINK_TIME_S` metres per second,
-/// i.e. `d_t` m/s, so `d_t * dt` metres per step.
+/// Time in seconds a foot takes to press a print to its full depth: it
+/// pushes into the ground at `print_depth / SINK_TIME_S` metres per second,
+/// i.e. `d_t` m/s (a character over the end of its swing, a synthetic foot
+/// with [`super::press_into`]); carving presses the samples down with the
+/// sole, and the print's edge samples at that speed.
 pub const SINK_TIME_S: f32 = 0.1;
 
 /// How a material changes the character's walk, as plain data.
@@ -50,7 +52,7 @@ impl Default for GaitResponse {
 /// A loose-ground material (paper §3.2 and §4), loadable from data.
 ///
 /// - `depth` is the paper's d_t: the print is [`TerrainMaterial::print_depth`]
-///   = 0.1 m × d_t deep and contact cells sink at d_t m/s ([`SINK_TIME_S`]);
+///   = 0.1 m × d_t deep and a foot presses it at d_t m/s ([`SINK_TIME_S`]);
 /// - `compression` is c_t: the fraction of the displaced volume that is
 ///   compacted (lost); the rim receives `1 - c_t` of it;
 /// - `smoothness` is s_t: the strength of the Gaussian filter, as the

@@ -149,8 +149,7 @@ pub fn press_into(hf: &Heightfield, mut sole: FootSole, dt: f32) -> FootSole {
 
 /// Plants a synthetic foot at `center` for `steps` steps of `dt`, re-laying
 /// the sole on the ground each step and pushing it one sink step into it
-/// (the ray -> carve -> lower foot feedback),
-/// then lifts it (one release step) and keeps it lifted until the print has
+/// ([`press_into`]), then lifts it (one release step) and keeps it lifted until the print has
 /// settled ([`Heightfield::settling_pending`] is false). Each step starts with
 /// [`Heightfield::begin_step`].
 pub fn plant_foothold(
