@@ -31,6 +31,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Reproduce the paper's claims: measure them, render a gallery, write paper-results.md.
     Paper(PaperArgs),
+    /// Check a scene's frames against golden PNGs (or bless them).
+    Snapshot(SnapshotArgs),
 }
 
 /// Which scene and for how long; shared by `run` and `bench`.
@@ -48,6 +50,44 @@ pub struct SceneArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
+}
+
+/// Arguments of `softwalk snapshot`.
+#[derive(Debug, Clone, Args)]
+pub struct SnapshotArgs {
+    /// Scene, duration and threads.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Folder of golden frames (`frame_NNNNNN.png`, one per rendered frame).
+    #[arg(long)]
+    pub golden: PathBuf,
+    /// Write missing goldens and rewrite those that fail (goldens that pass stay).
+    #[arg(long)]
+    pub bless: bool,
+    /// Folder for the actual, expected and diff PNGs of failing frames.
+    #[arg(long, short, default_value = "snapshot-failures")]
+    pub out: PathBuf,
+    /// Per-pixel YIQ colour delta that counts as a difference, 0 to 1.
+    #[arg(long, default_value_t = 0.1, value_parser = parse_threshold)]
+    pub threshold: f32,
+    /// Differing pixels (after forgiving anti-aliasing) a frame may have.
+    #[arg(long, default_value_t = 24)]
+    pub max_diff_pixels: usize,
+    /// Frame width in pixels (overrides the scene).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub width: Option<u32>,
+    /// Frame height in pixels (overrides the scene).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub height: Option<u32>,
+}
+
+fn parse_threshold(text: &str) -> Result<f32, String> {
+    let value: f32 = text.parse().map_err(|e| format!("{e}"))?;
+    if (0.0..=1.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("{value} is not in [0, 1]"))
+    }
 }
 
 /// Arguments of `softwalk run`.
@@ -164,6 +204,14 @@ pub enum CliError {
     /// An animation, contact sheet or plot could not be written.
     #[error("writing the outputs failed")]
     Output(#[source] crate::sim::ObserverError),
+    /// Frames differ from their goldens beyond the tolerance.
+    #[error("{failed} of {total} frame(s) differ from their goldens (reports above)")]
+    Snapshot {
+        /// Frames that failed.
+        failed: usize,
+        /// Frames checked.
+        total: usize,
+    },
     /// Repeated runs of one scene ended in different worlds.
     #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]
     Nondeterministic {
@@ -179,6 +227,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
         Command::Scenes(args) => commands::scenes::scenes(&args, stdout),
         Command::Bench(args) => commands::bench::bench(&args, stdout),
         Command::Paper(args) => commands::paper::paper(&args, stdout),
+        Command::Snapshot(args) => commands::snapshot::snapshot(&args, stdout),
     }
 }
 

@@ -4,6 +4,7 @@ pub mod bench;
 pub mod paper;
 pub mod run;
 pub mod scenes;
+pub mod snapshot;
 
 use rayon::ThreadPool;
 
