@@ -390,6 +390,7 @@ pub(crate) mod test_records {
                 feet: [Vec3::new(-0.1, 0.0, 0.0), Vec3::new(0.1, 0.0, 0.0)],
                 soles: [sole(-0.1), sole(0.1)],
                 contact: [true; 2],
+                pressing: [true; 2],
                 planted: [true; 2],
                 ik_target_y: [0.0; 2],
                 knee_flexion: [0.0; 2],

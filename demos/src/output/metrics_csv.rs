@@ -134,6 +134,7 @@ mod tests {
                     pelvis_y: 0.95,
                     feet: [Vec3::new(1.0, 0.0, 1.9), Vec3::new(1.2, 0.1, 2.1)],
                     contact: [true, false],
+                    pressing: [true, false],
                     planted: [true, false],
                     ik_target_y: [0.0, 0.05],
                     knee_flexion: [0.2, 0.6],

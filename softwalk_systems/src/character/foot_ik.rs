@@ -516,7 +516,8 @@ fn foot_states(
                 Vec3::ZERO
             },
             phase: gait.feet[k].phase,
-            contact: rays.feet[k].hit && rays.feet[k].pressing,
+            contact: rays.feet[k].hit && gait.feet[k].phase == FootPhase::Stance,
+            pressing: rays.feet[k].hit && rays.feet[k].pressing,
         }
     });
     ik.last_ankles = ankles;

@@ -33,7 +33,7 @@ pub fn carve_system(world: &mut World) {
     hf.begin_step();
     for (feet, prints) in world.query::<(&Feet, &mut FootPrints)>().iter() {
         for (foot, print) in feet.0.iter().zip(prints.0.iter_mut()) {
-            match carve(hf, print, &foot.sole, foot.contact, dt) {
+            match carve(hf, print, &foot.sole, foot.pressing, dt) {
                 Ok(rect) if !rect.is_empty() => windows.carved.push(rect),
                 Ok(_) => {}
                 Err(e) => world

@@ -88,7 +88,7 @@ pub fn world_hash(world: &World) -> u64 {
         for f in &feet.0 {
             h.vec3(f.sole.heel);
             h.vec3(f.sole.toe);
-            h.bytes(&[u8::from(f.contact)]);
+            h.bytes(&[u8::from(f.contact), u8::from(f.pressing)]);
         }
     }
     for patch in world.query::<&GrassPatch>().iter() {
