@@ -30,11 +30,23 @@ pub fn prepare_output_dir(dir: &Path) -> Result<PathBuf, OutputDirError> {
         source,
     };
     fs::create_dir_all(dir).map_err(|e| fail("cannot be created", e))?;
-    engine::io::remove_partials(dir).map_err(|e| fail("cannot be cleaned of partial files", e))?;
+    remove_partial_files(dir)?;
     let probe = dir.join(".softwalk-write-probe.partial");
     fs::write(&probe, b"probe").map_err(|e| fail("is not writable", e))?;
     fs::remove_file(&probe).map_err(|e| fail("is not writable", e))?;
     Ok(dir.to_path_buf())
+}
+
+/// Removes the partial files (`.NAME.partial`) a killed run left directly in
+/// `dir`, if it exists, without creating it.
+pub fn remove_partial_files(dir: &Path) -> Result<(), OutputDirError> {
+    engine::io::remove_partials(dir)
+        .map(|_| ())
+        .map_err(|source| OutputDirError {
+            path: dir.to_path_buf(),
+            problem: "cannot be cleaned of partial files".to_owned(),
+            source,
+        })
 }
 
 #[cfg(test)]

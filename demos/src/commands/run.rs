@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use super::{scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
-use crate::out_dir::prepare_output_dir;
+use crate::out_dir::{prepare_output_dir, remove_partial_files};
 use crate::out_files::check_output_files;
 use crate::output::{
     AnimationWriter, ContactSheet, FrameWriter, HeightmapReport, HeightmapWriter, MetricsCsv,
@@ -32,6 +32,8 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let frames_dir = dir.join("frames");
     if options.render {
         prepare_output_dir(&frames_dir)?;
+    } else {
+        remove_partial_files(&frames_dir)?;
     }
     let plots_dir = prepare_output_dir(&dir.join("plots"))?;
     let render = &scene.render;

@@ -171,3 +171,62 @@ impl RunObserver for PlotCollector {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::test_records;
+
+    fn record(step: u64, torque: f32, pelvis_y: f32) -> StepRecord {
+        let mut walker = test_records::standing();
+        walker.character.torque = torque;
+        walker.character.pelvis_y = pelvis_y;
+        StepRecord {
+            step,
+            t: step as f64 / 60.0,
+            character: 0,
+            walker,
+            terrain_volume: 0.0,
+        }
+    }
+
+    /// Issue 22: the torque series {0, -1e-45} panicked in the axis labels;
+    /// huge and non-finite values must not stop the plots either.
+    #[test]
+    fn degenerate_series_are_all_plotted() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut plots = PlotCollector::new(vec!["walker".into()]);
+        let values = [
+            (0.0, 0.9),
+            (-1.0e-45, f32::NAN),
+            (f32::MAX, f32::INFINITY),
+            (-f32::MAX, 1.0e-45),
+        ];
+        for (step, (torque, pelvis)) in values.into_iter().enumerate() {
+            plots.on_step(&record(step as u64, torque, pelvis)).unwrap();
+        }
+        let saved = plots.save(dir.path());
+        assert_eq!(saved.skipped, Vec::<String>::new());
+        assert_eq!(saved.written.len(), QUANTITIES.len());
+    }
+
+    #[test]
+    fn a_plot_that_cannot_be_written_is_skipped_with_a_warning() {
+        let dir = tempfile::tempdir().unwrap();
+        fs_folder(&dir.path().join("torque.png"));
+        let mut plots = PlotCollector::new(vec!["walker".into()]);
+        plots.on_step(&record(0, 1.0, 0.9)).unwrap();
+        let saved = plots.save(dir.path());
+        assert_eq!(saved.written.len(), QUANTITIES.len() - 1);
+        assert_eq!(saved.skipped.len(), 1);
+        assert!(
+            saved.skipped[0].contains("torque.png"),
+            "{:?}",
+            saved.skipped
+        );
+    }
+
+    fn fs_folder(path: &Path) {
+        std::fs::create_dir(path).unwrap();
+    }
+}
