@@ -152,12 +152,9 @@ impl Axis {
         };
         match self.style {
             LabelStyle::Fixed(decimals) => format!("{v:.decimals$}"),
+            LabelStyle::Scientific(_) if v == 0.0 => "0".to_owned(),
             LabelStyle::Scientific(step_exponent) => {
-                let exponent = if v == 0.0 {
-                    step_exponent
-                } else {
-                    v.abs().log10().floor() as i32
-                };
+                let exponent = v.abs().log10().floor() as i32;
                 let decimals = (exponent - step_exponent).clamp(0, 9) as usize;
                 format!("{v:.decimals$e}")
             }
@@ -404,6 +401,7 @@ mod tests {
         for &t in &axis.ticks {
             assert!(axis.label(t).len() < 16, "{}", axis.label(t));
         }
+        assert_eq!(axis.label(0.0), "0");
         let constant = Axis::covering([1.0e-45; 3].into_iter(), 4);
         assert!(constant.min < constant.max);
         let plot = LinePlot {
