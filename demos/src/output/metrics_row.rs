@@ -2,7 +2,7 @@
 //! the struct's field names and the cells its values, so the two cannot drift
 //! apart.
 
-use std::fmt::Display;
+use std::fmt::{self, Display, Write as _};
 use std::sync::OnceLock;
 
 use serde::{Serialize, Serializer};
@@ -17,7 +17,48 @@ struct Num<T>(T);
 
 impl<T: Display> Serialize for Num<T> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_str(&self.0)
+        // Formatted on the stack: a run writes tens of cells per step.
+        let mut text = CellText::default();
+        match write!(text, "{}", self.0) {
+            Ok(()) => serializer.serialize_str(text.as_str()),
+            Err(_) => serializer.collect_str(&self.0),
+        }
+    }
+}
+
+/// Bytes of [`CellText`]: room for any `f32` (the longest, the smallest
+/// subnormal, takes 47) and for `f64`s of ordinary sizes.
+const CELL_BYTES: usize = 64;
+
+/// A cell's text, formatted without allocating; formatting fails when the
+/// text does not fit.
+struct CellText {
+    bytes: [u8; CELL_BYTES],
+    len: usize,
+}
+
+impl Default for CellText {
+    fn default() -> Self {
+        CellText {
+            bytes: [0; CELL_BYTES],
+            len: 0,
+        }
+    }
+}
+
+impl CellText {
+    fn as_str(&self) -> &str {
+        std::str::from_utf8(&self.bytes[..self.len]).expect("only whole strs are written")
+    }
+}
+
+impl fmt::Write for CellText {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let end = self.len + s.len();
+        let room = self.bytes.get_mut(self.len..end).ok_or(fmt::Error)?;
+        room.copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
     }
 }
 
@@ -172,6 +213,24 @@ pub fn metric_column(name: &str) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cells_read_as_display_writes_them_short_or_long() {
+        let cell = |v: f64| {
+            let mut w = csv::Writer::from_writer(Vec::new());
+            w.serialize([Num(v)]).unwrap();
+            String::from_utf8(w.into_inner().unwrap()).unwrap()
+        };
+        for v in [0.0, -0.001998402, 12.5, f64::MAX, 5e-324, f64::NAN] {
+            assert_eq!(cell(v), format!("{v}\n"));
+        }
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.serialize([Num(1.0e-45f32)]).unwrap();
+        assert_eq!(
+            String::from_utf8(w.into_inner().unwrap()).unwrap(),
+            format!("{}\n", 1.0e-45f32)
+        );
+    }
 
     #[test]
     fn names_are_unique_and_cover_the_sole_columns() {
