@@ -47,7 +47,7 @@ pub struct SceneArgs {
     /// Simulate this many seconds instead of the scene's duration.
     #[arg(long, value_parser = parse_seconds)]
     pub seconds: Option<f64>,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; more than the cores are clamped, with a warning).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
 }
@@ -180,6 +180,9 @@ pub enum CliError {
     /// The output folder cannot be used.
     #[error(transparent)]
     OutputDir(#[from] OutputDirError),
+    /// An output file's path cannot be written (found before the run).
+    #[error(transparent)]
+    OutputFile(#[from] crate::out_files::OutputFileError),
     /// An output file could not be written.
     #[error(transparent)]
     Write(#[from] engine::io::WriteError),

@@ -6,10 +6,12 @@
 //! - [`paper`]: the paper's claims measured on reproduction scenes (`softwalk paper`);
 //! - [`cli`]: the `softwalk` command line.
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod cli;
 pub mod commands;
 pub mod out_dir;
+pub mod out_files;
 pub mod output;
 pub mod paper;
 pub mod progress;

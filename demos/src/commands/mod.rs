@@ -5,6 +5,7 @@ pub mod paper;
 pub mod run;
 pub mod scenes;
 pub mod snapshot;
+mod threads;
 
 use rayon::ThreadPool;
 
@@ -13,7 +14,8 @@ use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
 use crate::sim::RunOptions;
 
-/// The scene and the run options the shared arguments ask for (rendering on, no hash).
+/// The scene and the run options the shared arguments ask for (rendering on,
+/// no hash); a thread count above the machine's cores is clamped with a warning.
 pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions), CliError> {
     let scene = resolve_scene(&args.scene)?;
     let mut options = RunOptions::from_scene(&scene);
@@ -22,12 +24,12 @@ pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions),
     } else if let Some(seconds) = args.seconds {
         options.steps = scene.sim.steps_for(seconds);
     }
-    options.threads = args.threads.map_or_else(default_threads, |t| t as usize);
+    let (threads, warning) = threads::clamp_threads(args.threads, threads::available_cores());
+    if let Some(warning) = warning {
+        eprintln!("warning: {warning}");
+    }
+    options.threads = threads;
     Ok((scene, options))
-}
-
-fn default_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
 /// A local pool of `threads` workers (not the global rayon pool).
