@@ -239,7 +239,7 @@ mod tests {
     #[test]
     fn names_are_unique_and_cover_the_sole_columns() {
         let columns = metrics_columns();
-        assert_eq!(columns.len(), 43);
+        assert_eq!(columns.len(), 45);
         assert_eq!(columns[0], "t");
         for (k, c) in columns.iter().enumerate() {
             assert!(!columns[..k].contains(c), "{c} twice");
