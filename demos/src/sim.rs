@@ -13,7 +13,7 @@ use engine::geom::HeightGrid;
 use glam::Vec3Swizzles;
 use image::RgbaImage;
 use serde::Serialize;
-use softwalk_systems::sim::{SystemTimings, TerrainVolume, WalkerMetrics, world_hash};
+use softwalk_systems::sim::{GroundState, SystemTimings, WalkerMetrics, world_hash};
 use softwalk_systems::terrain::Heightfield;
 use thiserror::Error;
 
@@ -254,7 +254,7 @@ pub fn run(
     for step in 0..options.steps {
         softwalk_systems::sim::step(&mut app).map_err(SimError::Step)?;
         let t = options.time_after(step);
-        let volume = app.world.resource::<TerrainVolume>().0;
+        let volume = app.world.resource::<GroundState>().volume();
         for (character, &entity) in walkers.iter().enumerate() {
             let Ok(m) = app.world.get::<WalkerMetrics>(entity) else {
                 continue;
@@ -316,11 +316,10 @@ pub fn run(
 
 /// Runs `f` with the terrain of a world built by [`Scene::build_sim`].
 fn with_terrain<T>(world: &World, f: impl FnOnce(&Heightfield) -> T) -> T {
-    let mut terrains = world.query::<&Heightfield>();
-    f(terrains
-        .iter()
-        .next()
-        .expect("build_sim always adds a terrain"))
+    let ground = world
+        .get_resource::<GroundState>()
+        .expect("build_sim always adds a terrain");
+    f(ground.terrain())
 }
 
 /// A copy of the terrain's heights.

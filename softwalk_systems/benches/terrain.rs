@@ -80,9 +80,7 @@ impl Walker {
                 heights[j * nx + rect.i0..j * nx + rect.i1]
                     .copy_from_slice(&self.saved[r * rect.width()..(r + 1) * rect.width()]);
             }
-            self.hf.mark_dirty(rect);
-            let dirty = self.hf.take_dirty();
-            self.bvh.refit(self.hf.grid(), dirty);
+            self.bvh.refit(self.hf.grid(), rect);
             self.step = 0;
             self.foothold += 1;
         }
@@ -116,11 +114,12 @@ impl Walker {
         let sole = press_into(hf, sole, DT);
         let contact = self.step < STANCE_STEPS;
         black_box(step_foot(hf, &mut self.print, &sole, contact, DT).unwrap());
-        let dirty = hf.take_dirty();
         if refit {
-            self.bvh.refit(hf.grid(), dirty);
+            for rect in hf.dirty().iter() {
+                self.bvh.refit(hf.grid(), rect);
+            }
         } else {
-            black_box(dirty);
+            black_box(hf.dirty());
         }
         self.step += 1;
         match self.step - 1 {

@@ -14,7 +14,9 @@
 //! same scene gives the same prints at any grid resolution and step rate.
 //!
 //! Each stage returns the rectangle it may have changed and reports it with
-//! [`Heightfield::mark_dirty`]; the BVH refit reads [`Heightfield::take_dirty`].
+//! [`Heightfield::mark_dirty`]: this step's changed rectangles
+//! ([`StepChanges::rects`], a [`DirtyRects`] list) are what the BVH refit
+//! and the renderer redo.
 //!
 //! ```
 //! use glam::Vec2;
@@ -32,10 +34,12 @@
 //! ```
 
 mod carve;
+mod dirty_rects;
 mod error;
 mod footprint;
 pub mod generate;
 mod heightfield;
+mod held;
 mod material;
 mod material_data;
 mod material_table;
@@ -49,11 +53,13 @@ mod units;
 pub use carve::{
     CONTACT_TOLERANCE, FootPrint, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, rim_width,
 };
+pub use dirty_rects::DirtyRects;
 pub use error::TerrainError;
 pub use footprint::Footprint;
 pub use heightfield::{
     DISTURBED_PRESSED, DISTURBED_RIM, DISTURBED_SLUMPED, Heightfield, StepChanges,
 };
+pub use held::HeldSamples;
 pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
 pub use material_table::{MaterialId, MaterialTable};
 pub use settle::{

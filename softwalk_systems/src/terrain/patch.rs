@@ -75,7 +75,7 @@ impl Patch {
                 *f = u8::from(d != 0) * DISTURBED;
             }
         }
-        for &k in &parts.changes.held {
+        for k in parts.changes.held.near(rect) {
             let (i, j) = (k % nx, k / nx);
             if rect.contains(i, j) {
                 let l = self.local(i, j);

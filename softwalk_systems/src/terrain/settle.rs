@@ -129,7 +129,7 @@ pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect, dt: 
     let Some((w, first)) = first_sweep(hf, window, seeds) else {
         return GridRect::EMPTY;
     };
-    if !hf.changes().released.intersect(&seeds).is_empty() {
+    if hf.changes().released.intersects(&seeds) {
         hf.pending_settle_mut().push(PendingSettle {
             window: w,
             start: Start::Scan(first),
@@ -649,7 +649,10 @@ mod tests {
         assert_eq!(hf.grid(), &snow);
         let mut hf = pillar(0);
         let k = hf.grid().index(20, 20);
-        hf.parts_mut().changes.held.push(k);
+        hf.parts_mut()
+            .changes
+            .held
+            .push_group(GridRect::new(20, 20, 21, 21), &[k]);
         let held = hf.grid().clone();
         assert!(settle(&mut hf, GridRect::new(5, 5, 36, 36)).is_empty());
         assert_eq!(hf.grid(), &held);
@@ -738,7 +741,7 @@ mod tests {
         let mut deferred = block();
         let before = deferred.grid().clone();
         deferred.begin_step();
-        deferred.parts_mut().changes.released = seeds;
+        deferred.parts_mut().changes.released.add(seeds);
         assert!(settle_step(&mut deferred, window, seeds, DT).is_empty());
         assert_eq!(deferred.grid(), &before);
         assert_eq!(deferred.changes().settle_visits, 0);

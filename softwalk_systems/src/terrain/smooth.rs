@@ -64,8 +64,7 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
 /// smoothing of a rim around a planted sole, which goes on for the stance.
 pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
     let window = window.intersect(&hf.grid().full_rect());
-    let released = hf.changes().released;
-    if !window.is_empty() && released.intersect(&window) == window {
+    if hf.changes().released.contains_rect(&window) {
         1.0 / REFERENCE_RATE_HZ
     } else {
         dt
@@ -97,13 +96,15 @@ pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
 /// sole this step (the foot occupies the print; its walls are smoothed once
 /// it lifts).
 ///
-/// Only the rectangle of samples that actually changed is marked dirty.
+/// Only the rectangle of samples that actually changed is marked dirty; the
+/// window is recorded in [`super::StepChanges::smoothed`].
 pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
     let full = hf.grid().full_rect();
     let radius = smoothing_radius(hf);
     let w = window
         .intersect(&full)
         .expand(radius, full.width(), full.height());
+    hf.parts_mut().changes.smoothed.push(w);
     if w.is_empty() || !(dt.is_finite() && dt > 0.0) || hf.table().max_smoothness() == 0.0 {
         return w;
     }
@@ -452,7 +453,7 @@ mod tests {
         let mut hf = field(flat(GridSpec::square(1.0, 41), 1.0).unwrap());
         let print = GridRect::new(10, 10, 20, 20);
         assert_eq!(smoothing_duration(&hf, print, 1.0 / 120.0), 1.0 / 120.0);
-        hf.parts_mut().changes.released = print;
+        hf.parts_mut().changes.released.add(print);
         for dt in [1.0 / 30.0, 1.0 / 120.0] {
             assert_eq!(smoothing_duration(&hf, print, dt), 1.0 / REFERENCE_RATE_HZ);
             // A stance window reaching past the released print keeps its dt.
