@@ -8,7 +8,7 @@ use crate::terrain::{DirtyRects, Heightfield, StepChanges};
 
 /// Stale rectangles the BVH keeps before it refits them without being asked
 /// (so the list stays short when no general ray is cast for a long time).
-const MAX_STALE_RECTS: usize = 256;
+const MAX_STALE_RECTS: usize = 4096;
 
 /// Resource: the ground of a simulation.
 ///
@@ -76,7 +76,8 @@ impl GroundState {
         self.terrain.changes()
     }
 
-    /// The rectangles changed this step, none overlapping or touching another.
+    /// The rectangles changed this step (merged where they overlap or touch
+    /// once the step's `refit` system has run).
     pub fn changed_rects(&self) -> impl Iterator<Item = GridRect> + '_ {
         self.terrain.changes().rects.iter()
     }
@@ -138,10 +139,11 @@ impl GroundState {
     /// the BVH and the rectangles the renderer has not seen. Refits the BVH
     /// when the stale list grows long.
     pub fn end_step(&mut self) {
+        self.terrain.merge_dirty();
         let rects = &self.terrain.changes().rects;
         self.stale.extend(rects);
         self.unseen.extend(rects);
-        if self.stale.rects().len() > MAX_STALE_RECTS {
+        if self.stale.merged().len() > MAX_STALE_RECTS {
             self.refit();
         }
     }

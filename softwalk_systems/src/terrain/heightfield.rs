@@ -265,9 +265,15 @@ impl Heightfield {
         self.changes.rects.add(rect);
     }
 
-    /// The rectangles changed since the last [`Heightfield::begin_step`].
+    /// The rectangles changed since the last [`Heightfield::begin_step`]
+    /// (merged as of the last [`Heightfield::merge_dirty`]).
     pub fn dirty(&self) -> &DirtyRects {
         &self.changes.rects
+    }
+
+    /// Merges this step's changed rectangles where they overlap or touch.
+    pub fn merge_dirty(&mut self) {
+        self.changes.rects.merge();
     }
 
     /// What changed since the last [`Heightfield::begin_step`].
@@ -396,11 +402,11 @@ mod tests {
         assert!(hf.dirty().is_empty());
         hf.mark_dirty(GridRect::new(1, 1, 3, 3));
         hf.mark_dirty(GridRect::new(30, 30, 32, 32));
-        assert_eq!(hf.dirty().rects().len(), 2);
         hf.mark_dirty(GridRect::new(3, 0, 6, 2));
+        hf.merge_dirty();
         assert_eq!(
             hf.dirty().rects(),
-            &[GridRect::new(30, 30, 32, 32), GridRect::new(1, 0, 6, 3)]
+            &[GridRect::new(1, 0, 6, 3), GridRect::new(30, 30, 32, 32)]
         );
         assert_eq!(hf.begin_step().rects.area(), 4 + 15);
         assert!(hf.changes().rects.is_empty());
