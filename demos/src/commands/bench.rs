@@ -14,6 +14,9 @@ use crate::sim::{self, RunOptions, RunSummary};
 /// world (same hash).
 pub fn bench(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (scene, mut options) = bench_scene(args)?;
+    for warning in scene.warnings() {
+        eprintln!("warning: {warning}");
+    }
     options.render = false;
     options.hash = true;
     let pool = thread_pool(options.threads)?;

@@ -19,6 +19,9 @@ use crate::sim::{self, Observers};
 /// and, unless `--no-render`, `frames/frame_NNNNNN.png`; then prints a summary.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (scene, mut options) = scene_and_options(&args.scene)?;
+    for warning in scene.warnings() {
+        eprintln!("warning: {warning}");
+    }
     options.render = !args.no_render;
     options.hash = args.hash;
     options.width = args.width.unwrap_or(options.width);

@@ -153,19 +153,32 @@ impl CrowdSpec {
     }
 
     /// Four groups, one per side, each in lanes `spacing_m` apart and rows
-    /// [`ROW_GAP_M`] apart, walking across to the opposite side.
+    /// [`ROW_GAP_M`] apart, walking across to the opposite side. The lanes
+    /// keep clear of the corners, where the other groups' rows start.
     fn crossing(&self) -> Vec<Walker> {
         let size = self.size_m;
-        let usable = (size - 2.0 * MARGIN_M).max(0.0);
         let per_group = self.walkers.div_ceil(4).max(1);
-        let lanes = ((usable / self.spacing_m.max(0.01)) as usize).clamp(1, per_group);
+        let spacing = self.spacing_m.max(0.01);
+        // The fewest rows whose lanes, between corners as deep as the rows,
+        // hold the group; on a field too small for that, the most walkers
+        // per row (spawn points may then overlap: the scene warns).
+        let usable_for =
+            |rows: usize| (size - 2.0 * (MARGIN_M + rows as f32 * ROW_GAP_M)).max(spacing);
+        let lanes_in = |usable: f32| ((usable / spacing) as usize).clamp(1, per_group);
+        let max_rows = ((0.5 * size / ROW_GAP_M) as usize).max(1);
+        let rows = (1..=max_rows)
+            .find(|&r| r * lanes_in(usable_for(r)) >= per_group)
+            .unwrap_or(1);
+        let usable = usable_for(rows);
+        let lanes = lanes_in(usable);
+        let corner = (size - usable) / 2.0;
         let mut out = Vec::with_capacity(self.walkers);
         for k in 0..self.walkers {
             let (group, slot) = (k % 4, k / 4);
             let (lane, row) = (slot % lanes, slot / lanes);
             // Lanes of each group are offset by a quarter of the spacing, so
             // the groups' lanes interleave instead of meeting head-on.
-            let across = MARGIN_M
+            let across = corner
                 + (lane as f32 + 0.5) * usable / lanes as f32
                 + 0.25 * group as f32 * self.spacing_m.min(usable / lanes as f32);
             let along = MARGIN_M + row as f32 * ROW_GAP_M;
