@@ -49,7 +49,7 @@ pub(crate) fn overlapping_spawns(characters: &[CharacterSpec]) -> Vec<String> {
             }
         }
     }
-    pairs.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)));
+    pairs.sort_by_key(|p| (p.0, p.1));
     pairs
         .into_iter()
         .map(|(a, b, d)| {
