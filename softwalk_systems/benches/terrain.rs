@@ -16,8 +16,8 @@ use engine::geom::{GridBvh, GridRect};
 use glam::Vec2;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::{
-    FootPrint, FootSize, Heightfield, MaterialTable, TerrainMaterial, press_into, sole_on_ground,
-    step_foot,
+    FootPrint, FootSize, Heightfield, MaterialTable, StageScratch, TerrainMaterial, press_into,
+    sole_on_ground, step_foot_with,
 };
 
 const DT: f32 = 1.0 / 60.0;
@@ -48,6 +48,7 @@ struct Walker {
     hf: Heightfield,
     bvh: GridBvh,
     print: FootPrint,
+    scratch: StageScratch,
     foothold: usize,
     step: usize,
     saved_rect: GridRect,
@@ -62,6 +63,7 @@ impl Walker {
             hf,
             bvh,
             print: FootPrint::new(),
+            scratch: StageScratch::default(),
             foothold: 0,
             step: 0,
             saved_rect: GridRect::EMPTY,
@@ -113,7 +115,9 @@ impl Walker {
         let sole = sole_on_ground(hf, center, Vec2::X, FootSize::default()).unwrap();
         let sole = press_into(hf, sole, DT);
         let contact = self.step < STANCE_STEPS;
-        black_box(step_foot(hf, &mut self.print, &sole, contact, DT).unwrap());
+        black_box(
+            step_foot_with(hf, &mut self.scratch, &mut self.print, &sole, contact, DT).unwrap(),
+        );
         if refit {
             for rect in hf.dirty().iter() {
                 self.bvh.refit(hf.grid(), rect);

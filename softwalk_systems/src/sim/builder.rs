@@ -31,6 +31,8 @@ impl SimBuilder {
         let world = &mut app.world;
         world.insert_resource(SystemFault::default());
         world.insert_resource(SystemTimings::default());
+        world.insert_resource(crate::terrain::SmoothScratch::default());
+        world.insert_resource(crate::terrain::SettleScratch::default());
         world.insert_resource(VegetationFriction::default());
         add_pipeline(&mut app.schedule);
         Ok(SimBuilder { app })

@@ -10,9 +10,7 @@ use super::error::TerrainError;
 use super::held::HeldSamples;
 use super::material::TerrainMaterial;
 use super::material_table::{MaterialId, MaterialTable};
-use super::patch::Patch;
-use super::settle::{PendingSettle, SettleBuffers};
-use super::smooth::SmoothBuffers;
+use super::settle::PendingSettle;
 
 /// `disturbed` value of a sample pressed by a sole.
 pub const DISTURBED_PRESSED: u8 = 255;
@@ -77,33 +75,7 @@ pub struct Heightfield {
     material: Vec<u8>,
     disturbed: Vec<u8>,
     changes: StepChanges,
-    buffers: StageBuffers,
     pending_settle: Vec<PendingSettle>,
-}
-
-/// Work buffers the stages reuse from step to step, so they are not
-/// reallocated once they have grown to the largest window. Not part of the
-/// terrain's state: a clone starts with empty buffers.
-#[derive(Default)]
-pub(crate) struct StageBuffers {
-    /// The window smoothing or settling works on.
-    pub patch: Patch,
-    /// Smoothing's edge and height buffers.
-    pub smooth: SmoothBuffers,
-    /// Settling's work lists.
-    pub settle: SettleBuffers,
-}
-
-impl Clone for StageBuffers {
-    fn clone(&self) -> Self {
-        StageBuffers::default()
-    }
-}
-
-impl std::fmt::Debug for StageBuffers {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("StageBuffers")
-    }
 }
 
 impl Heightfield {
@@ -122,7 +94,6 @@ impl Heightfield {
             material: vec![fill.0; n],
             disturbed: vec![0; n],
             changes: StepChanges::default(),
-            buffers: StageBuffers::default(),
             pending_settle: Vec::new(),
         })
     }
@@ -297,16 +268,6 @@ impl Heightfield {
     /// The settling work left for later steps.
     pub(crate) fn pending_settle_mut(&mut self) -> &mut Vec<PendingSettle> {
         &mut self.pending_settle
-    }
-
-    /// Lends the stages' work buffers (give them back with [`Heightfield::return_buffers`]).
-    pub(crate) fn take_buffers(&mut self) -> StageBuffers {
-        std::mem::take(&mut self.buffers)
-    }
-
-    /// Gives back the buffers lent by [`Heightfield::take_buffers`].
-    pub(crate) fn return_buffers(&mut self, buffers: StageBuffers) {
-        self.buffers = buffers;
     }
 
     /// Mutable access for the stages: heights, materials, disturbed mask, step record.

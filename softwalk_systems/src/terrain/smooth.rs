@@ -3,7 +3,7 @@
 
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_RIM, Heightfield, StageBuffers};
+use super::heightfield::{DISTURBED_RIM, Heightfield};
 use super::patch::{Patch, edge_moves};
 use super::units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};
 
@@ -98,7 +98,34 @@ pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
 ///
 /// Only the rectangle of samples that actually changed is marked dirty; the
 /// window is recorded in [`super::StepChanges::smoothed`].
+///
+/// Works in fresh buffers; [`smooth_with`] reuses a caller's.
 pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
+    smooth_with(hf, &mut SmoothScratch::default(), window, dt)
+}
+
+/// The work buffers of [`smooth_with`], reused from call to call (they grow
+/// to the largest window and are not reallocated after). Not part of any
+/// terrain's state.
+#[derive(Default)]
+pub struct SmoothScratch {
+    patch: Patch,
+    buffers: SmoothBuffers,
+}
+
+impl std::fmt::Debug for SmoothScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SmoothScratch")
+    }
+}
+
+/// [`smooth`] in the buffers of `scratch`.
+pub fn smooth_with(
+    hf: &mut Heightfield,
+    scratch: &mut SmoothScratch,
+    window: GridRect,
+    dt: f32,
+) -> GridRect {
     let full = hf.grid().full_rect();
     let radius = smoothing_radius(hf);
     let w = window
@@ -110,10 +137,12 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
     }
     let duration = smoothing_duration(hf, window, dt);
     let scale = smoothing_pass_equivalent(1.0, hf.grid().cell_size(), duration);
-    let mut buffers = hf.take_buffers();
     let changed = {
         let mut parts = hf.parts_mut();
-        let StageBuffers { patch, smooth, .. } = &mut buffers;
+        let SmoothScratch {
+            patch,
+            buffers: smooth,
+        } = scratch;
         patch.load(&parts, w);
         smooth.smoothness.clear();
         smooth
@@ -126,7 +155,6 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
         parts.changes.smoothing_capped += usize::from(capped);
         changed
     };
-    hf.return_buffers(buffers);
     if !changed.is_empty() {
         hf.mark_dirty(changed);
     }
