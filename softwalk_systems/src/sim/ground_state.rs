@@ -179,3 +179,39 @@ impl GroundState {
         self.unseen.clear();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::generate::{GridSpec, flat};
+    use crate::terrain::{MaterialId, MaterialTable};
+
+    fn ground() -> GroundState {
+        let grid = flat(GridSpec::square(4.0, 101), 1.0).unwrap();
+        let hf =
+            Heightfield::from_grid(grid, MaterialTable::with_presets(), MaterialId(0)).unwrap();
+        GroundState::new(hf)
+    }
+
+    #[test]
+    fn edits_are_logged_refit_lazily_and_handed_to_the_renderer_once() {
+        let mut g = ground();
+        let v0 = g.volume();
+        let cell = f64::from(g.terrain().grid().cell_size());
+        g.terrain_mut().begin_step();
+        g.edit_heights(GridRect::new(10, 10, 12, 12), |_, _, h| *h += 0.5);
+        g.edit_heights(GridRect::new(80, 80, 81, 81), |_, _, h| *h -= 0.25);
+        assert!((g.volume() - v0 - (4.0 * 0.5 - 0.25) * cell * cell).abs() < 1e-9);
+        assert_eq!(g.changed_rects().count(), 2);
+        g.end_step();
+        // The BVH is stale until a general ray needs it.
+        assert!(!g.is_refit());
+        let down = Ray::new(glam::Vec3::new(0.44, 5.0, 0.44), glam::Vec3::NEG_Y).unwrap();
+        let hit = g.cast(&down, 10.0).unwrap();
+        assert!(g.is_refit());
+        assert!((hit.point.y - 1.5).abs() < 1e-4, "{}", hit.point.y);
+        let unseen = g.take_unseen();
+        assert_eq!(unseen.len(), 2);
+        assert!(g.take_unseen().is_empty());
+    }
+}
