@@ -1,6 +1,8 @@
 //! Smoothing: the paper's Gaussian filter of strength s_t, as conservative
 //! diffusion restricted to a dirty window, in metres and seconds.
 
+use std::ops::Range;
+
 use engine::geom::GridRect;
 
 use super::heightfield::{DISTURBED_RIM, Heightfield};
@@ -211,15 +213,22 @@ impl SmoothBuffers {
         self.next.extend_from_slice(&patch.heights);
         self.changed.clear();
         self.changed.resize(n, 0);
+        // Only the samples a conducting edge touches can move: the passes
+        // run over their span of inner-row indices; the others keep their
+        // bits (their fluxes would all be zero).
+        let span = conducting_span(&self.edge_x, &self.edge_z, s, n);
+        self.give.clear();
+        self.give.resize(len, 0.0);
         for _ in 0..passes {
-            self.give.clear();
-            self.give.extend(
-                patch
-                    .heights
-                    .iter()
-                    .zip(&patch.floor)
-                    .map(|(&h, &f)| 0.25 * (h - f).max(0.0)),
-            );
+            // The give of the span and of its neighbours one row away.
+            let near = span.start..(span.end + 2 * s).min(len);
+            for ((g, &h), &f) in self.give[near.clone()]
+                .iter_mut()
+                .zip(&patch.heights[near.clone()])
+                .zip(&patch.floor[near])
+            {
+                *g = 0.25 * (h - f).max(0.0);
+            }
             let h = &patch.heights;
             let (up, down) = (&h[..n], &h[2 * s..2 * s + n]);
             let (left, centre, right) = (&h[s - 1..s - 1 + n], &h[s..s + n], &h[s + 1..s + 1 + n]);
@@ -236,7 +245,7 @@ impl SmoothBuffers {
             // `max`/`min` rather than `clamp`: this form lets the loop vectorise.
             let flux =
                 |r: f32, ha: f32, hb: f32, ga: f32, gb: f32| (r * (hb - ha)).max(-ga).min(gb);
-            for k in 0..n {
+            for k in span.clone() {
                 let (hc, gc) = (centre[k], g_centre[k]);
                 let flux_right = flux(ex[k], hc, right[k], gc, g_right[k]);
                 let flux_left = flux(ex_left[k], left[k], hc, g_left[k], gc);
@@ -305,6 +314,26 @@ impl SmoothBuffers {
             .chain(&self.edge_z)
             .fold(0.0, |a, &e| a.max(e))
     }
+}
+
+/// The inner-row indices `k` (local sample `s + k`, `k < n`) of the samples
+/// a conducting edge touches: an `edge_x[l]` joins local samples `l` and
+/// `l + 1`, an `edge_z[l]` joins `l` and `l + stride`. Empty when no edge conducts.
+fn conducting_span(edge_x: &[f32], edge_z: &[f32], stride: usize, n: usize) -> Range<usize> {
+    let first = |e: &[f32]| e.iter().position(|&r| r != 0.0);
+    let last = |e: &[f32]| e.iter().rposition(|&r| r != 0.0);
+    let lo = match (first(edge_x), first(edge_z)) {
+        (Some(a), Some(b)) => a.min(b),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => return 0..0,
+    };
+    let hi = last(edge_x)
+        .map(|l| l + 1)
+        .max(last(edge_z).map(|l| l + stride))
+        .unwrap_or(lo);
+    let start = lo.saturating_sub(stride).min(n);
+    let end = (hi + 1).saturating_sub(stride).min(n);
+    start..end.max(start)
 }
 
 #[cfg(test)]
