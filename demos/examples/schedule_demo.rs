@@ -25,7 +25,9 @@ use engine::schedule::{App, Time};
 use glam::{Mat4, Vec2, Vec3};
 use image::RgbaImage;
 use softwalk_systems::character::{CharacterBody, CharacterDesc, Pose, WalkPath, character_mesh};
-use softwalk_systems::sim::{CharacterName, SimBuilder, WalkerMetrics, labels, run_steps};
+use softwalk_systems::sim::{
+    CharacterName, GroundState, SimBuilder, WalkerMetrics, labels, run_steps,
+};
 use softwalk_systems::terrain::{Heightfield, MaterialTable, generate};
 use softwalk_systems::vegetation::{GrassPatch, GrassSettings, XzRect};
 
@@ -120,8 +122,10 @@ fn log_com_each_second(world: &mut World) {
 /// and darkened where trodden, the walkers' capsule meshes, the grass blades.
 /// The camera looks down and back along the trail from ahead of the first walker.
 fn render_final_frame(world: &World) -> Result<RgbaImage, Box<dyn Error>> {
-    let mut terrains = world.query::<&Heightfield>();
-    let hf = terrains.iter().next().ok_or("the world has no terrain")?;
+    let ground = world
+        .get_resource::<GroundState>()
+        .ok_or("the world has no terrain")?;
+    let hf = ground.terrain();
     let paint = demos::view::TerrainPaint::of(hf);
     let colors = SampleColors {
         nx: hf.grid().nx(),

@@ -131,6 +131,44 @@ pub struct BenchArgs {
     /// run (single runs vary a lot on a shared machine).
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
+    /// Samples along the terrain's longer side (overrides the scene; same extent, finer or coarser cells).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=8192))]
+    pub resolution: Option<u32>,
+    /// The `crowd` scene's make-up (only with the `crowd` scene).
+    #[command(flatten)]
+    pub crowd: CrowdArgs,
+}
+
+/// Options of `softwalk bench crowd`: the crowd scene generated from these
+/// numbers instead of the built-in one's.
+#[derive(Debug, Clone, Default, Args)]
+pub struct CrowdArgs {
+    /// Number of walkers.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub walkers: Option<u32>,
+    /// Side of the square field, metres.
+    #[arg(long, value_parser = parse_metres)]
+    pub field: Option<f64>,
+    /// Fraction of the field covered by 0.9 m grass (0 to 1).
+    #[arg(long, value_parser = parse_fraction)]
+    pub grass: Option<f64>,
+    /// Walk parallel lanes this many metres apart (instead of crossing paths).
+    #[arg(long, value_parser = parse_metres)]
+    pub lanes: Option<f64>,
+    /// Sand everywhere (no snow or soil bands).
+    #[arg(long)]
+    pub sand_only: bool,
+}
+
+impl CrowdArgs {
+    /// True when any option is given.
+    pub fn any(&self) -> bool {
+        self.walkers.is_some()
+            || self.field.is_some()
+            || self.grass.is_some()
+            || self.lanes.is_some()
+            || self.sand_only
+    }
 }
 
 /// Arguments of `softwalk paper`.
@@ -142,6 +180,28 @@ pub struct PaperArgs {
     /// Shorten the ten-minute robustness walk to one minute.
     #[arg(long)]
     pub quick: bool,
+}
+
+fn parse_metres(text: &str) -> Result<f64, String> {
+    let v: f64 = text
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a number"))?;
+    if v.is_finite() && v > 0.0 && v <= 1.0e4 {
+        Ok(v)
+    } else {
+        Err(format!("{text} must be a number of metres in (0, 10000]"))
+    }
+}
+
+fn parse_fraction(text: &str) -> Result<f64, String> {
+    let v: f64 = text
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a number"))?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{text} must be a fraction in [0, 1]"))
+    }
 }
 
 fn parse_seconds(text: &str) -> Result<f64, String> {
@@ -214,6 +274,14 @@ pub enum CliError {
         failed: usize,
         /// Frames checked.
         total: usize,
+    },
+    /// Crowd options were given for another scene than `crowd`.
+    #[error(
+        "--walkers, --field, --grass, --lanes and --sand-only apply to the crowd scene only, not to {scene}"
+    )]
+    CrowdOptions {
+        /// The scene named.
+        scene: String,
     },
     /// Repeated runs of one scene ended in different worlds.
     #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]

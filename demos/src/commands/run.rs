@@ -23,6 +23,9 @@ use crate::sim::{self, Observers};
 /// written is skipped with a warning on standard error.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (scene, mut options) = scene_and_options(&args.scene)?;
+    for warning in scene.warnings() {
+        eprintln!("warning: {warning}");
+    }
     options.render = !args.no_render;
     options.hash = args.hash;
     options.width = args.width.unwrap_or(options.width);

@@ -21,6 +21,8 @@ mod builtin;
 mod camera;
 mod character;
 mod check;
+mod crowd;
+mod crowding;
 mod error;
 mod grass;
 mod material;
@@ -38,6 +40,8 @@ use softwalk_systems::terrain::{MaterialTable, TerrainMaterial};
 pub use builtin::{BuiltinScene, builtin_scenes};
 pub use camera::{CameraMode, CameraSpec};
 pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, PathSpec};
+pub use crowd::{CrowdLayout, CrowdSpec};
+pub use crowding::{MAX_CHARACTERS, SPAWN_CLEARANCE_M};
 pub use error::SceneError;
 pub use grass::{GrassPatchSpec, GrassPreset};
 pub use render_settings::{MAX_FRAME_SIDE, RenderSettings};
@@ -186,16 +190,18 @@ impl Scene {
         for (k, g) in self.grass.iter().enumerate() {
             g.validate(&format!("grass[{k}]"), size)?;
         }
+        crowding::check_count(&self.characters)?;
         if self.characters.is_empty() {
             return Err(SceneError::invalid(
                 "characters",
                 "a scene needs at least one [[characters]] entry",
             ));
         }
+        let mut seen = std::collections::HashSet::with_capacity(self.characters.len());
         for (k, c) in self.characters.iter().enumerate() {
             let field = format!("characters[{k}]");
             c.validate(&field, size)?;
-            if self.characters[..k].iter().any(|o| o.name == c.name) {
+            if !seen.insert(c.name.as_str()) {
                 return Err(SceneError::invalid(
                     format!("{field}.name"),
                     format!("character \"{}\" is defined twice", c.name),
@@ -207,6 +213,12 @@ impl Scene {
         self.sim.validate()?;
         self.render.validate()?;
         Ok(())
+    }
+
+    /// Problems that do not stop a run: characters whose spawn points
+    /// overlap (closer than [`SPAWN_CLEARANCE_M`]), one line per pair.
+    pub fn warnings(&self) -> Vec<String> {
+        crowding::overlapping_spawns(&self.characters)
     }
 
     fn check_material(&self, field: &str, name: &str) -> Result<(), SceneError> {

@@ -9,8 +9,7 @@ use engine::render::{
 use glam::{Mat4, Vec3};
 use image::RgbaImage;
 use softwalk_systems::character::{Balance, CharacterBody, Pose, character_mesh};
-use softwalk_systems::sim::{TerrainDirty, WalkerMetrics};
-use softwalk_systems::terrain::Heightfield;
+use softwalk_systems::sim::{GroundState, WalkerMetrics};
 use softwalk_systems::vegetation::GrassPatch;
 use thiserror::Error;
 
@@ -66,8 +65,10 @@ impl SceneView {
         height: u32,
         threads: usize,
     ) -> Result<SceneView, ViewError> {
-        let mut terrains = world.query::<&Heightfield>();
-        let hf = terrains.iter().next().ok_or(ViewError::NoTerrain)?;
+        let ground = world
+            .get_resource::<GroundState>()
+            .ok_or(ViewError::NoTerrain)?;
+        let hf = ground.terrain();
         let grid = hf.grid();
         let paint = TerrainPaint::of(hf);
         let lighting = Lighting::default();
@@ -138,7 +139,7 @@ impl SceneView {
             lighting,
             overlays: scene.render.overlays,
         };
-        drop(terrains);
+        drop(ground);
         if let Some((follow, entity)) = view.follow
             && let Some(target) = followed_point(world, entity)
         {
@@ -194,17 +195,18 @@ impl SceneView {
 
     /// Re-meshes and re-lights only the terrain patches the simulation changed since the last frame.
     fn update_terrain(&mut self, world: &World) -> Result<(), ViewError> {
-        let rect: GridRect = world
-            .get_resource_mut::<TerrainDirty>()
-            .map(|mut d| d.take())
-            .unwrap_or_default();
-        if rect.is_empty() {
+        let mut ground = world
+            .get_resource_mut::<GroundState>()
+            .ok_or(ViewError::NoTerrain)?;
+        let rects: Vec<GridRect> = ground.take_unseen();
+        if rects.is_empty() {
             return Ok(());
         }
-        let mut terrains = world.query::<&Heightfield>();
-        let hf = terrains.iter().next().ok_or(ViewError::NoTerrain)?;
-        self.paint.refresh(hf, rect);
-        self.terrain.mark_dirty(rect);
+        let hf = ground.terrain();
+        for &rect in &rects {
+            self.paint.refresh(hf, rect);
+            self.terrain.mark_dirty(rect);
+        }
         let colors = SampleColors {
             nx: self.nx,
             albedo: &self.paint.albedo,
