@@ -22,7 +22,9 @@ mod camera;
 mod character;
 mod check;
 mod error;
+mod field_line;
 mod grass;
+mod ignored_keys;
 mod material;
 mod render_settings;
 mod sim_settings;
@@ -34,17 +36,31 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use softwalk_systems::terrain::{MaterialTable, TerrainMaterial};
+use softwalk_systems::vegetation::MAX_BLADES;
 
 pub use builtin::{BuiltinScene, builtin_scenes};
-pub use camera::{CameraMode, CameraSpec};
-pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, PathSpec};
+pub use camera::{CameraMode, CameraSpec, MAX_CAMERA_COORDINATE};
+pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, MAX_WAYPOINTS, PathSpec};
 pub use error::SceneError;
-pub use grass::{GrassPatchSpec, GrassPreset};
-pub use render_settings::{MAX_FRAME_SIDE, RenderSettings};
+pub use grass::{
+    GrassPatchSpec, GrassPreset, MAX_BLADE_WIDTH, MAX_BREAK_BEND, MAX_GAMMA, MAX_GRASS_DENSITY,
+    MAX_GRASS_HEIGHT, MAX_RECOVERY_OMEGA, MAX_T_MAX,
+};
+pub use render_settings::{
+    APNG_DELAY_MS, GIF_DELAY_MS, MAX_FRAME_SIDE, RenderSettings, frame_delay_ms,
+};
 pub use sim_settings::{MAX_DT, MAX_STEPS, MIN_DT, SimSettings};
 pub use terrain::{
-    MAX_RESOLUTION, MAX_TERRAIN_SIZE, MaterialRegion, Slope, TerrainShape, TerrainSpec,
+    FEATURE_SIZE_RANGE, MAX_REGIONS, MAX_RESOLUTION, MAX_SINUOSITY, MAX_TERRAIN_SIZE,
+    MaterialRegion, Slope, TerrainShape, TerrainSpec,
 };
+
+/// Most accepted `[[characters]]` entries.
+pub const MAX_CHARACTERS: usize = 64;
+/// Most accepted `[[grass]]` patches.
+pub const MAX_GRASS_PATCHES: usize = 256;
+/// Most accepted `[[materials]]` entries.
+pub const MAX_MATERIALS: usize = 256;
 
 /// A whole scene. Build one with [`Scene::from_toml_str`], [`Scene::load`] or
 /// [`Scene::builtin`]; all three validate it.
@@ -84,7 +100,18 @@ impl Scene {
     pub fn from_toml_str(text: &str, base_dir: &Path) -> Result<Scene, SceneError> {
         let mut scene: Scene = toml::from_str(text).map_err(|e| syntax::syntax_error(text, &e))?;
         scene.base_dir = base_dir.to_path_buf();
-        scene.validate()?;
+        if let Ok(kept) = toml::Table::try_from(&scene) {
+            ignored_keys::check_no_ignored_keys(text, &kept)?;
+        }
+        scene.validate().map_err(|error| {
+            match error.field().and_then(|f| field_line::field_line(text, f)) {
+                Some(line) => SceneError::AtLine {
+                    line,
+                    error: Box::new(error),
+                },
+                None => error,
+            }
+        })?;
         Ok(scene)
     }
 
@@ -166,6 +193,9 @@ impl Scene {
     /// Checks every field; the first problem found is returned.
     pub fn validate(&self) -> Result<(), SceneError> {
         check::identifier("name", &self.name)?;
+        check::count_at_most("materials", self.materials.len(), MAX_MATERIALS)?;
+        check::count_at_most("grass", self.grass.len(), MAX_GRASS_PATCHES)?;
+        check::count_at_most("characters", self.characters.len(), MAX_CHARACTERS)?;
         self.terrain.validate()?;
         for (k, m) in self.materials.iter().enumerate() {
             let field = format!("materials[{k}]");
@@ -182,9 +212,22 @@ impl Scene {
             self.check_material(&format!("terrain.regions[{k}].material"), &r.material)?;
         }
         self.check_heightmap()?;
-        let size = self.terrain.size();
+        // Grass and paths must lie on the sampled grid, which may stop short of
+        // `size_x`/`size_z` by less than a cell.
+        let size = self.terrain.extent();
+        let mut blades = 0.0;
         for (k, g) in self.grass.iter().enumerate() {
-            g.validate(&format!("grass[{k}]"), size)?;
+            let field = format!("grass[{k}]");
+            g.validate(&field, size)?;
+            blades += g.blade_count();
+            if blades > MAX_BLADES as f64 {
+                return Err(SceneError::invalid(
+                    format!("{field}.density"),
+                    format!(
+                        "the patches up to this one hold {blades:.0} blades, more than the limit {MAX_BLADES} over all patches"
+                    ),
+                ));
+            }
         }
         if self.characters.is_empty() {
             return Err(SceneError::invalid(
@@ -206,6 +249,7 @@ impl Scene {
         self.camera.validate(&names)?;
         self.sim.validate()?;
         self.render.validate()?;
+        self.render.validate_delay(self.sim.dt)?;
         Ok(())
     }
 
