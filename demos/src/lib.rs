@@ -4,11 +4,13 @@
 //! - [`sim`]: the interface between the command line and the simulation;
 //! - [`output`]: `metrics.csv`, `summary.json`, frames and the printed summary;
 //! - [`paper`]: the paper's claims measured on reproduction scenes (`softwalk paper`);
+//! - [`memory_estimate`]: the memory a run needs, checked against a budget before it starts;
 //! - [`cli`]: the `softwalk` command line.
 #![warn(missing_docs)]
 
 pub mod cli;
 pub mod commands;
+pub mod memory_estimate;
 pub mod out_dir;
 pub mod output;
 pub mod paper;

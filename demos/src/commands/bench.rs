@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::time::Instant;
 
-use super::{scene_and_options, thread_pool};
+use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{BenchArgs, CliError};
 use crate::sim::{self, RunSummary};
 
@@ -15,6 +15,7 @@ pub fn bench(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (scene, mut options) = scene_and_options(&args.scene)?;
     options.render = false;
     options.hash = true;
+    check_memory(&scene, &options, &args.scene)?;
     let pool = thread_pool(options.threads)?;
     let mut runs: Vec<(f64, RunSummary)> = Vec::with_capacity(args.repeats as usize);
     for _ in 0..args.repeats {

@@ -8,6 +8,7 @@ pub mod scenes;
 use rayon::ThreadPool;
 
 use crate::cli::{CliError, SceneArgs};
+use crate::memory_estimate::{MemoryEstimate, check_steps};
 use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
 use crate::sim::RunOptions;
@@ -20,9 +21,23 @@ pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions),
         options.steps = steps;
     } else if let Some(seconds) = args.seconds {
         options.steps = scene.sim.steps_for(seconds);
+        check_steps(
+            options.steps,
+            &format!("--seconds {seconds} at sim.dt {}", scene.sim.dt),
+        )?;
     }
     options.threads = args.threads.map_or_else(default_threads, |t| t as usize);
     Ok((scene, options))
+}
+
+/// Refuses a run whose memory estimate is above `--max-memory`, before anything is allocated.
+pub(crate) fn check_memory(
+    scene: &Scene,
+    options: &RunOptions,
+    args: &SceneArgs,
+) -> Result<(), CliError> {
+    MemoryEstimate::of(scene, options).check(args.max_memory)?;
+    Ok(())
 }
 
 fn default_threads() -> usize {

@@ -4,7 +4,7 @@ use std::fs;
 use std::io::Write;
 use std::time::Instant;
 
-use super::{scene_and_options, thread_pool};
+use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
 use crate::out_dir::{OutputDirError, prepare_output_dir};
 use crate::output::{
@@ -23,6 +23,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     options.hash = args.hash;
     options.width = args.width.unwrap_or(options.width);
     options.height = args.height.unwrap_or(options.height);
+    check_memory(&scene, &options, &args.scene)?;
 
     let dir = prepare_output_dir(&args.out)?;
     let frames_dir = dir.join("frames");
