@@ -8,11 +8,10 @@
 //! fit, not to predict the peak to the megabyte.
 
 use std::fmt;
-use std::io::Read;
 
 use thiserror::Error;
 
-use crate::scene::{MAX_STEPS, Scene};
+use crate::scene::{MAX_STEPS, Scene, png_size};
 use crate::sim::RunOptions;
 
 /// The default memory budget, bytes (8 GiB); `--max-memory` changes it.
@@ -169,7 +168,8 @@ impl MemoryEstimate {
             format!("terrain grid ({nx} x {nz} samples)"),
             samples.saturating_mul(TERRAIN_BYTES_PER_SAMPLE),
         );
-        if let Some(px) = scene.heightmap_path().and_then(|p| png_pixels(&p)) {
+        if let Some((w, h)) = scene.heightmap_path().and_then(|p| png_size(&p)) {
+            let px = u64::from(w) * u64::from(h);
             push(
                 format!("heightmap ({px} pixels)"),
                 px.saturating_mul(HEIGHTMAP_BYTES_PER_PIXEL),
@@ -284,21 +284,6 @@ fn contact_sheet_bytes(options: &RunOptions, columns: u32) -> u64 {
     let kept_px = thumbs * tw * th;
     let cell_px = THUMB_WIDTH * cell_h;
     4 * (sheet_px.saturating_add(kept_px).saturating_add(cell_px))
-}
-
-/// Pixel count of a PNG from its header, without decoding it.
-fn png_pixels(path: &std::path::Path) -> Option<u64> {
-    let mut header = [0u8; 24];
-    std::fs::File::open(path)
-        .ok()?
-        .read_exact(&mut header)
-        .ok()?;
-    if &header[..8] != b"\x89PNG\r\n\x1a\n" || &header[12..16] != b"IHDR" {
-        return None;
-    }
-    let w = u32::from_be_bytes(header[16..20].try_into().ok()?);
-    let h = u32::from_be_bytes(header[20..24].try_into().ok()?);
-    Some(u64::from(w) * u64::from(h))
 }
 
 #[cfg(test)]

@@ -26,6 +26,7 @@ mod field_line;
 mod grass;
 mod ignored_keys;
 mod material;
+mod png_header;
 mod render_settings;
 mod sim_settings;
 mod syntax;
@@ -46,6 +47,7 @@ pub use grass::{
     GrassPatchSpec, GrassPreset, MAX_BLADE_WIDTH, MAX_BREAK_BEND, MAX_GAMMA, MAX_GRASS_DENSITY,
     MAX_GRASS_HEIGHT, MAX_RECOVERY_OMEGA, MAX_T_MAX,
 };
+pub use png_header::png_size;
 pub use render_settings::{
     APNG_DELAY_MS, GIF_DELAY_MS, MAX_FRAME_SIDE, RenderSettings, frame_delay_ms,
 };
@@ -280,6 +282,29 @@ impl Scene {
                 reason: "not a regular file".into(),
             });
         }
+        // The size first, from the header: a huge image is refused before it is decoded.
+        let bad = |reason: String| SceneError::BadFile {
+            field: field.clone(),
+            path: path.clone(),
+            reason,
+        };
+        match png_header::png_size(&path) {
+            None => return Err(bad("not a PNG file".into())),
+            Some((w, h)) if w < 2 || h < 2 => {
+                return Err(bad(format!(
+                    "the heightmap is {w} x {h} pixels; at least 2 x 2 are needed"
+                )));
+            }
+            Some((w, h)) if u64::from(w) * u64::from(h) > engine::geom::MAX_GRID_SAMPLES as u64 => {
+                return Err(bad(format!(
+                    "the heightmap is {w} x {h} pixels, more than the limit of {} pixels",
+                    engine::geom::MAX_GRID_SAMPLES
+                )));
+            }
+            Some(_) => {}
+        }
+        // Then the pixels: a corrupt or unsupported PNG is refused now, not when the run sets up.
+        engine::asset::load_heightmap(&path, 1.0, 1.0).map_err(|e| bad(e.to_string()))?;
         Ok(())
     }
 }

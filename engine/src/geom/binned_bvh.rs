@@ -10,7 +10,6 @@
 //! each node at the cheapest of 16 planes per axis (surface area heuristic),
 //! or at the median when that fails, so its time stays near `n log n`.
 
-use glam::Vec3A;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::{Bvh2, node::Bvh2Node};
 
@@ -174,13 +173,14 @@ fn median_split(boxes: &[Aabb], slice: &mut [u32], centres: &Aabb) -> usize {
 
 /// Whether `point` lies inside `b` (bounds included); for tests.
 #[cfg(test)]
-fn contains(b: &Aabb, point: Vec3A) -> bool {
+fn contains(b: &Aabb, point: glam::Vec3A) -> bool {
     point.cmpge(b.min).all() && point.cmple(b.max).all()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3A;
 
     fn row(n: usize) -> Vec<Aabb> {
         (0..n)
