@@ -68,3 +68,12 @@ fn a_huge_polygon_as_a_fan_builds_quickly_and_is_hit() {
     let hit = bvh.cast(&ray, 100.0).expect("the disc is under the ray");
     assert!((hit.distance - 10.0).abs() < 1e-3);
 }
+
+#[test]
+fn a_fan_with_one_far_vertex_builds_quickly() {
+    // Found by the fuzz harness: a fan whose first rim vertex was moved to x = -7e26.
+    let mut mesh = fan(20_000);
+    mesh.positions[1].x = -7.18e26;
+    let (_, took) = timed(&mesh);
+    assert!(took < Duration::from_secs(5), "{took:?}");
+}

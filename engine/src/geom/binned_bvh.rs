@@ -19,27 +19,37 @@ const BINS: usize = 16;
 const MAX_SAH_DEPTH: usize = 48;
 /// Meshes smaller than this always use PLOC (even its worst case is quick).
 const MIN_PRIMITIVES: usize = 1024;
-/// A layout whose boxes' summed half areas exceed this multiple of the whole
-/// box's half area overlaps heavily (a typical mesh: 1 to 10).
-const OVERLAP_LIMIT: f32 = 64.0;
+/// Boxes whose centres are sampled to measure overlap.
+const OVERLAP_SAMPLES: usize = 64;
+/// A layout where a sampled box centre lies, on average, inside more than this
+/// many boxes overlaps heavily (a typical mesh: 1 to 4).
+const OVERLAP_LIMIT: usize = 16;
 
-/// True when PLOC would build slowly on `boxes`: equally near neighbours along
-/// the longest axis for more than half of them, or heavily overlapping boxes.
+/// True when PLOC would build slowly on `boxes`: heavily overlapping boxes, or
+/// equally near neighbours along the longest axis for more than half of them.
 pub(crate) fn ploc_degenerates(boxes: &[Aabb]) -> bool {
     let n = boxes.len();
     if n < MIN_PRIMITIVES {
         return false;
     }
-    let mut root = Aabb::INVALID;
-    let mut centres = Aabb::INVALID;
-    let mut summed = 0.0f64;
-    for b in boxes {
-        root = root.union(b);
-        centres.extend(b.center());
-        summed += f64::from(b.half_area());
-    }
-    if summed > f64::from(OVERLAP_LIMIT) * f64::from(root.half_area().max(f32::MIN_POSITIVE)) {
+    // Overlap: how many boxes contain the centres of a few evenly spaced boxes
+    // (a count, so one far outlier vertex does not hide it).
+    let step = n / OVERLAP_SAMPLES;
+    let depth: usize = (0..OVERLAP_SAMPLES)
+        .map(|k| {
+            let p = boxes[k * step].center();
+            boxes
+                .iter()
+                .filter(|b| p.cmpge(b.min).all() && p.cmple(b.max).all())
+                .count()
+        })
+        .sum();
+    if depth > OVERLAP_LIMIT * OVERLAP_SAMPLES {
         return true;
+    }
+    let mut centres = Aabb::INVALID;
+    for b in boxes {
+        centres.extend(b.center());
     }
     let axis = centres.diagonal().max_position();
     let mut order: Vec<u32> = (0..n as u32).collect();
