@@ -14,6 +14,9 @@ use crate::oracle::{Input, Outcome, check};
 use crate::png_input::random_png;
 use crate::rng::Rng;
 
+/// What a worker is checking now, and since when (`None` between inputs).
+type Running = Mutex<Option<(Instant, Input)>>;
+
 /// An input running longer than this is a hang.
 pub const HANG_LIMIT: Duration = Duration::from_secs(10);
 /// Stack of a worker thread: the main thread's usual 8 MiB, as `softwalk` has.
@@ -169,7 +172,7 @@ pub fn run(config: &Config) -> Report {
     let start = Instant::now();
     let previous_hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    let current: Vec<Arc<Mutex<Option<(Instant, Input)>>>> = (0..config.threads.max(1))
+    let current: Vec<Arc<Running>> = (0..config.threads.max(1))
         .map(|_| Arc::new(Mutex::new(None)))
         .collect();
     let mut workers = Vec::new();
@@ -231,13 +234,7 @@ pub fn run(config: &Config) -> Report {
     report
 }
 
-fn worker(
-    seed: u64,
-    seeds: &[String],
-    dir: &Path,
-    stop: &AtomicBool,
-    slot: &Mutex<Option<(Instant, Input)>>,
-) -> Report {
+fn worker(seed: u64, seeds: &[String], dir: &Path, stop: &AtomicBool, slot: &Running) -> Report {
     let mut rng = Rng::new(seed);
     let mut report = Report::default();
     if std::fs::create_dir_all(dir).is_err() {

@@ -1,12 +1,12 @@
-//! Heightmap inputs: small grayscale PNGs, valid or with bytes broken, and the
+//! Heightmap inputs: small PNGs, valid or with bytes broken, and the
 //! pixel count their header declares (checked against the per-input budget).
 
 use crate::rng::Rng;
 
-/// A grayscale PNG of random size and depth, sometimes with bytes changed,
-/// cut short or a header claiming a huge image.
+/// A PNG of random size and depth (gray, one in eight RGB), sometimes with
+/// bytes changed, cut short or a header claiming a huge image.
 pub fn random_png(rng: &mut Rng) -> Vec<u8> {
-    let width = [0, 1, 2, 3, 17, 64][rng.below(6)].max(1) as u32;
+    let width = [1, 2, 3, 17, 64][rng.below(5)] as u32;
     let height = [1, 2, 5, 33, 64][rng.below(5)] as u32;
     let sixteen = !rng.one_in(3);
     let mut bytes = Vec::new();

@@ -22,7 +22,7 @@ pub(crate) fn field_line(text: &str, field: &str) -> Option<usize> {
                     .map(|(k, v)| (k.span().start, v))
             }),
             Segment::Index(index) => match value {
-                Some(DeValue::Array(items)) => items.iter().nth(index).map(|v| (v.span().start, v)),
+                Some(DeValue::Array(items)) => items.get(index).map(|v| (v.span().start, v)),
                 _ => None,
             },
         };

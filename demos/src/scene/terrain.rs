@@ -12,7 +12,7 @@ use softwalk_systems::terrain::TerrainError;
 use softwalk_systems::terrain::generate::{DuneParams, GridSpec, NoiseParams};
 
 use super::SceneError;
-use super::check::{count_in_range, in_range, interval, positive};
+use super::check::{count_at_most, count_in_range, in_range, interval, positive};
 
 /// Largest accepted `terrain.resolution` (samples along the longer side).
 pub const MAX_RESOLUTION: u32 = 8192;
@@ -324,15 +324,7 @@ impl TerrainSpec {
                 ),
             ));
         }
-        if self.regions.len() > MAX_REGIONS {
-            return Err(SceneError::invalid(
-                format!("terrain.regions[{MAX_REGIONS}]"),
-                format!(
-                    "{} regions; at most {MAX_REGIONS} are accepted",
-                    self.regions.len()
-                ),
-            ));
-        }
+        count_at_most("terrain.regions", self.regions.len(), MAX_REGIONS)?;
         for (k, region) in self.regions.iter().enumerate() {
             if let Some(x) = region.x {
                 interval(&format!("terrain.regions[{k}].x"), x, 0.0, self.size_x)?;
