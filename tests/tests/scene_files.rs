@@ -409,7 +409,25 @@ fn missing_heightmap_file_is_named_and_paths_resolve_against_the_scene_folder() 
     assert!(msg.contains("terrain.shape.path: file \""), "{msg}");
     assert!(msg.ends_with("x.png\" does not exist (line 13)"), "{msg}");
 
-    fs::write(dir.path().join("x.png"), b"not checked here").unwrap();
+    // A file that is not a PNG, or a PNG too small to make a grid, is refused by validation.
+    let png = dir.path().join("x.png");
+    fs::write(&png, b"not a png").unwrap();
+    let e = Scene::load(&scene_path).unwrap_err();
+    assert!(e.to_string().contains("not a PNG file"), "{e}");
+    let gray = |w: u32, h: u32| {
+        image::ImageBuffer::<image::Luma<u16>, _>::from_raw(w, h, vec![0u16; (w * h) as usize])
+            .unwrap()
+            .save(&png)
+            .unwrap();
+    };
+    gray(1, 1);
+    let e = Scene::load(&scene_path).unwrap_err();
+    assert_eq!(e.field(), Some("terrain.shape.path"));
+    assert!(
+        e.to_string().contains("1 x 1 pixels; at least 2 x 2"),
+        "{e}"
+    );
+    gray(2, 2);
     let scene = Scene::load(&scene_path).unwrap();
     assert_eq!(scene.heightmap_path().unwrap(), dir.path().join("x.png"));
     assert!(matches!(
