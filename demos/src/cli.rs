@@ -47,6 +47,10 @@ pub struct SceneArgs {
     /// Simulate this many seconds instead of the scene's duration.
     #[arg(long, value_parser = parse_seconds)]
     pub seconds: Option<f64>,
+    /// Memory budget: a run whose memory estimate exceeds it is refused before
+    /// anything is allocated (e.g. `8G`, `512M`; binary units).
+    #[arg(long, value_name = "SIZE", default_value = "8G", value_parser = crate::memory_estimate::parse_bytes)]
+    pub max_memory: u64,
     /// Worker threads (default: all cores; more than the cores are clamped, with a warning).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
@@ -237,6 +241,9 @@ pub enum CliError {
     /// The scene could not be found, read or validated.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The run would need more memory or steps than allowed.
+    #[error(transparent)]
+    Budget(#[from] crate::memory_estimate::BudgetError),
     /// The output folder cannot be used.
     #[error(transparent)]
     OutputDir(#[from] OutputDirError),

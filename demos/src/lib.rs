@@ -4,12 +4,14 @@
 //! - [`sim`]: the interface between the command line and the simulation;
 //! - [`output`]: `metrics.csv`, `summary.json`, frames and the printed summary;
 //! - [`paper`]: the paper's claims measured on reproduction scenes (`softwalk paper`);
+//! - [`memory_estimate`]: the memory a run needs, checked against a budget before it starts;
 //! - [`cli`]: the `softwalk` command line.
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
 pub mod cli;
 pub mod commands;
+pub mod memory_estimate;
 pub mod out_dir;
 pub mod out_files;
 pub mod output;

@@ -150,7 +150,8 @@ fn a_scene_file_error_names_file_and_field() {
     ]);
     let line = error_line(&result.unwrap_err());
     assert!(line.contains("bad.toml\": sim.dt: -0.01"), "{line}");
-    assert!(line.ends_with("must be > 0"), "{line}");
+    assert!(line.contains("must be > 0"), "{line}");
+    assert!(line.ends_with("(line 16)"), "{line}");
     assert!(
         !out.exists(),
         "the scene is checked before the output folder is made"

@@ -3,7 +3,7 @@
 
 use std::io::Write;
 
-use super::{scene_and_options, thread_pool};
+use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{BenchArgs, CliError, CrowdArgs};
 use crate::scene::{CrowdLayout, CrowdSpec, Scene};
 use crate::sim::{self, RunOptions, RunSummary};
@@ -19,6 +19,7 @@ pub fn bench(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     options.render = false;
     options.hash = true;
+    check_memory(&scene, &options, &args.scene)?;
     let pool = thread_pool(options.threads)?;
     let mut runs: Vec<RunSummary> = Vec::with_capacity(args.repeats as usize);
     for _ in 0..args.repeats {

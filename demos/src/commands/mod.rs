@@ -10,6 +10,7 @@ mod threads;
 use rayon::ThreadPool;
 
 use crate::cli::{CliError, SceneArgs};
+use crate::memory_estimate::{MemoryEstimate, check_steps};
 use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
 use crate::sim::RunOptions;
@@ -23,6 +24,10 @@ pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions),
         options.steps = steps;
     } else if let Some(seconds) = args.seconds {
         options.steps = scene.sim.steps_for(seconds);
+        check_steps(
+            options.steps,
+            &format!("--seconds {seconds} at sim.dt {}", scene.sim.dt),
+        )?;
     }
     let (threads, warning) = threads::clamp_threads(args.threads, threads::available_cores());
     if let Some(warning) = warning {
@@ -30,6 +35,16 @@ pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions),
     }
     options.threads = threads;
     Ok((scene, options))
+}
+
+/// Refuses a run whose memory estimate is above `--max-memory`, before anything is allocated.
+pub(crate) fn check_memory(
+    scene: &Scene,
+    options: &RunOptions,
+    args: &SceneArgs,
+) -> Result<(), CliError> {
+    MemoryEstimate::of(scene, options).check(args.max_memory)?;
+    Ok(())
 }
 
 /// A local pool of `threads` workers (not the global rayon pool).

@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use super::{scene_and_options, thread_pool};
+use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
 use crate::out_dir::{prepare_output_dir, remove_partial_files};
 use crate::out_files::check_output_files;
@@ -30,6 +30,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     options.hash = args.hash;
     options.width = args.width.unwrap_or(options.width);
     options.height = args.height.unwrap_or(options.height);
+    check_memory(&scene, &options, &args.scene)?;
 
     let dir = prepare_output_dir(&args.out)?;
     let frames_dir = dir.join("frames");
