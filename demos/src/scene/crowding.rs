@@ -78,7 +78,7 @@ mod tests {
             ..CrowdSpec::default()
         };
         let err = Scene::from_toml_str(&spec.toml("huge"), Path::new("")).unwrap_err();
-        match err {
+        match err.innermost() {
             SceneError::Invalid { field, .. } => assert_eq!(field, "characters"),
             other => panic!("unexpected error {other}"),
         }
