@@ -258,19 +258,38 @@ impl BoneMap {
         }
     }
 
-    /// The preset that maps the most roles of `skeleton` (the first on a tie).
+    /// The preset that maps the most roles of `skeleton`; on a tie, the one
+    /// with more exact name matches (so `LeftUpLeg` is BVH, `mixamorig:LeftUpLeg`
+    /// Mixamo), then the first.
     pub fn detect(skeleton: &Skeleton) -> BoneMap {
+        let score = |map: &BoneMap| (map.len(), map.exact_matches(skeleton));
         RigPreset::ALL
             .iter()
             .map(|&p| BoneMap::from_preset(skeleton, p))
             .fold(None, |best: Option<BoneMap>, map| match best {
-                Some(b) if b.len() >= map.len() => Some(b),
+                Some(b) if score(&b) >= score(&map) => Some(b),
                 _ => Some(map),
             })
             .unwrap_or(BoneMap {
                 preset: None,
                 joints: Vec::new(),
             })
+    }
+
+    /// How many mapped joints carry one of the preset's names exactly.
+    fn exact_matches(&self, skeleton: &Skeleton) -> usize {
+        let Some(preset) = self.preset else {
+            return self.len();
+        };
+        self.joints
+            .iter()
+            .filter(|&&(role, joint)| {
+                skeleton
+                    .joints()
+                    .get(joint)
+                    .is_some_and(|j| preset.names(role).contains(&j.name.as_str()))
+            })
+            .count()
     }
 
     /// The names looked for for `role`: the preset's candidates (none for a custom map).
