@@ -98,16 +98,22 @@ fn skin_range(
     }
 }
 
-/// The weighted sum of a vertex's 4 joint matrices.
+/// The weighted sum of a vertex's 4 joint matrices; joints of weight 0 are skipped.
 #[inline(always)]
 fn blend(matrices: &[Affine3A], joints: &[u16; 4], weights: &[f32; 4]) -> Affine3A {
-    let mut m = Affine3A::ZERO;
-    for (&j, &w) in joints.iter().zip(weights) {
-        // Joint indices were checked against the mesh's joint count, and
-        // `prepare` checked there are at least that many matrices.
-        let a = &matrices[j as usize];
-        m.matrix3 += a.matrix3 * w;
-        m.translation += a.translation * w;
+    // Joint indices were checked against the mesh's joint count, and `prepare`
+    // checked there are at least that many matrices.
+    let first = &matrices[joints[0] as usize];
+    let mut m = Affine3A {
+        matrix3: first.matrix3 * weights[0],
+        translation: first.translation * weights[0],
+    };
+    for (&j, &w) in joints.iter().zip(weights).skip(1) {
+        if w != 0.0 {
+            let a = &matrices[j as usize];
+            m.matrix3 += a.matrix3 * w;
+            m.translation += a.translation * w;
+        }
     }
     m
 }
