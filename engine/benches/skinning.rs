@@ -1,16 +1,32 @@
 //! Linear blend skinning of 12k vertices (the default human, 6002 vertices,
 //! taken twice), positions and normals, on one thread and on the rayon pool;
-//! and loading the default `.glb`.
+//! and loading the default `.glb`. Besides criterion's mean (wall time, which
+//! other processes on a loaded machine inflate), each prints the fastest of
+//! many single runs.
 //!
 //! `cargo bench -p engine --bench skinning`
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use engine::anim::gltf::load_gltf;
 use engine::anim::{Model, Pose, SkinnedMesh, SkinnedVertices, skin, skin_matrices, skin_serial};
 use engine::glam::{Affine3A, Quat};
+
+/// The fastest of `runs` single runs of `f`: on a shared, loaded machine the
+/// minimum is the run nothing else interrupted.
+fn fastest<T>(runs: usize, mut f: impl FnMut() -> T) -> Duration {
+    (0..runs)
+        .map(|_| {
+            let start = Instant::now();
+            black_box(f());
+            start.elapsed()
+        })
+        .min()
+        .unwrap_or_default()
+}
 
 fn human_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/characters/human.glb")
@@ -56,6 +72,16 @@ fn skinning(c: &mut Criterion) {
     let mut out = SkinnedVertices::default();
     let mut group = c.benchmark_group("skinning");
     group.throughput(Throughput::Elements(mesh.vertex_count() as u64));
+    let best = fastest(2000, || skin_serial(&mesh, &matrices, &mut out));
+    println!(
+        "skinning {} vertices, one thread: fastest run {best:?}",
+        mesh.vertex_count()
+    );
+    let best = fastest(2000, || skin(&mesh, &matrices, &mut out));
+    println!(
+        "skinning {} vertices, rayon: fastest run {best:?}",
+        mesh.vertex_count()
+    );
     group.bench_function("12k_vertices_one_thread", |b| {
         b.iter(|| skin_serial(black_box(&mesh), black_box(&matrices), &mut out))
     });
@@ -67,6 +93,8 @@ fn skinning(c: &mut Criterion) {
 
 fn loading(c: &mut Criterion) {
     let path = human_path();
+    let best = fastest(200, || load_gltf(&path).expect("loads"));
+    println!("loading the default human: fastest run {best:?}");
     c.bench_function("load_default_human_glb", |b| {
         b.iter(|| load_gltf(black_box(&path)).expect("loads"))
     });
