@@ -43,7 +43,7 @@ impl SkinnedMesh {
                 });
             }
         }
-        if indices.len() % 3 != 0 {
+        if !indices.len().is_multiple_of(3) {
             return Err(AnimError::Length {
                 what: "triangle indices".to_string(),
                 expected: indices.len() / 3 * 3,

@@ -52,7 +52,7 @@ struct Builder {
 
 impl Builder {
     fn add(&mut self, bytes: Vec<u8>, component: u32, count: usize, kind: &str) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         self.views.push(format!(
@@ -163,10 +163,10 @@ impl TwoBones {
     pub fn glb(&self) -> Vec<u8> {
         let (json, mut bin) = self.build(None);
         let mut json = json.into_bytes();
-        while json.len() % 4 != 0 {
+        while !json.len().is_multiple_of(4) {
             json.push(b' ');
         }
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         let total = 12 + 8 + json.len() + 8 + bin.len();
