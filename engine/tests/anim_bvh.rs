@@ -195,3 +195,16 @@ fn missing_file_is_a_read_error() {
     let error = load_bvh(Path::new("no/such/clip.bvh")).unwrap_err();
     assert!(matches!(error, BvhError::Read { .. }), "{error}");
 }
+
+#[test]
+fn every_truncation_is_an_error_never_a_panic() {
+    let text = walk_text();
+    for cut in (0..text.len()).filter(|&k| text.is_char_boundary(k)) {
+        // Cutting inside the last value still parses (a shorter number).
+        let result = load_bvh_from_str(&text[..cut], Path::new("cut.bvh"));
+        assert!(
+            result.is_err() || cut + 2 >= text.len(),
+            "cut at {cut} loaded"
+        );
+    }
+}

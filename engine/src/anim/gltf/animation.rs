@@ -1,5 +1,6 @@
 use glam::Vec4;
 use gltf::animation::{Interpolation as GltfInterpolation, Property as GltfProperty};
+use gltf::json::validation::Checked;
 
 use super::GltfError;
 use super::accessor::AccessorReader;
@@ -9,6 +10,7 @@ use crate::anim::{Channel, Clip, Interpolation, Property};
 /// nodes outside the skeleton and morph-weight channels are skipped; an
 /// animation left with no channel is refused with [`GltfError::ClipTargetsNoJoint`].
 pub(super) fn clip(
+    json: &gltf::json::Root,
     animation: &gltf::Animation,
     node_to_joint: &[Option<usize>],
     joint_count: usize,
@@ -21,11 +23,16 @@ pub(super) fn clip(
     let mut channels = Vec::new();
     for (k, channel) in animation.channels().enumerate() {
         let part = format!("{clip_part} channel {k}");
-        let target = channel.target();
-        let Some(joint) = node_to_joint.get(target.node().index()).copied().flatten() else {
+        let (node, path) =
+            checked_target(json, animation.index(), k).ok_or_else(|| GltfError::Invalid {
+                path: reader.path.to_path_buf(),
+                part: part.clone(),
+                reason: "the target's node or path is not valid".to_string(),
+            })?;
+        let Some(joint) = node_to_joint.get(node).copied().flatten() else {
             continue;
         };
-        let property = match target.property() {
+        let property = match path {
             GltfProperty::Translation => Property::Translation,
             GltfProperty::Rotation => Property::Rotation,
             GltfProperty::Scale => Property::Scale,
@@ -68,4 +75,16 @@ pub(super) fn clip(
     }
     Clip::new(name, channels, joint_count)
         .map_err(|e| GltfError::from_anim(reader.path, &clip_part, e))
+}
+
+/// The node index and path of channel `k` of animation `a`, read from the JSON
+/// and checked there: the `gltf` crate's validation skips channel targets, and
+/// its accessors panic on an unknown path or a node out of range.
+fn checked_target(json: &gltf::json::Root, a: usize, k: usize) -> Option<(usize, GltfProperty)> {
+    let target = &json.animations.get(a)?.channels.get(k)?.target;
+    let node = target.node.value();
+    match target.path {
+        Checked::Valid(path) if node < json.nodes.len() => Some((node, path)),
+        _ => None,
+    }
 }

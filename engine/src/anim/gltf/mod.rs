@@ -34,11 +34,15 @@ pub fn load_gltf(path: &Path) -> Result<Model, GltfError> {
 /// Like [`load_gltf`] on bytes held in memory; `path` names them in errors and
 /// locates relative buffer files.
 pub fn load_gltf_from_slice(bytes: &[u8], path: &Path) -> Result<Model, GltfError> {
+    let malformed = |reason: String| GltfError::Malformed {
+        path: path.to_path_buf(),
+        reason,
+    };
     let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice(bytes).map_err(|e| GltfError::Malformed {
-            path: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| malformed(e.to_string()))?;
+    let json = document.into_json();
+    check_before_validation(&json).map_err(malformed)?;
+    let document = gltf::Document::from_json(json).map_err(|e| malformed(e.to_string()))?;
     let buffers = buffers::load_buffers(&document, blob, path)?;
     let reader = AccessorReader {
         path,
@@ -56,13 +60,42 @@ pub fn load_gltf_from_slice(bytes: &[u8], path: &Path) -> Result<Model, GltfErro
     let mesh = mesh::skinned_mesh(&mesh, &rig.skin_to_joint, joint_count, &reader)?;
     let clips = document
         .animations()
-        .map(|a| animation::clip(&a, &rig.node_to_joint, joint_count, &reader))
+        .map(|a| {
+            animation::clip(
+                document.as_json(),
+                &a,
+                &rig.node_to_joint,
+                joint_count,
+                &reader,
+            )
+        })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Model {
         skeleton: rig.skeleton,
         mesh,
         clips,
     })
+}
+
+/// Checks what the `gltf` crate's own validation indexes without checking
+/// (it panics on a primitive attribute naming an accessor that does not exist).
+fn check_before_validation(json: &gltf::json::Root) -> Result<(), String> {
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(a) = primitive
+                .attributes
+                .values()
+                .find(|a| a.value() >= json.accessors.len())
+            {
+                return Err(format!(
+                    "mesh {m} primitive {p} names accessor {}, but there are {}",
+                    a.value(),
+                    json.accessors.len()
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The bytes of a file no larger than [`MAX_FILE_BYTES`], checked before reading.
