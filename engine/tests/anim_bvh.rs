@@ -208,3 +208,33 @@ fn every_truncation_is_an_error_never_a_panic() {
         );
     }
 }
+
+#[test]
+fn mixamo_names_are_detected_whatever_the_namespace() {
+    let mut text = walk_text();
+    for name in [
+        "Hips",
+        "LeftUpLeg",
+        "LeftLeg",
+        "LeftFoot",
+        "LeftToeBase",
+        "RightUpLeg",
+        "RightLeg",
+        "RightFoot",
+        "RightToeBase",
+        "Spine",
+        "Neck",
+        "Head",
+    ] {
+        text = text.replace(&format!(" {name}\n"), &format!(" mixamorig1:{name}\n"));
+    }
+    let bvh = load_bvh_from_str(&text, Path::new("mixamo.bvh")).unwrap();
+    assert_eq!(bvh.skeleton.joints()[1].name, "mixamorig1:LeftUpLeg");
+    let map = BoneMap::detect(&bvh.skeleton);
+    assert_eq!(map.preset, Some(RigPreset::Mixamo));
+    let chains = RigChains::find(&bvh.skeleton, &map).unwrap();
+    assert_eq!(
+        bvh.skeleton.joints()[chains.right.knee].name,
+        "mixamorig1:RightLeg"
+    );
+}

@@ -15,6 +15,8 @@
 //! bones a rig uses for each [`BoneRole`]; [`RigChains`] are the legs and spine found
 //! through it, and [`retarget`] moves a clip from one rig onto another by bone name.
 
+#![forbid(unsafe_code)]
+
 mod bone_map;
 pub mod bvh;
 mod channel;
