@@ -75,13 +75,13 @@ pub enum BvhError {
         found: usize,
     },
     /// A number is NaN or infinite, or the frame time is not positive.
-    #[error("{path}:{line}: {what} is not a finite number")]
+    #[error("{path}:{line}: bad number: {what}")]
     NonFinite {
         /// The file.
         path: PathBuf,
         /// The line.
         line: usize,
-        /// Which value.
+        /// Which value and what is wrong with it.
         what: String,
     },
     /// The skeleton or clip built from the file was refused.

@@ -42,13 +42,18 @@ fn parse_joint(
     depth: usize,
     joints: &mut Vec<BvhJoint>,
 ) -> Result<(), BvhError> {
-    if depth > MAX_DEPTH || joints.len() >= MAX_JOINTS {
-        return Err(BvhError::Limit {
-            path: tokens.path().to_path_buf(),
-            line: tokens.line(),
-            what: "joints or nesting".to_string(),
-            limit: MAX_JOINTS.min(MAX_DEPTH),
-        });
+    for (what, count, limit) in [
+        ("nesting depth", depth, MAX_DEPTH),
+        ("joint count", joints.len() + 1, MAX_JOINTS),
+    ] {
+        if count > limit {
+            return Err(BvhError::Limit {
+                path: tokens.path().to_path_buf(),
+                line: tokens.line(),
+                what: format!("{what} {count}"),
+                limit,
+            });
+        }
     }
     let name = tokens.next("a joint name")?.to_string();
     tokens.expect("{")?;

@@ -33,7 +33,7 @@ pub(super) fn parse_motion(
         return Err(BvhError::NonFinite {
             path: tokens.path().to_path_buf(),
             line: tokens.line(),
-            what: format!("frame time {frame_time} (must be positive)"),
+            what: format!("frame time {frame_time} is not positive"),
         });
     }
     let needed = frames * channels;

@@ -65,7 +65,7 @@ impl<'a> Tokens<'a> {
             Err(BvhError::NonFinite {
                 path: self.path.to_path_buf(),
                 line: self.line,
-                what: what.to_string(),
+                what: format!("{what} is {word}, not a finite number"),
             })
         }
     }
