@@ -238,3 +238,23 @@ fn mixamo_names_are_detected_whatever_the_namespace() {
         "mixamorig1:RightLeg"
     );
 }
+
+#[test]
+fn custom_bone_names_map_any_rig() {
+    let text = walk_text()
+        .replace("LeftUpLeg", "hip.L")
+        .replace("LeftLeg", "knee.L");
+    let bvh = load_bvh_from_str(&text, Path::new("custom.bvh")).unwrap();
+    assert!(RigChains::find(&bvh.skeleton, &BoneMap::detect(&bvh.skeleton)).is_err());
+    let mut names: Vec<(BoneRole, String)> = BoneMap::from_preset(&bvh.skeleton, RigPreset::Bvh)
+        .pairs()
+        .iter()
+        .map(|&(role, joint)| (role, bvh.skeleton.joints()[joint].name.clone()))
+        .collect();
+    names.push((BoneRole::ThighL, "hip.L".into()));
+    names.push((BoneRole::CalfL, "knee.L".into()));
+    let map = BoneMap::from_names(&bvh.skeleton, &names);
+    assert_eq!(map.preset, None);
+    let chains = RigChains::find(&bvh.skeleton, &map).unwrap();
+    assert_eq!(bvh.skeleton.joints()[chains.left.knee].name, "knee.L");
+}
