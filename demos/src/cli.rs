@@ -33,6 +33,15 @@ pub enum Command {
     Paper(PaperArgs),
     /// Check a scene's frames against golden PNGs (or bless them).
     Snapshot(SnapshotArgs),
+    /// Print a character model's (.glb, .gltf) or mocap clip's (.bvh) rig, clips and leg chains.
+    Inspect(InspectArgs),
+}
+
+/// Arguments of `softwalk inspect`.
+#[derive(Debug, Clone, Args)]
+pub struct InspectArgs {
+    /// A `.glb`, `.gltf` or `.bvh` file.
+    pub file: PathBuf,
 }
 
 /// Which scene and for how long; shared by `run` and `bench`.
@@ -290,6 +299,15 @@ pub enum CliError {
         /// The scene named.
         scene: String,
     },
+    /// A model or clip could not be loaded.
+    #[error("cannot inspect the file")]
+    Inspect(#[source] Box<dyn std::error::Error + Send + Sync>),
+    /// `inspect` was given a file that is neither glTF nor BVH.
+    #[error("{path}: not a .glb, .gltf or .bvh file")]
+    UnknownFileKind {
+        /// The file.
+        path: PathBuf,
+    },
     /// Repeated runs of one scene ended in different worlds.
     #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]
     Nondeterministic {
@@ -306,6 +324,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
         Command::Bench(args) => commands::bench::bench(&args, stdout),
         Command::Paper(args) => commands::paper::paper(&args, stdout),
         Command::Snapshot(args) => commands::snapshot::snapshot(&args, stdout),
+        Command::Inspect(args) => commands::inspect::inspect(&args, stdout),
     }
 }
 

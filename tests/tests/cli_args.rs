@@ -306,3 +306,71 @@ fn snapshot_blesses_checks_and_reports_failing_frames() {
         untouched
     );
 }
+
+fn repo_file(relative: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(relative)
+        .to_string_lossy()
+        .into_owned()
+}
+
+#[test]
+fn inspect_prints_the_default_humans_rig_and_leg_chains() {
+    let file = repo_file("assets/characters/human.glb");
+    let (result, out) = execute_args(&["inspect", &file]);
+    result.unwrap();
+    assert!(out.contains("glTF model"), "{out}");
+    assert!(
+        out.contains("mesh: 6002 vertices, 12000 triangles"),
+        "{out}"
+    );
+    assert!(out.contains("clips: none"), "{out}");
+    assert!(out.contains("bone names: GameEngine"), "{out}");
+    assert!(
+        out.contains("left leg: hip thigh_l, knee calf_l, ankle foot_l, toe ball_l"),
+        "{out}"
+    );
+    assert!(
+        out.contains("spine: pelvis -> spine_01 -> spine_02 -> spine_03 -> neck_01 -> head"),
+        "{out}"
+    );
+}
+
+#[test]
+fn inspect_prints_a_bvh_clip_and_says_what_is_missing() {
+    let file = repo_file("engine/tests/data/walk_small.bvh");
+    let (result, out) = execute_args(&["inspect", &file]);
+    result.unwrap();
+    assert!(out.contains("BVH mocap, 2 frames at 2.0 fps"), "{out}");
+    assert!(out.contains("bone names: Bvh"), "{out}");
+    assert!(out.contains("right leg: hip RightUpLeg"), "{out}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let renamed = dir.path().join("renamed.bvh");
+    let text = fs::read_to_string(&file)
+        .unwrap()
+        .replace("LeftToeBase", "LeftToeTip");
+    fs::write(&renamed, text).unwrap();
+    let (result, out) = execute_args(&["inspect", renamed.to_str().unwrap()]);
+    result.unwrap();
+    assert!(out.contains("leg chains not found"), "{out}");
+    assert!(out.contains("ToeL (looked for LeftToeBase"), "{out}");
+}
+
+#[test]
+fn inspect_refuses_bad_and_unknown_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.glb");
+    fs::write(&bad, b"glTF nonsense").unwrap();
+    let (result, _) = execute_args(&["inspect", bad.to_str().unwrap()]);
+    let error = result.unwrap_err();
+    assert!(
+        error_line(&error).contains("bad.glb"),
+        "{}",
+        error_line(&error)
+    );
+    let (result, _) = execute_args(&["inspect", "model.fbx"]);
+    assert!(matches!(result, Err(CliError::UnknownFileKind { .. })));
+    assert!(parse(&["inspect"]).is_err());
+}

@@ -1,6 +1,7 @@
 //! One module per subcommand, plus what `run` and `bench` share.
 
 pub mod bench;
+pub mod inspect;
 pub mod paper;
 pub mod run;
 pub mod scenes;

@@ -1,0 +1,136 @@
+//! `softwalk inspect FILE`: what a character model (`.glb`/`.gltf`) or mocap
+//! clip (`.bvh`) holds: its rig as a tree, its mesh, its clips, the bone map
+//! detected and the leg chains and spine found through it, or what is missing.
+
+use std::io::Write;
+use std::path::Path;
+
+use engine::anim::bvh::load_bvh;
+use engine::anim::gltf::load_gltf;
+use engine::anim::{BoneMap, Clip, RigChains, Skeleton, SkinnedMesh};
+
+use crate::cli::{CliError, InspectArgs};
+
+/// Prints the rig, the mesh (models only), the clips and the detected chains.
+/// A file whose chains are not found still prints, ending with what is missing.
+pub fn inspect(args: &InspectArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let text = describe(&args.file)?;
+    out.write_all(text.as_bytes()).map_err(CliError::Stdout)
+}
+
+/// The report for one file, chosen by its extension.
+fn describe(path: &Path) -> Result<String, CliError> {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let mut text = String::new();
+    match extension.as_deref() {
+        Some("glb" | "gltf") => {
+            let model = load_gltf(path).map_err(|e| CliError::Inspect(Box::new(e)))?;
+            text.push_str(&format!("{}: glTF model\n", path.display()));
+            text.push_str(&rig(&model.skeleton));
+            text.push_str(&mesh(&model.mesh));
+            text.push_str(&clips(&model.clips));
+            text.push_str(&chains(&model.skeleton));
+        }
+        Some("bvh") => {
+            let bvh = load_bvh(path).map_err(|e| CliError::Inspect(Box::new(e)))?;
+            text.push_str(&format!(
+                "{}: BVH mocap, {} frames at {:.1} fps\n",
+                path.display(),
+                bvh.frames,
+                1.0 / bvh.frame_time
+            ));
+            text.push_str(&rig(&bvh.skeleton));
+            text.push_str(&clips(std::slice::from_ref(&bvh.clip)));
+            text.push_str(&chains(&bvh.skeleton));
+        }
+        _ => {
+            return Err(CliError::UnknownFileKind {
+                path: path.to_path_buf(),
+            });
+        }
+    }
+    Ok(text)
+}
+
+/// The joints as an indented tree, parents first.
+fn rig(skeleton: &Skeleton) -> String {
+    let mut text = format!("rig: {} joints\n", skeleton.len());
+    for (k, joint) in skeleton.joints().iter().enumerate() {
+        let depth = std::iter::successors(joint.parent, |&p| skeleton.joints()[p].parent).count();
+        let t = joint.rest.translation;
+        text.push_str(&format!(
+            "  {:indent$}{} [{k}]  offset ({:.3}, {:.3}, {:.3})\n",
+            "",
+            joint.name,
+            t.x,
+            t.y,
+            t.z,
+            indent = 2 * depth
+        ));
+    }
+    text
+}
+
+fn mesh(mesh: &SkinnedMesh) -> String {
+    let influences = mesh
+        .weights()
+        .iter()
+        .map(|w| w.iter().filter(|&&x| x > 0.0).count())
+        .max()
+        .unwrap_or(0);
+    format!(
+        "mesh: {} vertices, {} triangles, up to {influences} joints per vertex\n",
+        mesh.vertex_count(),
+        mesh.triangle_count()
+    )
+}
+
+fn clips(clips: &[Clip]) -> String {
+    if clips.is_empty() {
+        return "clips: none\n".to_string();
+    }
+    let mut text = format!("clips: {}\n", clips.len());
+    for clip in clips {
+        text.push_str(&format!(
+            "  {:?}: {:.3} s, {} channels\n",
+            clip.name(),
+            clip.duration(),
+            clip.channels().len()
+        ));
+    }
+    text
+}
+
+/// The detected bone map, then the chains or what is missing.
+fn chains(skeleton: &Skeleton) -> String {
+    let map = BoneMap::detect(skeleton);
+    let preset = map
+        .preset
+        .map_or_else(|| "none".to_string(), |p| format!("{p:?}"));
+    let mut text = format!("bone names: {preset} ({} roles mapped)\n", map.len());
+    let name = |j: usize| skeleton.joints()[j].name.as_str();
+    match RigChains::find(skeleton, &map) {
+        Ok(c) => {
+            for (side, leg) in [("left", c.left), ("right", c.right)] {
+                text.push_str(&format!(
+                    "{side} leg: hip {}, knee {}, ankle {}, toe {} ({:.3} long)\n",
+                    name(leg.hip),
+                    name(leg.knee),
+                    name(leg.ankle),
+                    name(leg.toe),
+                    c.leg_length(skeleton, &leg)
+                ));
+            }
+            let spine: Vec<&str> = c.spine.iter().map(|&j| name(j)).collect();
+            text.push_str(&format!(
+                "spine: {} -> {}\n",
+                name(c.pelvis),
+                spine.join(" -> ")
+            ));
+        }
+        Err(e) => text.push_str(&format!("leg chains not found: {e}\n")),
+    }
+    text
+}
