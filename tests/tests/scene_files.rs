@@ -169,7 +169,7 @@ fn builtin_scenes_cover_the_papers_settings() {
 #[test]
 fn missing_field_is_named_with_its_line() {
     let e = error_with("size_x = 10.0\n", "");
-    assert!(e.starts_with("terrain: missing field `size_x`"), "{e}");
+    assert!(e.starts_with("terrain.size_x: missing field `size_x`"), "{e}");
     assert!(e.contains("line "), "{e}");
 }
 
@@ -342,7 +342,7 @@ fn bad_user_materials_name_the_field() {
     );
     let e = bad("smoothness = 2.0\n", "");
     assert!(
-        e.starts_with("materials[0]: missing field `smoothness`"),
+        e.starts_with("materials[0].smoothness: missing field `smoothness`"),
         "{e}"
     );
 }
@@ -460,4 +460,75 @@ fn inconsistent_fields_are_refused() {
         "max_height = 1.0\nshape = { kind = \"slope\", angle_deg = 30.0, direction_deg = 0.0 }",
     );
     assert!(e.starts_with("terrain.shape: spans"), "{e}");
+}
+
+/// A built-in scene's TOML with `edit` applied.
+fn edited_builtin(name: &str, edit: impl Fn(&str) -> String) -> String {
+    edit(&Scene::builtin(name).unwrap().to_toml_string().unwrap())
+}
+
+#[test]
+fn a_missing_top_level_table_is_named_not_the_first_key() {
+    let text = edited_builtin("sand-flat", |t| {
+        let mut skip = false;
+        t.lines()
+            .filter(|l| {
+                if l.starts_with('[') {
+                    skip = l.starts_with("[terrain");
+                }
+                !skip
+            })
+            .map(|l| format!("{l}\n"))
+            .collect()
+    });
+    let err = Scene::from_toml_str(&text, Path::new("")).unwrap_err();
+    assert_eq!(err.field(), Some("terrain"), "{err}");
+}
+
+#[test]
+fn a_bad_value_in_a_tagged_table_names_its_key() {
+    let text = edited_builtin("sand-flat", |t| {
+        let mut in_path = false;
+        t.lines()
+            .map(|l| {
+                if l.starts_with('[') {
+                    in_path = l == "[characters.path]";
+                }
+                if in_path && l.starts_with("start = ") {
+                    "start = 1.0\n".to_owned()
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect()
+    });
+    let err = Scene::from_toml_str(&text, Path::new("")).unwrap_err();
+    assert_eq!(err.field(), Some("characters[0].path.start"), "{err}");
+}
+
+#[test]
+fn a_huge_dotted_key_is_not_echoed_whole() {
+    let text = format!("name = \"x\"\n{}b = 1\n", "a.".repeat(100_000));
+    let err = Scene::from_toml_str(&text, Path::new("")).unwrap_err();
+    assert!(
+        err.to_string().len() < 1000,
+        "{} bytes",
+        err.to_string().len()
+    );
+}
+
+#[test]
+fn a_scene_path_that_is_not_a_regular_file_is_refused_without_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    let err = Scene::load(dir.path()).unwrap_err();
+    assert!(matches!(err, SceneError::NotAFile { .. }), "{err}");
+    #[cfg(unix)]
+    {
+        let fifo = dir.path().join("scene.toml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let err = Scene::load(&fifo).unwrap_err();
+            assert!(matches!(err, SceneError::NotAFile { .. }), "{err}");
+        }
+    }
 }

@@ -67,6 +67,20 @@ pub enum SceneError {
         /// The I/O error.
         source: std::io::Error,
     },
+    /// The scene path is not a regular file (a folder, a FIFO, a device).
+    #[error("scene file \"{}\" is not a regular file", path.display())]
+    NotAFile {
+        /// The scene path.
+        path: PathBuf,
+    },
+    /// The scene file is larger than any scene needs.
+    #[error("scene file \"{}\" is {bytes} bytes, more than the limit {}", path.display(), super::MAX_SCENE_FILE_BYTES)]
+    FileTooLarge {
+        /// The scene path.
+        path: PathBuf,
+        /// Its size.
+        bytes: u64,
+    },
     /// An error inside a scene file, with the file named.
     #[error("scene file \"{}\": {error}", path.display())]
     InFile {

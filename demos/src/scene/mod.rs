@@ -61,6 +61,9 @@ pub use terrain::{
     MaterialRegion, Slope, TerrainShape, TerrainSpec,
 };
 
+/// Largest scene file read, bytes: far above any hand-written or generated
+/// scene (a 20,000-walker crowd is about 4 MB).
+pub const MAX_SCENE_FILE_BYTES: u64 = 64 << 20;
 /// Most accepted `[[grass]]` patches.
 pub const MAX_GRASS_PATCHES: usize = 256;
 /// Most accepted `[[materials]]` entries.
@@ -119,12 +122,27 @@ impl Scene {
         Ok(scene)
     }
 
-    /// Reads, parses and validates a scene file; errors name the file.
+    /// Reads, parses and validates a scene file; errors name the file. Only a
+    /// regular file of at most [`MAX_SCENE_FILE_BYTES`] is read (a FIFO or a
+    /// device would block or never end).
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        let read_error = |source| SceneError::Read {
             path: path.to_path_buf(),
             source,
-        })?;
+        };
+        let meta = std::fs::metadata(path).map_err(read_error)?;
+        if !meta.is_file() {
+            return Err(SceneError::NotAFile {
+                path: path.to_path_buf(),
+            });
+        }
+        if meta.len() > MAX_SCENE_FILE_BYTES {
+            return Err(SceneError::FileTooLarge {
+                path: path.to_path_buf(),
+                bytes: meta.len(),
+            });
+        }
+        let text = std::fs::read_to_string(path).map_err(read_error)?;
         let base = path.parent().unwrap_or(Path::new(""));
         Scene::from_toml_str(&text, base).map_err(|e| SceneError::InFile {
             path: path.to_path_buf(),

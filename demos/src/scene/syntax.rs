@@ -5,15 +5,78 @@
 
 use super::SceneError;
 
+/// Longest field path or message echoed back, in characters: a scene with a
+/// huge key must not print it whole.
+const MAX_ECHO_CHARS: usize = 160;
+
 /// Converts a parse error on `text` into a [`SceneError::Syntax`].
+///
+/// A missing field is named after the table the parser reports it in (the
+/// field itself, not the first key of that table).
 pub(crate) fn syntax_error(text: &str, err: &toml::de::Error) -> SceneError {
     let offset = err.span().map_or(0, |s| s.start).min(text.len());
     let (line, column) = line_column(text, offset);
+    let message = err.message().trim();
+    let field = if err.span().is_none() {
+        "<root>".to_owned()
+    } else if let Some(missing) = missing_field(message) {
+        join_path(&table_path(text, line), missing)
+    } else if let Some(key) = bad_value(message).and_then(|v| key_in_table(text, line, v)) {
+        join_path(&table_path(text, line), &key)
+    } else {
+        field_path(text, line)
+    };
     SceneError::Syntax {
-        field: field_path(text, line),
-        message: err.message().trim().to_owned(),
+        field: shortened(&field),
+        message: shortened(message),
         line,
         column,
+    }
+}
+
+/// The name in serde's "missing field `name`" message.
+fn missing_field(message: &str) -> Option<&str> {
+    message
+        .strip_prefix("missing field `")
+        .and_then(|rest| rest.split('`').next())
+}
+
+/// The value quoted in serde's "invalid type: floating point `1.0`, ..." message.
+fn bad_value(message: &str) -> Option<&str> {
+    message
+        .strip_prefix("invalid type: ")
+        .or_else(|| message.strip_prefix("invalid value: "))
+        .and_then(|rest| rest.split('`').nth(1))
+}
+
+/// The one key of the table starting on 1-based `line` whose value is
+/// written as `value`: a tagged table is reported as a whole, so the key its
+/// bad value sits under is found by the value.
+fn key_in_table(text: &str, line: usize, value: &str) -> Option<String> {
+    let mut keys = text
+        .lines()
+        .skip(line)
+        .take_while(|l| !l.trim_start().starts_with('['))
+        .filter_map(|l| l.split_once('='))
+        .filter(|(_, v)| v.trim() == value)
+        .map(|(k, _)| k.trim().trim_matches('"').to_owned());
+    let key = keys.next()?;
+    keys.next().is_none().then_some(key)
+}
+
+fn join_path(table: &str, key: &str) -> String {
+    if table.is_empty() {
+        key.to_owned()
+    } else {
+        format!("{table}.{key}")
+    }
+}
+
+/// `text` cut to [`MAX_ECHO_CHARS`] characters, with an ellipsis when cut.
+fn shortened(text: &str) -> String {
+    match text.char_indices().nth(MAX_ECHO_CHARS) {
+        Some((end, _)) => format!("{}…", &text[..end]),
+        None => text.to_owned(),
     }
 }
 
@@ -34,6 +97,22 @@ fn floor_char_boundary(text: &str, mut offset: usize) -> usize {
 
 /// The dotted path of the table (and key) on 1-based `line`, e.g. `characters[1].alpha`.
 fn field_path(text: &str, line: usize) -> String {
+    let (table, key) = path_parts(text, line);
+    match (table.is_empty(), key) {
+        (true, None) => "<root>".to_owned(),
+        (true, Some(k)) => k,
+        (false, None) => table,
+        (false, Some(k)) => format!("{table}.{k}"),
+    }
+}
+
+/// The dotted path of the table open on 1-based `line` (empty at the top level).
+fn table_path(text: &str, line: usize) -> String {
+    path_parts(text, line).0
+}
+
+/// The table open on 1-based `line`, and the key assigned on it, if any.
+fn path_parts(text: &str, line: usize) -> (String, Option<String>) {
     let mut table = String::new();
     let mut array_counts: Vec<(String, usize)> = Vec::new();
     let mut key = None;
@@ -66,12 +145,7 @@ fn field_path(text: &str, line: usize) -> String {
                 .filter(|k| !k.is_empty() && !k.starts_with('#'));
         }
     }
-    match (table.is_empty(), key) {
-        (true, None) => "<root>".to_owned(),
-        (true, Some(k)) => k,
-        (false, None) => table,
-        (false, Some(k)) => format!("{table}.{k}"),
-    }
+    (table, key)
 }
 
 /// `characters.path` becomes `characters[2].path` when `characters` is an array of
@@ -112,6 +186,42 @@ mod tests {
         assert_eq!(field_path(TEXT, 5), "characters[0].name");
         assert_eq!(field_path(TEXT, 7), "characters[1].name");
         assert_eq!(field_path(TEXT, 9), "characters[1].path.length");
+    }
+
+    #[test]
+    fn a_missing_field_is_named_after_its_table_not_the_first_key() {
+        let err = toml::from_str::<toml::Table>("x = [").unwrap_err();
+        assert!(missing_field(err.message()).is_none());
+        assert_eq!(missing_field("missing field `terrain`"), Some("terrain"));
+        assert_eq!(join_path(&table_path(TEXT, 1), "terrain"), "terrain");
+        assert_eq!(
+            join_path(&table_path(TEXT, 9), "kind"),
+            "characters[1].path.kind"
+        );
+    }
+
+    #[test]
+    fn a_bad_value_in_a_tagged_table_names_its_key() {
+        let text = "[path]\nkind = \"straight\"\nstart = 1.0\nheading_deg = 0.0\n";
+        let message = "invalid type: floating point `1.0`, expected an array of length 2";
+        assert_eq!(bad_value(message), Some("1.0"));
+        assert_eq!(key_in_table(text, 1, "1.0").as_deref(), Some("start"));
+        assert_eq!(key_in_table(text, 1, "2.0"), None);
+        let twice = "[path]\na = 1.0\nb = 1.0\n";
+        assert_eq!(
+            key_in_table(twice, 1, "1.0"),
+            None,
+            "ambiguous: no key named"
+        );
+    }
+
+    #[test]
+    fn long_keys_are_not_echoed_whole() {
+        let key = "a.".repeat(100_000);
+        let short = shortened(&key);
+        assert_eq!(short.chars().count(), MAX_ECHO_CHARS + 1);
+        assert!(short.ends_with('…'));
+        assert_eq!(shortened("terrain"), "terrain");
     }
 
     #[test]
