@@ -174,6 +174,7 @@ fn render_final_frame(world: &World) -> Result<RgbaImage, Box<dyn Error>> {
         meshes: &meshes,
         blades: &blades,
         lighting,
+        shadows: true,
     };
     Ok(Renderer::new(FRAME.0, FRAME.1)?.render(&scene, &camera))
 }

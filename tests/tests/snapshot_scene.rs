@@ -148,6 +148,7 @@ fn lit_bumpy_ground_with_print_mesh_and_blades_matches_its_golden() {
         meshes: &meshes,
         blades: &blades,
         lighting,
+        shadows: true,
     };
     let camera = Camera::perspective(0.8, 192, 144, 0.05, 50.0)
         .expect("camera")

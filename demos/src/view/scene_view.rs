@@ -179,6 +179,7 @@ impl SceneView {
             meshes: &meshes,
             blades: &self.blades,
             lighting: self.lighting,
+            shadows: true,
         };
         let mut image = self.renderer.render(&scene, &self.camera);
         if self.overlays {
