@@ -9,7 +9,7 @@ use thiserror::Error;
 use crate::commands;
 use crate::out_dir::OutputDirError;
 use crate::scene::{MAX_FRAME_SIDE, SceneError};
-use crate::sim::SimError;
+use crate::runner::SimError;
 
 /// Walk characters over loose ground (sand, soil, mud, snow, grass) and record what happens.
 #[derive(Debug, Parser)]
@@ -163,7 +163,7 @@ pub enum CliError {
     Stdout(#[source] std::io::Error),
     /// An animation, contact sheet or plot could not be written.
     #[error("writing the outputs failed")]
-    Output(#[source] crate::sim::ObserverError),
+    Output(#[source] crate::runner::ObserverError),
     /// Repeated runs of one scene ended in different worlds.
     #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]
     Nondeterministic {

@@ -2,7 +2,7 @@
 //! rendering and on any thread count (checked through the world hash).
 
 use demos::scene::Scene;
-use demos::sim::{RunOptions, run};
+use demos::runner::{RunOptions, run};
 
 const STEPS: u64 = 90;
 

@@ -1,7 +1,7 @@
 //! Snapshot tests on rendered frames (goldens in `tests/snapshots/`).
 //!
 //! - the built-in `default` scene's first second, through the real run
-//!   (`demos::sim::run`: scene -> pipeline -> `SceneView` with overlays);
+//!   (`demos::runner::run`: scene -> pipeline -> `SceneView` with overlays);
 //! - a lit bumpy height grid with a real footprint, a mesh and grass blades,
 //!   through the engine's renderer alone.
 //!
@@ -12,7 +12,7 @@ use std::f32::consts::PI;
 
 use demos::output::LastFrame;
 use demos::scene::Scene;
-use demos::sim::{RunOptions, run};
+use demos::runner::{RunOptions, run};
 use engine::geom::HeightGrid;
 use engine::render::{
     Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors, Sun,

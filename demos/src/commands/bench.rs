@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use super::{scene_and_options, thread_pool};
 use crate::cli::{BenchArgs, CliError};
-use crate::sim::{self, RunSummary};
+use crate::runner::{self, RunSummary};
 
 /// Runs the scene headless `args.repeats` times and prints the wall time per
 /// step and each system's cost per step: the median over the runs and the
@@ -19,7 +19,7 @@ pub fn bench(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut runs: Vec<(f64, RunSummary)> = Vec::with_capacity(args.repeats as usize);
     for _ in 0..args.repeats {
         let start = Instant::now();
-        let summary = pool.install(|| sim::run(&scene, &options, &mut ()))?;
+        let summary = pool.install(|| runner::run(&scene, &options, &mut ()))?;
         let us_per_step = start.elapsed().as_secs_f64() * 1e6 / summary.steps.max(1) as f64;
         runs.push((us_per_step, summary));
     }

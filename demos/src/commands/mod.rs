@@ -10,7 +10,7 @@ use rayon::ThreadPool;
 use crate::cli::{CliError, SceneArgs};
 use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
-use crate::sim::RunOptions;
+use crate::runner::RunOptions;
 
 /// The scene and the run options the shared arguments ask for (rendering on, no hash).
 pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions), CliError> {

@@ -12,7 +12,7 @@ use crate::output::{
     PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
 };
 use crate::progress::Progress;
-use crate::sim::{self, Observers};
+use crate::runner::{self, Observers};
 
 /// Resolves the scene, checks the output folder (before any work), runs the
 /// simulation in a local thread pool and writes `metrics.csv`, `summary.json`
@@ -64,12 +64,12 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         ]);
         if options.render {
             observers.0.extend([
-                &mut frames as &mut dyn sim::RunObserver,
+                &mut frames as &mut dyn runner::RunObserver,
                 &mut animation,
                 &mut sheet,
             ]);
         }
-        pool.install(|| sim::run(&scene, &options, &mut observers))
+        pool.install(|| runner::run(&scene, &options, &mut observers))
     };
     progress.finish();
     let summary = summary?;

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use softwalk_systems::character::CharacterMetrics;
 use softwalk_systems::sim::WalkerMetrics;
 
-use crate::sim::StepRecord;
+use crate::runner::StepRecord;
 
 /// What one row's cells are read from.
 pub struct MetricRow<'a> {

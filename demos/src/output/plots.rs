@@ -5,7 +5,7 @@ use std::path::Path;
 use engine::render::{LinePlot, Series, save_png};
 use image::Rgba;
 
-use crate::sim::{ObserverError, RunObserver, StepRecord};
+use crate::runner::{ObserverError, RunObserver, StepRecord};
 
 /// Colours of successive series.
 const COLORS: [Rgba<u8>; 6] = [

@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::CharacterStats;
 use crate::scene::{Scene, TerrainShape};
-use crate::sim::{DepthStats, RunOptions, RunSummary, SystemTiming};
+use crate::runner::{DepthStats, RunOptions, RunSummary, SystemTiming};
 
 /// The heightmap grid of the run.
 #[derive(Debug, Clone, PartialEq, Serialize)]

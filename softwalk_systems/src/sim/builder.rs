@@ -5,7 +5,7 @@ use engine::geom::{RayScene, TriMesh};
 use engine::schedule::App;
 
 use super::components::{
-    BaseGains, CharacterName, Feet, FootPrints, Platforms, SystemFault, TerrainDirty,
+    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, TerrainDirty,
     TerrainVolume, WalkerMetrics,
 };
 use super::error::SimError;
@@ -35,6 +35,7 @@ impl SimBuilder {
         world.insert_resource(SystemFault::default());
         world.insert_resource(TerrainWindows::default());
         world.insert_resource(TerrainDirty::default());
+        world.insert_resource(Props::default());
         world.insert_resource(TerrainVolume(0.0));
         world.insert_resource(SystemTimings::default());
         world.insert_resource(VegetationFriction::default());
@@ -59,7 +60,9 @@ impl SimBuilder {
 
     /// Adds a static mesh (rocks, steps) the feet can stand on.
     pub fn mesh(&mut self, mesh: TriMesh) -> Result<(), SimError> {
-        self.app.world.resource_mut::<RayScene>().add_mesh(mesh)?;
+        let world = &mut self.app.world;
+        world.resource_mut::<RayScene>().add_mesh(mesh.clone())?;
+        world.resource_mut::<Props>().0.push(mesh);
         Ok(())
     }
 

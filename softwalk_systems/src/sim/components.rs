@@ -73,6 +73,11 @@ impl SystemFault {
     }
 }
 
+/// Resource: the static meshes (rocks, steps) the feet can stand on, as
+/// given to [`super::SimBuilder::mesh`], for drawing.
+#[derive(Debug, Clone, Default)]
+pub struct Props(pub Vec<engine::geom::TriMesh>);
+
 /// Resource: the union of the terrain rectangles changed since a consumer (the
 /// renderer) last took it with [`TerrainDirty::take`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

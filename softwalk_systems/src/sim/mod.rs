@@ -55,7 +55,7 @@ mod world_hash;
 
 pub use builder::SimBuilder;
 pub use components::{
-    BaseGains, CharacterName, Feet, FootPrints, Platforms, SystemFault, TerrainDirty,
+    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, TerrainDirty,
     TerrainVolume, WalkerMetrics,
 };
 pub use error::SimError;

@@ -5,8 +5,8 @@ use engine::ecs::World;
 use engine::render::{Camera, Overlay};
 use glam::Vec3;
 use image::{Rgba, RgbaImage};
-use softwalk_systems::character::{FootIK, FootRays, Gait, RigidProxy};
-use softwalk_systems::sim::{Platforms, WalkerMetrics};
+use crate::character::{FootIK, FootRays, Gait, RigidProxy};
+use crate::sim::{Platforms, WalkerMetrics};
 
 const COM: Rgba<u8> = Rgba([255, 60, 40, 255]);
 const SUPPORT: Rgba<u8> = Rgba([40, 220, 90, 255]);
