@@ -122,7 +122,10 @@ fn render_final_frame(world: &World) -> Result<RgbaImage, Box<dyn Error>> {
         .iter()
         .next()
         .map_or(Vec3::new(4.0, 1.0, 2.0), |m| m.character.com);
-    let rig = CameraRig::fixed(com + Vec3::new(1.2, 2.0, 2.4), com + Vec3::new(-1.6, -1.2, 0.0));
+    let rig = CameraRig::fixed(
+        com + Vec3::new(1.2, 2.0, 2.4),
+        com + Vec3::new(-1.6, -1.2, 0.0),
+    );
     let settings = ViewSettings {
         width: FRAME.0,
         height: FRAME.1,

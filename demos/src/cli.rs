@@ -8,8 +8,8 @@ use thiserror::Error;
 
 use crate::commands;
 use crate::out_dir::OutputDirError;
-use crate::scene::{MAX_FRAME_SIDE, SceneError};
 use crate::runner::SimError;
+use crate::scene::{MAX_FRAME_SIDE, SceneError};
 
 /// Walk characters over loose ground (sand, soil, mud, snow, grass) and record what happens.
 #[derive(Debug, Parser)]

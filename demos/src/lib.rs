@@ -15,15 +15,15 @@ pub mod out_dir;
 pub mod output;
 pub mod paper;
 pub mod progress;
+pub mod runner;
 pub mod scene;
 pub mod scene_source;
-pub mod runner;
 pub mod view;
 
 /// The runner under its former path, for modules not yet moved to
 /// [`runner`] (private: `demos::sim` is no longer a public name).
 mod sim {
-    pub(crate) use crate::runner::{ObserverError, RunObserver, StepRecord};
     #[cfg(test)]
     pub(crate) use crate::runner::test_records;
+    pub(crate) use crate::runner::{ObserverError, RunObserver, StepRecord};
 }

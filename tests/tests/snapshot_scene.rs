@@ -11,8 +11,8 @@
 use std::f32::consts::PI;
 
 use demos::output::LastFrame;
-use demos::scene::Scene;
 use demos::runner::{RunOptions, run};
+use demos::scene::Scene;
 use engine::geom::HeightGrid;
 use engine::render::{
     Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors, Sun,

@@ -8,9 +8,9 @@ pub mod scenes;
 use rayon::ThreadPool;
 
 use crate::cli::{CliError, SceneArgs};
+use crate::runner::RunOptions;
 use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
-use crate::runner::RunOptions;
 
 /// The scene and the run options the shared arguments ask for (rendering on, no hash).
 pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions), CliError> {

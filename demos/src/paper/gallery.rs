@@ -10,8 +10,8 @@ use super::report::GalleryImage;
 use super::variants::builtin;
 use super::{PaperError, PaperOptions};
 use crate::output::LastFrame;
-use crate::scene::Scene;
 use crate::runner::{self, RunOptions};
+use crate::scene::Scene;
 
 /// Frame size of the gallery, pixels.
 pub const GALLERY_SIZE: (u32, u32) = (480, 270);

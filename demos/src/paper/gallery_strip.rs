@@ -9,8 +9,8 @@ use super::recorded_run::record_run;
 use super::report::GalleryImage;
 use super::variants::builtin;
 use super::{PaperError, PaperOptions};
-use crate::scene::{CameraMode, Scene};
 use crate::runner::{self, Frame, ObserverError, RunObserver, RunOptions};
+use crate::scene::{CameraMode, Scene};
 
 /// The strip's scene.
 pub const STRIP_SCENE: &str = "snow-flat";

@@ -5,8 +5,10 @@ use softwalk_systems::sim::WalkerMetrics;
 
 use super::gait_figures::GaitFigures;
 use super::gait_quality::GaitQuality;
+use crate::runner::{
+    self, ObserverError, RunObserver, RunOptions, RunSummary, SimError, StepRecord,
+};
 use crate::scene::Scene;
-use crate::runner::{self, ObserverError, RunObserver, RunOptions, RunSummary, SimError, StepRecord};
 
 /// What a headless run recorded.
 #[derive(Debug, Clone)]

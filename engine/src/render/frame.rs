@@ -206,7 +206,14 @@ impl Renderer {
         };
         let shadows = scene
             .shadows
-            .then(|| ShadowMap::build(scene.meshes, scene.blades, scene.lighting.sun.direction))
+            .then(|| {
+                ShadowMap::build(
+                    scene.meshes,
+                    scene.blades,
+                    scene.lighting.sun.direction,
+                    camera,
+                )
+            })
             .flatten();
         let view = FrameView::new(camera, &scene.lighting, shadows.as_ref(), vp);
         let ((batches, sky_rows), grass) = rayon::join(

@@ -6,18 +6,23 @@
 
 use glam::{Vec2, Vec3};
 
+use super::camera::Camera;
 use super::grass::GrassBlade;
 use super::mesh::MeshInstance;
 
 /// Finest texel, in metres.
-const MIN_TEXEL: f32 = 0.012;
+const MIN_TEXEL: f32 = 0.02;
 /// Most texels per side.
 const MAX_SIDE: usize = 1024;
 /// How far above its own caster surface a receiver must lie to be lit, in
 /// texels (the surface is only known per texel).
 const BIAS_TEXELS: f32 = 2.0;
-/// Points sampled along a blade (root to tip), each marking one texel.
-const BLADE_SAMPLES: usize = 6;
+/// Blades whose root lies farther than this (metres, per axis) outside the
+/// camera's view cast no shadow: the shadows they cast fall out of view.
+const BLADE_REACH: f32 = 1.5;
+/// Points along a blade that cast, as fractions of the way from root to
+/// tip (the lower part shades only the ground the blade stands on).
+const BLADE_SAMPLES: [f32; 3] = [0.5, 0.75, 1.0];
 
 /// The topmost caster towards the sun per texel of a grid across the sun's rays.
 #[derive(Debug, Clone)]
@@ -42,14 +47,22 @@ pub(crate) struct ShadowMap {
 impl ShadowMap {
     /// The shadow map of `meshes` and `blades` under a sun in direction
     /// `toward_sun` (unit); `None` when nothing casts or the sun is down.
+    /// Only blades near what `camera` sees cast.
     pub fn build(
         meshes: &[MeshInstance<'_>],
         blades: &[GrassBlade],
         toward_sun: Vec3,
+        camera: &Camera,
     ) -> Option<ShadowMap> {
         if toward_sun.y <= 0.0 || (meshes.is_empty() && blades.is_empty()) {
             return None;
         }
+        let planes = camera.frustum_planes();
+        let near_view = |b: &&GrassBlade| {
+            let reach = Vec3::splat(BLADE_REACH);
+            camera.sees_box(&planes, b.root - reach, b.root + reach)
+        };
+        let blades: Vec<&GrassBlade> = blades.iter().filter(near_view).collect();
         let right = toward_sun.cross(Vec3::Y).try_normalize().unwrap_or(Vec3::X);
         let up = right.cross(toward_sun);
         let across = |p: Vec3| Vec2::new(p.dot(right), p.dot(up));
@@ -79,7 +92,7 @@ impl ShadowMap {
         for t in &triangles {
             map.cast_triangle(t);
         }
-        for b in blades {
+        for b in &blades {
             map.cast_blade(b);
         }
         Some(map)
@@ -128,10 +141,9 @@ impl ShadowMap {
         }
     }
 
-    /// Marks the texels under points along a blade (root, middle, tip).
+    /// Marks the texels under points along the upper half of a blade.
     fn cast_blade(&mut self, b: &GrassBlade) {
-        for k in 0..=BLADE_SAMPLES {
-            let t = k as f32 / BLADE_SAMPLES as f32;
+        for t in BLADE_SAMPLES {
             // The quadratic through root, mid (t = 0.5) and tip.
             let p = b.root * ((1.0 - t) * (1.0 - 2.0 * t))
                 + b.mid * (4.0 * t * (1.0 - t))
@@ -195,14 +207,17 @@ mod tests {
         .unwrap();
         let sun = Vec3::new(1.0, 1.0, 0.0).normalize();
         let meshes = [MeshInstance::new(&square, Mat4::IDENTITY, Vec3::ONE)];
-        let map = ShadowMap::build(&meshes, &[], sun).unwrap();
+        let camera = Camera::perspective(1.0, 64, 48, 0.05, 50.0)
+            .unwrap()
+            .look_at(Vec3::new(0.0, 3.0, -4.0), Vec3::ZERO, Vec3::Y);
+        let map = ShadowMap::build(&meshes, &[], sun, &camera).unwrap();
         // The shadow falls one metre away from the sun.
         assert_eq!(map.visibility(Vec3::new(-1.0, 0.0, 0.0)), 0.0);
         assert_eq!(map.visibility(Vec3::new(0.0, 0.0, 0.0)), 1.0);
         assert_eq!(map.visibility(Vec3::new(-1.0, 0.0, 2.0)), 1.0);
         // The square does not shade itself.
         assert_eq!(map.visibility(Vec3::new(0.0, 1.0, 0.0)), 1.0);
-        assert!(ShadowMap::build(&[], &[], sun).is_none());
-        assert!(ShadowMap::build(&meshes, &[], -sun).is_none());
+        assert!(ShadowMap::build(&[], &[], sun, &camera).is_none());
+        assert!(ShadowMap::build(&meshes, &[], -sun, &camera).is_none());
     }
 }

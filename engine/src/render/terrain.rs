@@ -245,9 +245,9 @@ impl TerrainRenderer {
         let sun_dir = lighting.sun.direction;
         for rect in std::mem::take(&mut self.pending) {
             self.light.note_heights(grid, &rect);
-            let window = self.light.affected(grid, &rect, sun_dir, reach);
-            self.light.recompute(grid, &window, sun_dir, reach);
-            self.flag_patches(&window);
+            for window in self.light.relight(grid, &rect, sun_dir, reach) {
+                self.flag_patches(&window);
+            }
         }
         let style = self.style;
         let light = &self.light;

@@ -200,7 +200,11 @@ fn take_changed_terrain(world: &World) -> Vec<GridRect> {
         .get_resource_mut::<TerrainDirty>()
         .map(|mut d| d.take())
         .unwrap_or_default();
-    if rect.is_empty() { Vec::new() } else { vec![rect] }
+    if rect.is_empty() {
+        Vec::new()
+    } else {
+        vec![rect]
+    }
 }
 
 /// The colour source of the terrain renderer: the paint over `hf`'s samples.
