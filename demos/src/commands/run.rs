@@ -8,11 +8,27 @@ use super::{scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
 use crate::out_dir::{OutputDirError, prepare_output_dir};
 use crate::output::{
-    AnimationWriter, ContactSheet, FrameWriter, HeightmapReport, HeightmapWriter, MetricsCsv,
-    PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
+    AnimationWriter, ContactSheet, FrameThread, FrameWriter, HeightmapReport, HeightmapWriter,
+    MetricsCsv, PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
 };
 use crate::progress::Progress;
-use crate::runner::{self, Observers};
+use crate::runner::{self, Frame, ObserverError, Observers, RunObserver};
+
+/// What a run writes of its frames: the PNG files, the animation and the
+/// contact sheet's thumbnails.
+struct FrameOutputs {
+    files: FrameWriter,
+    animation: AnimationWriter,
+    sheet: ContactSheet,
+}
+
+impl RunObserver for FrameOutputs {
+    fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
+        self.files.on_frame(frame)?;
+        self.animation.on_frame(frame)?;
+        self.sheet.on_frame(frame)
+    }
+}
 
 /// Resolves the scene, checks the output folder (before any work), runs the
 /// simulation in a local thread pool and writes `metrics.csv`, `summary.json`
@@ -38,19 +54,24 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let names = scene.characters.iter().map(|c| c.name.clone()).collect();
     let mut metrics = MetricsCsv::create(&dir.join("metrics.csv"), names)?;
     let mut stats = StatsCollector::new(scene.characters.len());
-    let mut frames = FrameWriter::new(&frames_dir);
     let mut plots = PlotCollector::new(scene.characters.iter().map(|c| c.name.clone()).collect());
     let mut heightmaps = HeightmapWriter::new(&dir);
     let frame_ms = (options.dt * f64::from(options.render_every) * 1000.0).round() as u32;
     let render = &scene.render;
     let gif = (options.render && render.gif).then(|| dir.join("animation.gif"));
     let apng = (options.render && render.apng).then(|| dir.join("animation.apng"));
-    let mut animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms)
+    let animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms)
         .map_err(CliError::Output)?;
     let expected_frames = options
         .steps
         .div_ceil(u64::from(options.render_every.max(1)));
-    let mut sheet = ContactSheet::new(expected_frames, 12, render.contact_sheet_columns);
+    let sheet = ContactSheet::new(expected_frames, 12, render.contact_sheet_columns);
+    // Frames are encoded on their own thread while the next ones are drawn.
+    let mut frame_outputs = FrameThread::spawn(FrameOutputs {
+        files: FrameWriter::new(&frames_dir),
+        animation,
+        sheet,
+    });
     let mut progress = Progress::new(options.steps);
 
     let start = Instant::now();
@@ -63,24 +84,24 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
             &mut progress,
         ]);
         if options.render {
-            observers.0.extend([
-                &mut frames as &mut dyn runner::RunObserver,
-                &mut animation,
-                &mut sheet,
-            ]);
+            observers.0.push(&mut frame_outputs);
         }
         pool.install(|| runner::run(&scene, &options, &mut observers))
     };
     progress.finish();
+    let written = frame_outputs.finish().map_err(CliError::Output);
     let summary = summary?;
+    let FrameOutputs {
+        animation, sheet, ..
+    } = written?;
     metrics.finish()?;
-    let wall = start.elapsed().as_secs_f64();
     if options.render {
         animation.finish().map_err(CliError::Output)?;
         sheet
             .save(&dir.join("contact_sheet.png"))
             .map_err(CliError::Output)?;
     }
+    let wall = start.elapsed().as_secs_f64();
     let plots_dir = dir.join("plots");
     fs::create_dir_all(&plots_dir).map_err(|source| OutputDirError {
         path: plots_dir.clone(),

@@ -55,6 +55,9 @@ fn shrink(image: &RgbaImage, max_side: u32) -> RgbaImage {
 
 impl RunObserver for AnimationWriter {
     fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
+        if self.gif.is_none() && self.apng.is_none() {
+            return Ok(());
+        }
         let small = shrink(frame.image, MAX_ANIMATION_SIDE);
         if let Some(g) = self.gif.as_mut() {
             g.push(&small)?;
