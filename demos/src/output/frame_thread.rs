@@ -38,7 +38,9 @@ impl<O: RunObserver + 'static> FrameThread<O> {
     pub fn finish(mut self) -> Result<O, ObserverError> {
         self.sender = None;
         let thread = self.thread.take().expect("joined only here");
-        let (observer, result) = thread.join().map_err(|_| "the frame writer thread panicked")?;
+        let (observer, result) = thread
+            .join()
+            .map_err(|_| "the frame writer thread panicked")?;
         result.map(|()| observer)
     }
 }
