@@ -9,7 +9,8 @@ use rayon::prelude::*;
 use super::camera::Camera;
 use super::error::RenderError;
 use super::frame_view::FrameView;
-use super::grass::{GrassBlade, GrassLayer};
+use super::grass::GrassLayer;
+use super::grass_blade::GrassBlade;
 use super::mesh::MeshInstance;
 use super::raster::{BAND_ROWS, Band, TriangleBatch, Viewport, to_u8};
 use super::shading::Lighting;
@@ -207,12 +208,12 @@ impl Renderer {
         let shadows = scene
             .shadows
             .then(|| {
-                ShadowMap::build(
-                    scene.meshes,
-                    scene.blades,
-                    scene.lighting.sun.direction,
-                    camera,
-                )
+                let casters: Vec<[Vec3; 3]> = scene
+                    .meshes
+                    .iter()
+                    .flat_map(|m| m.world_triangles())
+                    .collect();
+                ShadowMap::build(&casters, scene.blades, scene.lighting.sun.direction, camera)
             })
             .flatten();
         let view = FrameView::new(camera, &scene.lighting, shadows.as_ref(), vp);

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use super::blade_span::{BladePiece, NotMonotone, SpanVertex};
 use super::camera::Camera;
 use super::frame_view::FrameView;
+use super::grass_blade::GrassBlade;
 use super::raster::{
     Band, BandBins, ClipVertex, CullMode, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, TriangleBatch,
     TriangleGroup, outcode,
@@ -19,22 +20,6 @@ const BLADES_PER_BATCH: usize = 1024;
 /// Bits of a binned piece index that number the piece within its group (at
 /// most two pieces per blade).
 const GROUP_BITS: u32 = (2 * BLADES_PER_BATCH).next_power_of_two().trailing_zeros();
-
-/// One grass blade: a curve through three points, tapering from `width` at the
-/// root to a point at the tip.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GrassBlade {
-    /// Where the blade leaves the ground.
-    pub root: Vec3,
-    /// A point halfway along the blade (bent blades move it).
-    pub mid: Vec3,
-    /// The blade's tip.
-    pub tip: Vec3,
-    /// Width at the root, in metres.
-    pub width: f32,
-    /// Linear RGB albedo.
-    pub color: Vec3,
-}
 
 /// Triangles of one blade's five vertices: two for the lower half, one for the tip.
 const BLADE_TRIANGLES: [[u32; 3]; 3] = [[0, 1, 3], [0, 3, 2], [2, 3, 4]];

@@ -78,6 +78,19 @@ impl<'a> MeshInstance<'a> {
             .collect()
     }
 
+    /// Its triangles in world space, each part placed by its transform.
+    pub(crate) fn world_triangles(&self) -> impl Iterator<Item = [Vec3; 3]> + '_ {
+        let positions = &self.mesh.positions;
+        self.placed_parts()
+            .into_iter()
+            .flat_map(move |(range, model)| {
+                self.mesh.triangles[range]
+                    .iter()
+                    .filter(|t| t.iter().all(|&k| (k as usize) < positions.len()))
+                    .map(move |t| t.map(|k| model.transform_point3(positions[k as usize])))
+            })
+    }
+
     /// Runs of at most [`TRIANGLES_PER_BATCH`] triangles of each part, in
     /// part order, with the part's transform: a batch each.
     fn runs(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {

@@ -7,8 +7,7 @@
 use glam::{Vec2, Vec3};
 
 use super::camera::Camera;
-use super::grass::GrassBlade;
-use super::mesh::MeshInstance;
+use super::grass_blade::GrassBlade;
 
 /// Finest texel, in metres.
 const MIN_TEXEL: f32 = 0.02;
@@ -45,16 +44,17 @@ pub(crate) struct ShadowMap {
 }
 
 impl ShadowMap {
-    /// The shadow map of `meshes` and `blades` under a sun in direction
-    /// `toward_sun` (unit); `None` when nothing casts or the sun is down.
+    /// The shadow map of world-space `triangles` (of meshes) and `blades`
+    /// under a sun in direction `toward_sun` (unit); `None` when nothing
+    /// casts or the sun is down.
     /// Only blades near what `camera` sees cast.
     pub fn build(
-        meshes: &[MeshInstance<'_>],
+        triangles: &[[Vec3; 3]],
         blades: &[GrassBlade],
         toward_sun: Vec3,
         camera: &Camera,
     ) -> Option<ShadowMap> {
-        if toward_sun.y <= 0.0 || (meshes.is_empty() && blades.is_empty()) {
+        if toward_sun.y <= 0.0 || (triangles.is_empty() && blades.is_empty()) {
             return None;
         }
         let planes = camera.frustum_planes();
@@ -66,7 +66,6 @@ impl ShadowMap {
         let right = toward_sun.cross(Vec3::Y).try_normalize().unwrap_or(Vec3::X);
         let up = right.cross(toward_sun);
         let across = |p: Vec3| Vec2::new(p.dot(right), p.dot(up));
-        let triangles: Vec<[Vec3; 3]> = meshes.iter().flat_map(world_triangles).collect();
         let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
         let points = triangles.iter().flatten();
         for p in points.chain(blades.iter().flat_map(|b| [&b.root, &b.mid, &b.tip])) {
@@ -89,7 +88,7 @@ impl ShadowMap {
             side,
             top: vec![f32::NEG_INFINITY; side * side],
         };
-        for t in &triangles {
+        for t in triangles {
             map.cast_triangle(t);
         }
         for b in &blades {
@@ -173,25 +172,13 @@ impl ShadowMap {
     }
 }
 
-/// The world-space triangles of a mesh instance, each part placed by its
-/// transform.
-fn world_triangles<'a>(m: &'a MeshInstance<'_>) -> impl Iterator<Item = [Vec3; 3]> + 'a {
-    m.placed_parts()
-        .into_iter()
-        .flat_map(move |(range, model)| {
-            m.mesh.triangles[range]
-                .iter()
-                .filter(|t| t.iter().all(|&k| (k as usize) < m.mesh.positions.len()))
-                .map(move |t| t.map(|k| model.transform_point3(m.mesh.positions[k as usize])))
-        })
-}
-
 #[cfg(test)]
 mod tests {
     use glam::Mat4;
 
     use super::*;
     use crate::geom::TriMesh;
+    use crate::render::mesh::MeshInstance;
 
     #[test]
     fn a_floating_square_shades_the_ground_below_it_towards_the_sun() {
@@ -206,7 +193,8 @@ mod tests {
         )
         .unwrap();
         let sun = Vec3::new(1.0, 1.0, 0.0).normalize();
-        let meshes = [MeshInstance::new(&square, Mat4::IDENTITY, Vec3::ONE)];
+        let mesh = MeshInstance::new(&square, Mat4::IDENTITY, Vec3::ONE);
+        let meshes: Vec<[Vec3; 3]> = mesh.world_triangles().collect();
         let camera = Camera::perspective(1.0, 64, 48, 0.05, 50.0)
             .unwrap()
             .look_at(Vec3::new(0.0, 3.0, -4.0), Vec3::ZERO, Vec3::Y);
