@@ -6,9 +6,9 @@
 //!   rays of the next step see its change through the BVH). It slowly fills
 //!   footprints: inside the windows the feet have trodden, every sample lower
 //!   than the mean of its four neighbours is raised at the rain's rate (mass
-//!   is added), and the changed window is reported with
-//!   `Heightfield::mark_dirty`. Its work follows the trodden area, never the
-//!   terrain size;
+//!   is added) through `GroundState::edit_heights`, which records the
+//!   changed rectangle and the added volume. Its work follows the trodden
+//!   area, never the terrain size;
 //! - a third run also drops a pipeline system by name
 //!   (`schedule.remove(labels::SETTLE)`): wet sand holds steep print walls.
 //!
@@ -32,9 +32,10 @@ use engine::io::write_bytes_atomic;
 use engine::schedule::{App, Time};
 use glam::{Vec2, Vec3};
 use softwalk_systems::character::{CharacterDesc, WalkPath};
-use softwalk_systems::sim::{SimBuilder, TerrainVolume, labels, run_steps};
+use softwalk_systems::sim::{GroundState, SimBuilder, labels, run_steps};
 use softwalk_systems::terrain::{
-    DISTURBED_PRESSED, GaitResponse, Heightfield, MaterialTable, TerrainMaterial, generate,
+    DISTURBED_PRESSED, DirtyRects, GaitResponse, Heightfield, MaterialTable, TerrainMaterial,
+    generate,
 };
 
 /// Fixed step: 60 Hz.
@@ -50,8 +51,8 @@ const RAIN_RATE: f32 = 0.01;
 struct Rain {
     /// Metres per second.
     rate: f32,
-    /// Grid windows the feet changed, merged where they touch.
-    windows: Vec<GridRect>,
+    /// Grid windows the feet changed, merged where they overlap or touch.
+    windows: DirtyRects,
     /// Cubic metres added so far.
     added_volume: f64,
 }
@@ -60,21 +61,8 @@ impl Rain {
     fn new(rate: f32) -> Self {
         Rain {
             rate,
-            windows: Vec::new(),
+            windows: DirtyRects::new(),
             added_volume: 0.0,
-        }
-    }
-
-    /// Remembers a changed window, merging it into the last one when they touch.
-    fn remember(&mut self, rect: GridRect, nx: usize, nz: usize) {
-        if rect.is_empty() {
-            return;
-        }
-        match self.windows.last_mut() {
-            Some(last) if !last.expand(1, nx, nz).intersect(&rect).is_empty() => {
-                *last = last.union(&rect);
-            }
-            _ => self.windows.push(rect),
         }
     }
 }
@@ -83,36 +71,33 @@ impl Rain {
 fn rain_system(world: &mut World) {
     let dt = world.resource::<Time>().dt;
     let mut rain = world.resource_mut::<Rain>();
-    let mut terrains = world.query::<&mut Heightfield>();
-    let Some(hf) = terrains.iter().next() else {
+    let Some(mut ground) = world.get_resource_mut::<GroundState>() else {
         return;
     };
-    let (nx, nz) = (hf.grid().nx(), hf.grid().nz());
     // What carve/smooth/settle changed this step, and the samples under a
     // planted sole (the foot holds them; leave them alone).
-    let changed = hf.changes().rect;
-    rain.remember(changed, nx, nz);
-    let held: BTreeSet<usize> = hf.changes().held.iter().copied().collect();
+    rain.windows.extend(&ground.changes().rects);
+    let held: BTreeSet<usize> = ground.changes().held.all().iter().copied().collect();
     let fill = rain.rate * dt;
-    let cell_area = f64::from(hf.grid().cell_size().powi(2));
-    let mut added = 0.0;
-    for &window in &rain.windows {
+    let before = ground.volume();
+    let windows: Vec<GridRect> = rain.windows.iter().collect();
+    for window in windows {
         // Raises are computed from the heights before this pass (no order
-        // dependence), then applied.
-        let raises = fill_raises(hf.grid(), window, fill, &held);
+        // dependence), then applied; the ground records the rectangle and
+        // the volume.
+        let raises = fill_raises(ground.terrain().grid(), window, fill, &held);
         if raises.is_empty() {
             continue;
         }
-        let heights = hf.grid_mut().heights_mut();
-        for &(k, dh) in &raises {
-            heights[k] += dh;
-            added += f64::from(dh) * cell_area;
-        }
-        hf.mark_dirty(window);
+        let nx = ground.terrain().grid().nx();
+        let mut next = raises.iter().peekable();
+        ground.edit_heights(window, |i, j, h| {
+            if let Some(&(_, dh)) = next.next_if(|r| r.0 == j * nx + i) {
+                *h += dh;
+            }
+        });
     }
-    rain.added_volume += added;
-    // Keep the pipeline's volume book-keeping right: rain adds mass.
-    world.resource_mut::<TerrainVolume>().0 += added;
+    rain.added_volume += ground.volume() - before;
 }
 
 /// Per sample of `window` (grid border excluded) lower than its four
@@ -273,7 +258,8 @@ fn main() -> Result<(), Box<dyn Error>> {
 
 /// Runs `f` on the world's terrain.
 fn terrain_of<T>(world: &World, f: impl FnOnce(&Heightfield) -> T) -> Result<T, Box<dyn Error>> {
-    let mut terrains = world.query::<&Heightfield>();
-    let hf = terrains.iter().next().ok_or("the world has no terrain")?;
-    Ok(f(hf))
+    let ground = world
+        .get_resource::<GroundState>()
+        .ok_or("the world has no terrain")?;
+    Ok(f(ground.terrain()))
 }

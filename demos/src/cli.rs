@@ -31,6 +31,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Reproduce the paper's claims: measure them, render a gallery, write paper-results.md.
     Paper(PaperArgs),
+    /// Check a scene's frames against golden PNGs (or bless them).
+    Snapshot(SnapshotArgs),
 }
 
 /// Which scene and for how long; shared by `run` and `bench`.
@@ -45,9 +47,51 @@ pub struct SceneArgs {
     /// Simulate this many seconds instead of the scene's duration.
     #[arg(long, value_parser = parse_seconds)]
     pub seconds: Option<f64>,
-    /// Worker threads (default: all cores).
+    /// Memory budget: a run whose memory estimate exceeds it is refused before
+    /// anything is allocated (e.g. `8G`, `512M`; binary units).
+    #[arg(long, value_name = "SIZE", default_value = "8G", value_parser = crate::memory_estimate::parse_bytes)]
+    pub max_memory: u64,
+    /// Worker threads (default: all cores; more than the cores are clamped, with a warning).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
+}
+
+/// Arguments of `softwalk snapshot`.
+#[derive(Debug, Clone, Args)]
+pub struct SnapshotArgs {
+    /// Scene, duration and threads.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Folder of golden frames (`frame_NNNNNN.png`, one per rendered frame).
+    #[arg(long)]
+    pub golden: PathBuf,
+    /// Write missing goldens and rewrite those that fail (goldens that pass stay).
+    #[arg(long)]
+    pub bless: bool,
+    /// Folder for the actual, expected and diff PNGs of failing frames.
+    #[arg(long, short, default_value = "snapshot-failures")]
+    pub out: PathBuf,
+    /// Per-pixel YIQ colour delta that counts as a difference, 0 to 1.
+    #[arg(long, default_value_t = 0.1, value_parser = parse_threshold)]
+    pub threshold: f32,
+    /// Differing pixels (after forgiving anti-aliasing) a frame may have.
+    #[arg(long, default_value_t = 24)]
+    pub max_diff_pixels: usize,
+    /// Frame width in pixels (overrides the scene).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub width: Option<u32>,
+    /// Frame height in pixels (overrides the scene).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub height: Option<u32>,
+}
+
+fn parse_threshold(text: &str) -> Result<f32, String> {
+    let value: f32 = text.parse().map_err(|e| format!("{e}"))?;
+    if (0.0..=1.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("{value} is not in [0, 1]"))
+    }
 }
 
 /// Arguments of `softwalk run`.
@@ -91,6 +135,44 @@ pub struct BenchArgs {
     /// run (single runs vary a lot on a shared machine).
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
+    /// Samples along the terrain's longer side (overrides the scene; same extent, finer or coarser cells).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=8192))]
+    pub resolution: Option<u32>,
+    /// The `crowd` scene's make-up (only with the `crowd` scene).
+    #[command(flatten)]
+    pub crowd: CrowdArgs,
+}
+
+/// Options of `softwalk bench crowd`: the crowd scene generated from these
+/// numbers instead of the built-in one's.
+#[derive(Debug, Clone, Default, Args)]
+pub struct CrowdArgs {
+    /// Number of walkers.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub walkers: Option<u32>,
+    /// Side of the square field, metres.
+    #[arg(long, value_parser = parse_metres)]
+    pub field: Option<f64>,
+    /// Fraction of the field covered by 0.9 m grass (0 to 1).
+    #[arg(long, value_parser = parse_fraction)]
+    pub grass: Option<f64>,
+    /// Walk parallel lanes this many metres apart (instead of crossing paths).
+    #[arg(long, value_parser = parse_metres)]
+    pub lanes: Option<f64>,
+    /// Sand everywhere (no snow or soil bands).
+    #[arg(long)]
+    pub sand_only: bool,
+}
+
+impl CrowdArgs {
+    /// True when any option is given.
+    pub fn any(&self) -> bool {
+        self.walkers.is_some()
+            || self.field.is_some()
+            || self.grass.is_some()
+            || self.lanes.is_some()
+            || self.sand_only
+    }
 }
 
 /// Arguments of `softwalk paper`.
@@ -102,6 +184,28 @@ pub struct PaperArgs {
     /// Shorten the ten-minute robustness walk to one minute.
     #[arg(long)]
     pub quick: bool,
+}
+
+fn parse_metres(text: &str) -> Result<f64, String> {
+    let v: f64 = text
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a number"))?;
+    if v.is_finite() && v > 0.0 && v <= 1.0e4 {
+        Ok(v)
+    } else {
+        Err(format!("{text} must be a number of metres in (0, 10000]"))
+    }
+}
+
+fn parse_fraction(text: &str) -> Result<f64, String> {
+    let v: f64 = text
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a number"))?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{text} must be a fraction in [0, 1]"))
+    }
 }
 
 fn parse_seconds(text: &str) -> Result<f64, String> {
@@ -137,9 +241,15 @@ pub enum CliError {
     /// The scene could not be found, read or validated.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The run would need more memory or steps than allowed.
+    #[error(transparent)]
+    Budget(#[from] crate::memory_estimate::BudgetError),
     /// The output folder cannot be used.
     #[error(transparent)]
     OutputDir(#[from] OutputDirError),
+    /// An output file's path cannot be written (found before the run).
+    #[error(transparent)]
+    OutputFile(#[from] crate::out_files::OutputFileError),
     /// An output file could not be written.
     #[error(transparent)]
     Write(#[from] engine::io::WriteError),
@@ -164,6 +274,22 @@ pub enum CliError {
     /// An animation, contact sheet or plot could not be written.
     #[error("writing the outputs failed")]
     Output(#[source] crate::runner::ObserverError),
+    /// Frames differ from their goldens beyond the tolerance.
+    #[error("{failed} of {total} frame(s) differ from their goldens (reports above)")]
+    Snapshot {
+        /// Frames that failed.
+        failed: usize,
+        /// Frames checked.
+        total: usize,
+    },
+    /// Crowd options were given for another scene than `crowd`.
+    #[error(
+        "--walkers, --field, --grass, --lanes and --sand-only apply to the crowd scene only, not to {scene}"
+    )]
+    CrowdOptions {
+        /// The scene named.
+        scene: String,
+    },
     /// Repeated runs of one scene ended in different worlds.
     #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]
     Nondeterministic {
@@ -179,6 +305,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
         Command::Scenes(args) => commands::scenes::scenes(&args, stdout),
         Command::Bench(args) => commands::bench::bench(&args, stdout),
         Command::Paper(args) => commands::paper::paper(&args, stdout),
+        Command::Snapshot(args) => commands::snapshot::snapshot(&args, stdout),
     }
 }
 

@@ -6,12 +6,16 @@
 //! - [`view`]: the camera and settings a scene chooses for its view;
 //! - [`output`]: `metrics.csv`, `summary.json`, frames and the printed summary;
 //! - [`paper`]: the paper's claims measured on reproduction scenes (`softwalk paper`);
+//! - [`memory_estimate`]: the memory a run needs, checked against a budget before it starts;
 //! - [`cli`]: the `softwalk` command line.
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod cli;
 pub mod commands;
+pub mod memory_estimate;
 pub mod out_dir;
+pub mod out_files;
 pub mod output;
 pub mod paper;
 pub mod progress;
@@ -19,11 +23,3 @@ pub mod runner;
 pub mod scene;
 pub mod scene_source;
 pub mod view;
-
-/// The runner under its former path, for modules not yet moved to
-/// [`runner`] (private: `demos::sim` is no longer a public name).
-mod sim {
-    #[cfg(test)]
-    pub(crate) use crate::runner::test_records;
-    pub(crate) use crate::runner::{ObserverError, RunObserver, StepRecord};
-}

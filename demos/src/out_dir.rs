@@ -1,4 +1,5 @@
-//! The output folder: created if missing and checked for writability before any work.
+//! The output folder: created if missing, swept of the partial files a killed
+//! run left, and checked for writability before any work.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -18,8 +19,10 @@ pub struct OutputDirError {
     pub source: std::io::Error,
 }
 
-/// Creates `dir` (and its parents) if missing and proves it writable by creating
-/// and removing a probe file. Returns the folder.
+/// Creates `dir` (and its parents) if missing, removes the partial files
+/// (`.NAME.partial`) a killed run left in it, and proves it writable by
+/// creating and removing a probe file (itself named as a partial file, so a
+/// kill between the two leaves nothing the next sweep misses). Returns the folder.
 pub fn prepare_output_dir(dir: &Path) -> Result<PathBuf, OutputDirError> {
     let fail = |problem: &str, source| OutputDirError {
         path: dir.to_path_buf(),
@@ -27,10 +30,23 @@ pub fn prepare_output_dir(dir: &Path) -> Result<PathBuf, OutputDirError> {
         source,
     };
     fs::create_dir_all(dir).map_err(|e| fail("cannot be created", e))?;
-    let probe = dir.join(format!(".softwalk-write-probe{}", std::process::id()));
+    remove_partial_files(dir)?;
+    let probe = dir.join(".softwalk-write-probe.partial");
     fs::write(&probe, b"probe").map_err(|e| fail("is not writable", e))?;
     fs::remove_file(&probe).map_err(|e| fail("is not writable", e))?;
     Ok(dir.to_path_buf())
+}
+
+/// Removes the partial files (`.NAME.partial`) a killed run left directly in
+/// `dir`, if it exists, without creating it.
+pub fn remove_partial_files(dir: &Path) -> Result<(), OutputDirError> {
+    engine::io::remove_partials(dir)
+        .map(|_| ())
+        .map_err(|source| OutputDirError {
+            path: dir.to_path_buf(),
+            problem: "cannot be cleaned of partial files".to_owned(),
+            source,
+        })
 }
 
 #[cfg(test)]
@@ -43,6 +59,21 @@ mod tests {
         let dir = tmp.path().join("a/b");
         prepare_output_dir(&dir).unwrap();
         assert_eq!(fs::read_dir(&dir).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn partial_files_left_by_a_killed_run_are_removed() {
+        let tmp = tempfile::tempdir().unwrap();
+        for name in [
+            ".metrics.csv.partial",
+            ".animation.gif.tmp7637-0",
+            "keep.csv",
+        ] {
+            fs::write(tmp.path().join(name), "x").unwrap();
+        }
+        prepare_output_dir(tmp.path()).unwrap();
+        let left: Vec<_> = fs::read_dir(tmp.path()).unwrap().collect();
+        assert_eq!(left.len(), 1);
     }
 
     #[test]

@@ -14,8 +14,9 @@ use engine::geom::HeightGrid;
 use glam::Vec3Swizzles;
 use image::RgbaImage;
 use serde::Serialize;
-use softwalk_systems::sim::{SystemTimings, TerrainVolume, WalkerMetrics, world_hash};
+use softwalk_systems::sim::{GroundState, SystemTimings, WalkerMetrics, world_hash};
 use softwalk_systems::terrain::Heightfield;
+use std::time::Instant;
 use thiserror::Error;
 
 use crate::paper::measure::{LiftOffs, print_depth};
@@ -200,6 +201,10 @@ pub struct RunSummary {
     pub sim_seconds: f64,
     /// Hash of the final world, when [`RunOptions::hash`] asked for it and the simulation computes one.
     pub world_hash: Option<u64>,
+    /// Wall-clock time of building the world and the renderer, seconds.
+    pub setup_seconds: f64,
+    /// Wall-clock time of the steps (simulation, rendering, observers), seconds.
+    pub stepping_seconds: f64,
     /// Print depths per character (scene order); empty when not measured.
     pub print_depth: Vec<DepthStats>,
     /// Per-system costs, in schedule order; empty when not measured.
@@ -233,6 +238,7 @@ pub fn run(
     options: &RunOptions,
     observer: &mut dyn RunObserver,
 ) -> Result<RunSummary, SimError> {
+    let setup = Instant::now();
     let (mut app, walkers) = scene.build_sim().map_err(SimError::Setup)?;
     with_terrain(&app.world, |t| {
         observer.on_terrain(TerrainMoment::Initial, t.initial())
@@ -254,10 +260,12 @@ pub fn run(
     };
     let mut prints = PrintTracker::new(walkers.len());
     let mut last_frame_t = 0.0;
+    let setup_seconds = setup.elapsed().as_secs_f64();
+    let stepping = Instant::now();
     for step in 0..options.steps {
         softwalk_systems::sim::step(&mut app).map_err(SimError::Step)?;
         let t = options.time_after(step);
-        let volume = app.world.resource::<TerrainVolume>().0;
+        let volume = app.world.resource::<GroundState>().volume();
         for (character, &entity) in walkers.iter().enumerate() {
             let Ok(m) = app.world.get::<WalkerMetrics>(entity) else {
                 continue;
@@ -290,6 +298,7 @@ pub fn run(
         }
         observer.on_step_end(step, t).map_err(SimError::Observer)?;
     }
+    let stepping_seconds = stepping.elapsed().as_secs_f64();
     let print_depth = with_terrain(&app.world, |t| {
         observer.on_terrain(TerrainMoment::Final, t.grid())?;
         Ok(prints.depths(t.initial(), t.grid()))
@@ -312,6 +321,8 @@ pub fn run(
         steps: options.steps,
         sim_seconds: options.steps as f64 * options.dt,
         world_hash: options.hash.then(|| world_hash(&app.world)),
+        setup_seconds,
+        stepping_seconds,
         print_depth,
         timings,
     })
@@ -319,11 +330,10 @@ pub fn run(
 
 /// Runs `f` with the terrain of a world built by [`Scene::build_sim`].
 fn with_terrain<T>(world: &World, f: impl FnOnce(&Heightfield) -> T) -> T {
-    let mut terrains = world.query::<&Heightfield>();
-    f(terrains
-        .iter()
-        .next()
-        .expect("build_sim always adds a terrain"))
+    let ground = world
+        .get_resource::<GroundState>()
+        .expect("build_sim always adds a terrain");
+    f(ground.terrain())
 }
 
 /// A copy of the terrain's heights.
@@ -393,6 +403,7 @@ pub(crate) mod test_records {
                 feet: [Vec3::new(-0.1, 0.0, 0.0), Vec3::new(0.1, 0.0, 0.0)],
                 soles: [sole(-0.1), sole(0.1)],
                 contact: [true; 2],
+                pressing: [true; 2],
                 planted: [true; 2],
                 ik_target_y: [0.0; 2],
                 knee_flexion: [0.0; 2],

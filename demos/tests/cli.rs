@@ -122,11 +122,21 @@ fn bench_prints_per_step_cost() {
     assert!(out.status.success());
     let stdout = text(&out.stdout);
     assert!(
-        stdout.starts_with("scene soil-up: 5 steps on 1 thread(s), 3 run(s): median"),
+        stdout.starts_with("scene soil-up: 1 walkers, 5 steps on 1 thread(s), 3 run(s)"),
         "{stdout}"
     );
-    assert!(stdout.contains("carve"), "{stdout}");
+    for line in [
+        "set-up (ms)",
+        "step, wall (us)",
+        "sum of systems (us/step)",
+        "carve",
+    ] {
+        assert!(stdout.contains(line), "{line} missing: {stdout}");
+    }
     assert!(stdout.contains(": same in every run"), "{stdout}");
+    let crowd = softwalk(&["bench", "soil-up", "--walkers", "3", "--repeats", "1"]);
+    assert!(!crowd.status.success());
+    assert!(text(&crowd.stderr).contains("crowd scene only"));
     let refused = softwalk(&["bench", "soil-up", "--repeats", "0"]);
     assert!(!refused.status.success());
     assert!(text(&refused.stderr).contains("--repeats"));

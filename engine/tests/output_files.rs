@@ -115,7 +115,7 @@ fn unwritable_directory_is_a_typed_error_naming_the_file() {
         .err()
         .unwrap();
     assert!(
-        matches!(err, OutputError::Io { .. }) && err.to_string().contains("out.gif"),
+        matches!(err, OutputError::Write(_)) && err.to_string().contains("out.gif"),
         "{err}"
     );
     let err = ApngWriter::create(missing, 40).err().unwrap();

@@ -181,6 +181,34 @@ fn update_mode_refreshes_a_differing_golden() {
 }
 
 #[test]
+fn update_mode_keeps_a_golden_that_still_passes() {
+    let (_dir, snap) = with_golden("kept", &square());
+    let mut within = square();
+    within.put_pixel(24, 15, Rgba([128, 128, 128, 255]));
+    assert!(matches!(
+        snap.check_with(&within, UPDATE).unwrap(),
+        Outcome::WithinTolerance { .. }
+    ));
+    assert_eq!(
+        image::open(snap.golden_path()).unwrap().into_rgba8(),
+        square(),
+        "a golden within tolerance is not rewritten"
+    );
+    let mut failing = square();
+    for x in 0..6 {
+        failing.put_pixel(x, 0, BLACK);
+    }
+    assert_eq!(
+        snap.check_with(&failing, UPDATE).unwrap(),
+        Outcome::Updated(snap.golden_path())
+    );
+    assert_eq!(
+        image::open(snap.golden_path()).unwrap().into_rgba8(),
+        failing
+    );
+}
+
+#[test]
 fn names_that_are_not_plain_file_names_are_rejected() {
     let dir = tempfile::tempdir().unwrap();
     for name in ["", "../escape", "a b"] {

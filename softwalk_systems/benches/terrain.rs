@@ -16,8 +16,8 @@ use engine::geom::{GridBvh, GridRect};
 use glam::Vec2;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::{
-    FootPrint, FootSize, Heightfield, MaterialTable, TerrainMaterial, press_into, sole_on_ground,
-    step_foot,
+    FootPrint, FootSize, Heightfield, MaterialTable, StageScratch, TerrainMaterial, press_into,
+    sole_on_ground, step_foot_with,
 };
 
 const DT: f32 = 1.0 / 60.0;
@@ -48,6 +48,7 @@ struct Walker {
     hf: Heightfield,
     bvh: GridBvh,
     print: FootPrint,
+    scratch: StageScratch,
     foothold: usize,
     step: usize,
     saved_rect: GridRect,
@@ -62,6 +63,7 @@ impl Walker {
             hf,
             bvh,
             print: FootPrint::new(),
+            scratch: StageScratch::default(),
             foothold: 0,
             step: 0,
             saved_rect: GridRect::EMPTY,
@@ -80,9 +82,7 @@ impl Walker {
                 heights[j * nx + rect.i0..j * nx + rect.i1]
                     .copy_from_slice(&self.saved[r * rect.width()..(r + 1) * rect.width()]);
             }
-            self.hf.mark_dirty(rect);
-            let dirty = self.hf.take_dirty();
-            self.bvh.refit(self.hf.grid(), dirty);
+            self.bvh.refit(self.hf.grid(), rect);
             self.step = 0;
             self.foothold += 1;
         }
@@ -115,12 +115,15 @@ impl Walker {
         let sole = sole_on_ground(hf, center, Vec2::X, FootSize::default()).unwrap();
         let sole = press_into(hf, sole, DT);
         let contact = self.step < STANCE_STEPS;
-        black_box(step_foot(hf, &mut self.print, &sole, contact, DT).unwrap());
-        let dirty = hf.take_dirty();
+        black_box(
+            step_foot_with(hf, &mut self.scratch, &mut self.print, &sole, contact, DT).unwrap(),
+        );
         if refit {
-            self.bvh.refit(hf.grid(), dirty);
+            for rect in hf.dirty().iter() {
+                self.bvh.refit(hf.grid(), rect);
+            }
         } else {
-            black_box(dirty);
+            black_box(hf.dirty());
         }
         self.step += 1;
         match self.step - 1 {

@@ -67,9 +67,12 @@ pub struct FootState {
     pub velocity: Vec3,
     /// Phase of the walk cycle.
     pub phase: FootPhase,
-    /// True when the sole presses the ground: planted (bearing weight),
-    /// pushing into soft ground at the end of its swing, or still rising out
-    /// of its print at the start of the swing. Carving reads it (a print is
-    /// released when its foot is out).
+    /// True when the foot bears weight: planted in the stance of its walk
+    /// cycle, on ground its ray found.
     pub contact: bool,
+    /// True when the sole presses the ground: bearing weight, pushing into
+    /// soft ground at the end of its swing, or still rising out of its print
+    /// at the start of the swing. Carving reads it (a print is released when
+    /// its foot is out).
+    pub pressing: bool,
 }

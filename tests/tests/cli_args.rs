@@ -150,7 +150,8 @@ fn a_scene_file_error_names_file_and_field() {
     ]);
     let line = error_line(&result.unwrap_err());
     assert!(line.contains("bad.toml\": sim.dt: -0.01"), "{line}");
-    assert!(line.ends_with("must be > 0"), "{line}");
+    assert!(line.contains("must be > 0"), "{line}");
+    assert!(line.ends_with("(line 16)"), "{line}");
     assert!(
         !out.exists(),
         "the scene is checked before the output folder is made"
@@ -214,4 +215,94 @@ fn run_writes_metrics_and_summary() {
         .filter(|n| n.starts_with('.'))
         .collect();
     assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+}
+
+#[test]
+fn snapshot_blesses_checks_and_reports_failing_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let golden = dir.path().join("golden");
+    let failures = dir.path().join("failures");
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "snapshot",
+            "sand-flat",
+            "--steps",
+            "4",
+            "--width",
+            "96",
+            "--height",
+            "54",
+            "--golden",
+            golden.to_str().unwrap(),
+            "--out",
+            failures.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(str::to_owned).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let owned = args(extra);
+        let refs: Vec<&str> = owned.iter().map(String::as_str).collect();
+        execute_args(&refs)
+    };
+
+    // No goldens yet: every frame fails, nothing is written into the goldens.
+    let (result, out) = run(&[]);
+    assert!(
+        matches!(
+            result,
+            Err(CliError::Snapshot {
+                failed: 2,
+                total: 2
+            })
+        ),
+        "{out}"
+    );
+    assert!(!golden.exists());
+
+    let (result, out) = run(&["--bless"]);
+    assert!(result.is_ok(), "{out}");
+    assert!(out.contains("2 created"), "{out}");
+    let (result, out) = run(&[]);
+    assert!(result.is_ok(), "{out}");
+    assert!(out.contains("2 identical"), "{out}");
+
+    // A golden painted over fails, with actual, expected and diff written.
+    let first = golden.join("frame_000000.png");
+    let mut image = image::open(&first).unwrap().into_rgba8();
+    for y in 0..20 {
+        for x in 0..20 {
+            image.put_pixel(x, y, image::Rgba([255, 0, 255, 255]));
+        }
+    }
+    image.save(&first).unwrap();
+    let (result, out) = run(&[]);
+    assert!(
+        matches!(
+            result,
+            Err(CliError::Snapshot {
+                failed: 1,
+                total: 2
+            })
+        ),
+        "{out}"
+    );
+    for artifact in ["actual.png", "expected.png", "diff.png"] {
+        assert!(
+            failures.join("frame_000000").join(artifact).exists(),
+            "{artifact}"
+        );
+    }
+    // Blessing rewrites only the failing golden.
+    let untouched = std::fs::read(golden.join("frame_000002.png")).unwrap();
+    let (result, out) = run(&["--bless"]);
+    assert!(result.is_ok(), "{out}");
+    assert!(
+        out.contains("1 identical") && out.contains("1 updated"),
+        "{out}"
+    );
+    assert_eq!(
+        std::fs::read(golden.join("frame_000002.png")).unwrap(),
+        untouched
+    );
 }

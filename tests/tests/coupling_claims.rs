@@ -52,8 +52,8 @@ fn planted_feet_stand_on_the_carved_surface() {
         }
         // Heights after this step's carving: the print the foot pressed.
         let grid = {
-            let mut q = app.world.query::<&softwalk_systems::terrain::Heightfield>();
-            q.iter().next().unwrap().grid().clone()
+            let ground = app.world.resource::<softwalk_systems::sim::GroundState>();
+            ground.terrain().grid().clone()
         };
         for k in 0..2 {
             if metrics.character.planted[k] {

@@ -5,14 +5,13 @@ use demos::scene::{Scene, builtin_scenes};
 use engine::ecs::World;
 use engine::geom::HeightGrid;
 use softwalk_systems::character::CharacterMetrics;
-use softwalk_systems::sim::{WalkerMetrics, run_steps, sole_ends};
-use softwalk_systems::terrain::Heightfield;
+use softwalk_systems::sim::{GroundState, WalkerMetrics, run_steps, sole_ends};
 
 const STEPS: u64 = 150;
 
 fn grid(world: &World) -> HeightGrid {
-    let mut q = world.query::<&Heightfield>();
-    q.iter().next().expect("a terrain").grid().clone()
+    let ground = world.get_resource::<GroundState>().expect("a terrain");
+    ground.terrain().grid().clone()
 }
 
 fn finite(m: &CharacterMetrics) -> bool {
@@ -39,8 +38,8 @@ fn every_builtin_scene_walks_sanely() {
         let mut planted = Vec::new();
         for step in 0..STEPS.min(scene.steps()) {
             run_steps(&mut app, 1).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let mut terrains = app.world.query::<&Heightfield>();
-            let hf = terrains.iter().next().unwrap();
+            let ground = app.world.resource::<GroundState>();
+            let hf = ground.terrain();
             for &walker in &walkers {
                 let m = *app.world.get::<WalkerMetrics>(walker).unwrap();
                 assert!(

@@ -42,11 +42,13 @@ fn parse(text: &str) -> Result<Scene, SceneError> {
     Scene::from_toml_str(text, Path::new(""))
 }
 
-/// Parses `BASE` with `from` replaced by `to` and returns the error text.
+/// Parses `BASE` with `from` replaced by `to` and returns the error text
+/// without the line it is on (see `validation_errors_name_their_line`).
 fn error_with(from: &str, to: &str) -> String {
     assert!(BASE.contains(from), "BASE lacks {from:?}");
     parse(&BASE.replacen(from, to, 1))
         .expect_err("the edited scene should be refused")
+        .innermost()
         .to_string()
 }
 
@@ -198,9 +200,12 @@ fn unknown_fields_are_refused() {
 fn out_of_range_numbers_are_refused() {
     assert_eq!(
         error_with("resolution = 64", "resolution = 100000"),
-        "terrain.resolution: 100000 exceeds the maximum 8192"
+        "terrain.resolution: 100000 exceeds the maximum 8192; allowed [2, 8192]"
     );
-    assert_eq!(error_with("dt = 0.02", "dt = 0.0"), "sim.dt: 0 must be > 0");
+    assert_eq!(
+        error_with("dt = 0.02", "dt = 0.0"),
+        "sim.dt: 0 must be > 0; allowed (0, 1]"
+    );
     assert_eq!(
         error_with("height = 1.0\n", "height = 7.0\n"),
         "characters[1].body.height: 7 is not a finite number in [0.5, 2.5]"
@@ -315,6 +320,7 @@ fn bad_user_materials_name_the_field() {
     let bad = |from: &str, to: &str| {
         parse(&with_ash(&ASH.replacen(from, to, 1)))
             .expect_err("the material should be refused")
+            .innermost()
             .to_string()
     };
     assert_eq!(
@@ -355,7 +361,7 @@ fn bad_grass_names_the_field() {
     assert_eq!(scene.grass[0].settings().height, 0.9);
     assert_eq!(scene.grass[0].settings().field.gamma, 1.5);
     let e = grass("t_max = nan").unwrap_err().to_string();
-    assert!(e.starts_with("grass[0].t_max: NaN must be"), "{e}");
+    assert!(e.starts_with("grass[0].t_max: NaN is not allowed"), "{e}");
     let e = grass("preset = \"tall\"").unwrap_err().to_string();
     assert!(
         e.starts_with("grass[0].preset: unknown variant `tall`"),
@@ -401,9 +407,27 @@ fn missing_heightmap_file_is_named_and_paths_resolve_against_the_scene_folder() 
     let msg = e.to_string();
     assert!(msg.contains("scene.toml"), "{msg}");
     assert!(msg.contains("terrain.shape.path: file \""), "{msg}");
-    assert!(msg.ends_with("x.png\" does not exist"), "{msg}");
+    assert!(msg.ends_with("x.png\" does not exist (line 13)"), "{msg}");
 
-    fs::write(dir.path().join("x.png"), b"not checked here").unwrap();
+    // A file that is not a PNG, or a PNG too small to make a grid, is refused by validation.
+    let png = dir.path().join("x.png");
+    fs::write(&png, b"not a png").unwrap();
+    let e = Scene::load(&scene_path).unwrap_err();
+    assert!(e.to_string().contains("not a PNG file"), "{e}");
+    let gray = |w: u32, h: u32| {
+        image::ImageBuffer::<image::Luma<u16>, _>::from_raw(w, h, vec![0u16; (w * h) as usize])
+            .unwrap()
+            .save(&png)
+            .unwrap();
+    };
+    gray(1, 1);
+    let e = Scene::load(&scene_path).unwrap_err();
+    assert_eq!(e.field(), Some("terrain.shape.path"));
+    assert!(
+        e.to_string().contains("1 x 1 pixels; at least 2 x 2"),
+        "{e}"
+    );
+    gray(2, 2);
     let scene = Scene::load(&scene_path).unwrap();
     assert_eq!(scene.heightmap_path().unwrap(), dir.path().join("x.png"));
     assert!(matches!(

@@ -22,6 +22,7 @@ fn foot_at(centre: Vec3, phase: FootPhase) -> FootState {
         velocity: Vec3::ZERO,
         phase,
         contact: phase == FootPhase::Stance,
+        pressing: phase == FootPhase::Stance,
     }
 }
 

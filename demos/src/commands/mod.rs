@@ -4,15 +4,19 @@ pub mod bench;
 pub mod paper;
 pub mod run;
 pub mod scenes;
+pub mod snapshot;
+mod threads;
 
 use rayon::ThreadPool;
 
 use crate::cli::{CliError, SceneArgs};
+use crate::memory_estimate::{MemoryEstimate, check_steps};
 use crate::runner::RunOptions;
 use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
 
-/// The scene and the run options the shared arguments ask for (rendering on, no hash).
+/// The scene and the run options the shared arguments ask for (rendering on,
+/// no hash); a thread count above the machine's cores is clamped with a warning.
 pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions), CliError> {
     let scene = resolve_scene(&args.scene)?;
     let mut options = RunOptions::from_scene(&scene);
@@ -20,13 +24,27 @@ pub(crate) fn scene_and_options(args: &SceneArgs) -> Result<(Scene, RunOptions),
         options.steps = steps;
     } else if let Some(seconds) = args.seconds {
         options.steps = scene.sim.steps_for(seconds);
+        check_steps(
+            options.steps,
+            &format!("--seconds {seconds} at sim.dt {}", scene.sim.dt),
+        )?;
     }
-    options.threads = args.threads.map_or_else(default_threads, |t| t as usize);
+    let (threads, warning) = threads::clamp_threads(args.threads, threads::available_cores());
+    if let Some(warning) = warning {
+        eprintln!("warning: {warning}");
+    }
+    options.threads = threads;
     Ok((scene, options))
 }
 
-fn default_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
+/// Refuses a run whose memory estimate is above `--max-memory`, before anything is allocated.
+pub(crate) fn check_memory(
+    scene: &Scene,
+    options: &RunOptions,
+    args: &SceneArgs,
+) -> Result<(), CliError> {
+    MemoryEstimate::of(scene, options).check(args.max_memory)?;
+    Ok(())
 }
 
 /// A local pool of `threads` workers (not the global rayon pool).

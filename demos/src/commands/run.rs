@@ -1,12 +1,13 @@
 //! `softwalk run`: run a scene and write its outputs.
 
-use std::fs;
 use std::io::Write;
+use std::path::PathBuf;
 use std::time::Instant;
 
-use super::{scene_and_options, thread_pool};
+use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
-use crate::out_dir::{OutputDirError, prepare_output_dir};
+use crate::out_dir::{prepare_output_dir, remove_partial_files};
+use crate::out_files::check_output_files;
 use crate::output::{
     AnimationWriter, ContactSheet, FrameThread, FrameWriter, HeightmapReport, HeightmapWriter,
     MetricsCsv, PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
@@ -30,25 +31,47 @@ impl RunObserver for FrameOutputs {
     }
 }
 
-/// Resolves the scene, checks the output folder (before any work), runs the
-/// simulation in a local thread pool and writes `metrics.csv`, `summary.json`
-/// and, unless `--no-render`, `frames/frame_NNNNNN.png`; then prints a summary.
+/// Resolves the scene, checks the output folder and every output file's path
+/// (before any work, removing partial files a killed run left), runs the
+/// simulation in a local thread pool and writes `metrics.csv` (streamed),
+/// `summary.json`, the plots and, unless `--no-render`,
+/// `frames/frame_NNNNNN.png`; then prints a summary. A plot that cannot be
+/// written is skipped with a warning on standard error.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (scene, mut options) = scene_and_options(&args.scene)?;
+    for warning in scene.warnings() {
+        eprintln!("warning: {warning}");
+    }
     options.render = !args.no_render;
     options.hash = args.hash;
     options.width = args.width.unwrap_or(options.width);
     options.height = args.height.unwrap_or(options.height);
+    check_memory(&scene, &options, &args.scene)?;
 
     let dir = prepare_output_dir(&args.out)?;
     let frames_dir = dir.join("frames");
     if options.render {
-        fs::create_dir_all(&frames_dir).map_err(|source| OutputDirError {
-            path: frames_dir.clone(),
-            problem: "cannot be created".into(),
-            source,
-        })?;
+        prepare_output_dir(&frames_dir)?;
+    } else {
+        remove_partial_files(&frames_dir)?;
     }
+    let plots_dir = prepare_output_dir(&dir.join("plots"))?;
+    let render = &scene.render;
+    let gif = (options.render && render.gif).then(|| dir.join("animation.gif"));
+    let apng = (options.render && render.apng).then(|| dir.join("animation.apng"));
+    let sheet_path = dir.join("contact_sheet.png");
+    let mut files: Vec<PathBuf> = ["metrics.csv", "summary.json"]
+        .into_iter()
+        .chain(["terrain_initial.png", "terrain_final.png"])
+        .map(|f| dir.join(f))
+        .chain(gif.clone())
+        .chain(apng.clone())
+        .chain(PlotCollector::files().map(|f| plots_dir.join(f)))
+        .collect();
+    if options.render {
+        files.push(sheet_path.clone());
+    }
+    check_output_files(files.iter().map(PathBuf::as_path))?;
     let pool = thread_pool(options.threads)?;
 
     let names = scene.characters.iter().map(|c| c.name.clone()).collect();
@@ -57,9 +80,6 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut plots = PlotCollector::new(scene.characters.iter().map(|c| c.name.clone()).collect());
     let mut heightmaps = HeightmapWriter::new(&dir);
     let frame_ms = (options.dt * f64::from(options.render_every) * 1000.0).round() as u32;
-    let render = &scene.render;
-    let gif = (options.render && render.gif).then(|| dir.join("animation.gif"));
-    let apng = (options.render && render.apng).then(|| dir.join("animation.apng"));
     let animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms)
         .map_err(CliError::Output)?;
     let expected_frames = options
@@ -97,18 +117,12 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     metrics.finish()?;
     if options.render {
         animation.finish().map_err(CliError::Output)?;
-        sheet
-            .save(&dir.join("contact_sheet.png"))
-            .map_err(CliError::Output)?;
+        sheet.save(&sheet_path).map_err(CliError::Output)?;
     }
     let wall = start.elapsed().as_secs_f64();
-    let plots_dir = dir.join("plots");
-    fs::create_dir_all(&plots_dir).map_err(|source| OutputDirError {
-        path: plots_dir.clone(),
-        problem: "cannot be created".into(),
-        source,
-    })?;
-    plots.save(&plots_dir).map_err(CliError::Output)?;
+    for warning in plots.save(&plots_dir).skipped {
+        eprintln!("warning: {warning}");
+    }
 
     let mut report = RunReport::new(&scene, &options, &summary, &stats.stats(), wall);
     report.heightmaps = heightmaps

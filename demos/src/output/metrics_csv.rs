@@ -1,46 +1,39 @@
-//! `metrics.csv`: one row per step per character, streamed to a temporary file
-//! that is renamed over the target only when the run finishes.
+//! `metrics.csv`: one row per step per character, streamed through the `csv`
+//! crate into the file's `.metrics.csv.partial` beside the target, which is
+//! renamed over the target only when the run finishes. Nothing is kept in
+//! memory but the writer's buffer, however long the run.
 
-use std::fs::{self, File};
-use std::io::{self, BufWriter, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
-use engine::io::WriteError;
+use engine::io::{AtomicFile, WriteError};
 
-use super::metrics_columns::{MetricRow, metrics_header, metrics_line};
-use crate::sim::{ObserverError, RunObserver, StepRecord};
+use super::metrics_row::{MetricsRow, metrics_columns};
+use crate::runner::{ObserverError, RunObserver, StepRecord};
 
 /// Streams metric rows; [`MetricsCsv::finish`] makes the file appear.
-/// Dropped without `finish`, it removes its temporary file and the target is untouched.
+/// Dropped without `finish`, it removes its partial file and the target is untouched.
 pub struct MetricsCsv {
     path: PathBuf,
-    tmp: PathBuf,
-    writer: Option<BufWriter<File>>,
+    writer: csv::Writer<AtomicFile>,
     names: Vec<String>,
     rows: u64,
 }
 
 impl MetricsCsv {
-    /// Starts `path` (written at [`MetricsCsv::finish`]); `names` are the character names by index.
+    /// Starts `path` (written at [`MetricsCsv::finish`]) with its header;
+    /// `names` are the character names by index.
     pub fn create(path: &Path, names: Vec<String>) -> Result<MetricsCsv, WriteError> {
-        let file_name = path.file_name().map_or_else(
-            || "metrics.csv".to_owned(),
-            |n| n.to_string_lossy().into_owned(),
-        );
-        let tmp = path.with_file_name(format!(".{file_name}.tmp{}", std::process::id()));
-        let err = |source| WriteError {
-            path: path.to_path_buf(),
-            source,
-        };
-        let mut writer = BufWriter::new(File::create(&tmp).map_err(err)?);
-        if let Err(e) = writeln!(writer, "{}", metrics_header()) {
-            let _ = fs::remove_file(&tmp);
-            return Err(err(e));
-        }
+        let file = AtomicFile::create(path)?;
+        let mut writer = csv::WriterBuilder::new()
+            .has_headers(false)
+            .from_writer(file);
+        writer
+            .write_record(metrics_columns())
+            .map_err(|e| csv_error(path, e))?;
         Ok(MetricsCsv {
             path: path.to_path_buf(),
-            tmp,
-            writer: Some(writer),
+            writer,
             names,
             rows: 0,
         })
@@ -53,53 +46,45 @@ impl MetricsCsv {
 
     /// Appends one row.
     pub fn write_record(&mut self, r: &StepRecord) -> Result<(), WriteError> {
-        let name = self
-            .names
-            .get(r.character)
-            .cloned()
-            .unwrap_or_else(|| r.character.to_string());
-        let writer = self.writer.as_mut().ok_or_else(|| WriteError {
-            path: self.path.clone(),
-            source: io::Error::other("metrics file already finished"),
-        })?;
-        let line = metrics_line(&MetricRow {
-            name: &name,
-            record: r,
-        });
-        writeln!(writer, "{line}").map_err(|source| WriteError {
-            path: self.path.clone(),
-            source,
-        })?;
+        let fallback;
+        let name = match self.names.get(r.character) {
+            Some(name) => name.as_str(),
+            None => {
+                fallback = r.character.to_string();
+                fallback.as_str()
+            }
+        };
+        self.writer
+            .serialize(MetricsRow::new(name, r))
+            .map_err(|e| csv_error(&self.path, e))?;
         self.rows += 1;
         Ok(())
     }
 
-    /// Flushes, syncs and renames the temporary file over the target; returns the row count.
-    pub fn finish(mut self) -> Result<u64, WriteError> {
-        let result = (|| {
-            let writer = self
-                .writer
-                .take()
-                .ok_or_else(|| io::Error::other("metrics file already finished"))?;
-            let file = writer.into_inner().map_err(|e| e.into_error())?;
-            file.sync_all()?;
-            fs::rename(&self.tmp, &self.path)
-        })();
-        result.map_err(|source| WriteError {
-            path: self.path.clone(),
-            source,
+    /// Flushes, syncs and renames the partial file over the target; returns the row count.
+    pub fn finish(self) -> Result<u64, WriteError> {
+        let Self {
+            path, writer, rows, ..
+        } = self;
+        let file = writer.into_inner().map_err(|e| WriteError {
+            path,
+            source: e.into_error(),
         })?;
-        Ok(self.rows)
+        file.commit()?;
+        Ok(rows)
     }
 }
 
-impl Drop for MetricsCsv {
-    fn drop(&mut self) {
-        // Still writing (not finished) or the rename failed: leave nothing behind.
-        if self.tmp.exists() {
-            self.writer = None;
-            let _ = fs::remove_file(&self.tmp);
-        }
+/// A `csv` error while writing `path`, as a [`WriteError`] naming the file.
+fn csv_error(path: &Path, e: csv::Error) -> WriteError {
+    let message = e.to_string();
+    let source = match e.into_kind() {
+        csv::ErrorKind::Io(e) => e,
+        _ => io::Error::other(message),
+    };
+    WriteError {
+        path: path.to_path_buf(),
+        source,
     }
 }
 
@@ -111,13 +96,16 @@ impl RunObserver for MetricsCsv {
 
 #[cfg(test)]
 mod tests {
+    use std::fs;
+
     use glam::Vec3;
     use softwalk_systems::character::CharacterMetrics;
     use softwalk_systems::foot::FootSole;
     use softwalk_systems::sim::{SoleGround, WalkerMetrics};
 
     use super::*;
-    use crate::sim::test_records;
+    use crate::output::metrics_header;
+    use crate::runner::test_records;
 
     fn record(step: u64, character: usize) -> StepRecord {
         let standing = test_records::standing();
@@ -134,6 +122,7 @@ mod tests {
                     pelvis_y: 0.95,
                     feet: [Vec3::new(1.0, 0.0, 1.9), Vec3::new(1.2, 0.1, 2.1)],
                     contact: [true, false],
+                    pressing: [true, false],
                     planted: [true, false],
                     ik_target_y: [0.0, 0.05],
                     knee_flexion: [0.2, 0.6],
@@ -182,7 +171,7 @@ mod tests {
         assert_eq!(lines.len(), 7);
         assert_eq!(
             lines[1],
-            "0.5,a,1,0.9,2,0.1,-0.2,3,0.95,1,0,1.9,1.2,0.1,2.1,1,0,1,0,0,0.05,,0.3,0.2,0.6,0,12.5,\
+            "0.5,a,1,0.9,2,0.1,-0.2,3,0.95,1,0,1.9,1.2,0.1,2.1,1,0,1,0,1,0,0,0.05,,0.3,0.2,0.6,0,12.5,\
              -0.01,0.02,0,-0.001998402,-0.1,0,-0.1,-0.1,0,0.15,0.1,0,-0.1,0.1,0.01,0.15"
         );
         let columns = metrics_header().split(',').count();

@@ -5,12 +5,13 @@
 
 mod animation;
 mod character_stats;
+mod decimated_series;
 mod frame_thread;
 mod frames;
 mod heightmaps;
 mod last_frame;
-mod metrics_columns;
 mod metrics_csv;
+mod metrics_row;
 mod plots;
 mod run_report;
 mod text_summary;
@@ -21,11 +22,9 @@ pub use frame_thread::FrameThread;
 pub use frames::FrameWriter;
 pub use heightmaps::HeightmapWriter;
 pub use last_frame::LastFrame;
-pub use metrics_columns::{
-    METRIC_COLUMNS, MetricColumn, MetricRow, metric_column, metrics_header, metrics_line,
-};
 pub use metrics_csv::MetricsCsv;
-pub use plots::PlotCollector;
+pub use metrics_row::{metric_column, metrics_header};
+pub use plots::{PlotCollector, PlotsSaved};
 pub use run_report::{
     CharacterReport, HeightmapReport, RunReport, TerrainReport, TimingReport, write_summary_json,
 };

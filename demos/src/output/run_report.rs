@@ -43,7 +43,11 @@ pub struct CharacterReport {
 pub struct TimingReport {
     /// Wall-clock time of the whole run (simulation and outputs), seconds.
     pub wall_seconds: f64,
-    /// Mean wall-clock time per step, milliseconds.
+    /// Wall-clock time of building the world (terrain, BVH, grass,
+    /// characters) and the renderer before the first step, seconds.
+    pub setup_seconds: f64,
+    /// Mean wall-clock time per step after set-up (simulation, rendering and
+    /// the run's observers), milliseconds.
     pub ms_per_step: f64,
     /// Worker threads.
     pub threads: usize,
@@ -154,10 +158,11 @@ impl RunReport {
             characters,
             timings: TimingReport {
                 wall_seconds,
+                setup_seconds: summary.setup_seconds,
                 ms_per_step: if summary.steps == 0 {
                     0.0
                 } else {
-                    wall_seconds * 1000.0 / summary.steps as f64
+                    summary.stepping_seconds * 1000.0 / summary.steps as f64
                 },
                 threads: options.threads,
                 systems: summary.timings.clone(),
@@ -188,6 +193,8 @@ mod tests {
             steps: 10,
             sim_seconds: 10.0 * options.dt,
             world_hash: Some(0xabc),
+            setup_seconds: 0.3,
+            stepping_seconds: 0.4,
             print_depth: vec![DepthStats {
                 prints: 3,
                 mean_m: 0.04,
@@ -211,6 +218,7 @@ mod tests {
         assert_eq!(v["characters"][0]["print_depth"]["prints"], 3);
         assert!(v["characters"][1]["print_depth"].is_null());
         assert_eq!(v["world_hash"], "0000000000000abc");
-        assert_eq!(v["timings"]["ms_per_step"], 50.0);
+        assert_eq!(v["timings"]["ms_per_step"], 40.0);
+        assert_eq!(v["timings"]["setup_seconds"], 0.3);
     }
 }

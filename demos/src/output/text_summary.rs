@@ -10,11 +10,12 @@ pub fn text_summary(report: &RunReport) -> String {
     let t = &report.timings;
     let _ = writeln!(
         s,
-        "scene {}: {} steps, {:.2} s simulated, {:.2} s wall ({:.3} ms/step, {} thread{})",
+        "scene {}: {} steps, {:.2} s simulated, {:.2} s wall: set-up {:.3} s, then {:.3} ms/step ({} thread{})",
         report.scene,
         report.steps,
         report.duration_seconds,
         t.wall_seconds,
+        t.setup_seconds,
         t.ms_per_step,
         t.threads,
         if t.threads == 1 { "" } else { "s" },

@@ -4,7 +4,7 @@
 use engine::ecs::World;
 use engine::geom::HeightGrid;
 use engine::schedule::App;
-use softwalk_systems::sim::{TerrainDirty, TerrainVolume, WalkerMetrics};
+use softwalk_systems::sim::{GroundState, WalkerMetrics};
 
 use super::PaperError;
 use crate::scene::Scene;
@@ -20,7 +20,7 @@ pub struct Trace {
     /// Terrain heights after the last step.
     pub last: HeightGrid,
     /// The volume the terrain should have from what was carved and compacted,
-    /// before the first step and after the last (`TerrainVolume`).
+    /// before the first step and after the last (`GroundState::volume`).
     pub tracked_volume: (f64, f64),
     /// Largest number of terrain cells any single step changed (its dirty window).
     pub max_dirty_cells: usize,
@@ -59,8 +59,8 @@ pub fn trace(
         .build_sim()
         .map_err(|e| run_error(crate::runner::SimError::Setup(e)))?;
     let initial = crate::runner::terrain_grid(&app.world);
-    let start_volume = app.world.resource::<TerrainVolume>().0;
-    app.world.resource_mut::<TerrainDirty>().take();
+    let start_volume = app.world.resource::<GroundState>().volume();
+    app.world.resource_mut::<GroundState>().clear_unseen();
     let mut walkers = vec![Vec::with_capacity(steps); entities.len()];
     let mut max_dirty_cells = 0;
     for _ in 0..steps {
@@ -71,11 +71,12 @@ pub fn trace(
                 series.push(*m);
             }
         }
-        let dirty = app.world.resource_mut::<TerrainDirty>().take();
-        max_dirty_cells = max_dirty_cells.max(dirty.area());
+        let dirty = app.world.resource_mut::<GroundState>().take_unseen();
+        let cells = dirty.iter().map(|r| r.area()).sum();
+        max_dirty_cells = max_dirty_cells.max(cells);
         each_step(&mut app.world);
     }
-    let end_volume = app.world.resource::<TerrainVolume>().0;
+    let end_volume = app.world.resource::<GroundState>().volume();
     let last = crate::runner::terrain_grid(&app.world);
     Ok(Trace {
         app,

@@ -76,6 +76,10 @@ pub fn builtin_scenes() -> Vec<BuiltinScene> {
     all.push(fixed("morphology", MORPHOLOGY));
     all.push(fixed("controller-compare", CONTROLLER_COMPARE));
     all.push(fixed("mixed", MIXED));
+    all.push(BuiltinScene {
+        name: "crowd".to_owned(),
+        toml: super::CrowdSpec::default().toml("crowd"),
+    });
     all
 }
 

@@ -5,6 +5,23 @@ use serde::{Deserialize, Serialize};
 use super::SceneError;
 use super::check::{finite3, in_range};
 
+/// Largest accepted camera coordinate or offset component, metres.
+pub const MAX_CAMERA_COORDINATE: f32 = 100_000.0;
+
+/// Each component of `v` finite and within [`MAX_CAMERA_COORDINATE`] of zero.
+fn coordinates(field: &str, v: [f32; 3]) -> Result<(), SceneError> {
+    finite3(field, v)?;
+    for (k, c) in v.iter().enumerate() {
+        in_range(
+            &format!("{field}[{k}]"),
+            *c,
+            -MAX_CAMERA_COORDINATE,
+            MAX_CAMERA_COORDINATE,
+        )?;
+    }
+    Ok(())
+}
+
 /// The `[camera]` table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -54,7 +71,7 @@ impl CameraSpec {
         in_range("camera.fov_deg", self.fov_deg, 5.0, 150.0)?;
         match &self.mode {
             CameraMode::Follow { character, offset } => {
-                finite3("camera.mode.offset", *offset)?;
+                coordinates("camera.mode.offset", *offset)?;
                 if offset.iter().all(|c| *c == 0.0) {
                     return Err(SceneError::invalid(
                         "camera.mode.offset",
@@ -74,8 +91,8 @@ impl CameraSpec {
                 }
             }
             CameraMode::Fixed { eye, target } => {
-                finite3("camera.mode.eye", *eye)?;
-                finite3("camera.mode.target", *target)?;
+                coordinates("camera.mode.eye", *eye)?;
+                coordinates("camera.mode.target", *target)?;
                 if eye == target {
                     return Err(SceneError::invalid(
                         "camera.mode.target",

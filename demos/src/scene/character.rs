@@ -15,6 +15,8 @@ use super::check::{finite, identifier, in_range, on_terrain, positive};
 pub const DEFAULT_CORNER_RADIUS: f32 = 0.75;
 /// Sharpest accepted turn at a waypoint, degrees (a U-turn cannot be rounded).
 pub const MAX_TURN_DEG: f32 = 170.0;
+/// Most accepted waypoints on one path.
+pub const MAX_WAYPOINTS: usize = 10_000;
 
 /// The route a character follows, selected by `kind`. Headings are in degrees
 /// from +X towards +Z.
@@ -125,6 +127,11 @@ impl PathSpec {
                 corner_radius,
             } => {
                 positive(&format!("{field}.corner_radius"), *corner_radius, 100.0)?;
+                super::check::count_at_most(
+                    &format!("{field}.points"),
+                    points.len(),
+                    MAX_WAYPOINTS,
+                )?;
                 if points.len() < 2 {
                     return Err(SceneError::invalid(
                         format!("{field}.points"),

@@ -26,9 +26,17 @@ pub(crate) fn in_range(field: &str, value: f32, min: f32, max: f32) -> Result<f3
 pub(crate) fn positive(field: &str, value: f32, max: f32) -> Result<f32, SceneError> {
     finite(field, value)?;
     if value <= 0.0 {
-        Err(SceneError::invalid(field, format!("{value} must be > 0")))
+        Err(SceneError::invalid(
+            field,
+            format!("{value} must be > 0; allowed (0, {max}]"),
+        ))
+    } else if value > max {
+        Err(SceneError::invalid(
+            field,
+            format!("{value} exceeds the maximum {max}; allowed (0, {max}]"),
+        ))
     } else {
-        in_range(field, value, 0.0, max)
+        Ok(value)
     }
 }
 
@@ -52,12 +60,12 @@ fn bounded<T: PartialOrd + std::fmt::Display>(
     if value < min {
         Err(SceneError::invalid(
             field,
-            format!("{value} must be >= {min}"),
+            format!("{value} must be >= {min}; allowed [{min}, {max}]"),
         ))
     } else if value > max {
         Err(SceneError::invalid(
             field,
-            format!("{value} exceeds the maximum {max}"),
+            format!("{value} exceeds the maximum {max}; allowed [{min}, {max}]"),
         ))
     } else {
         Ok(value)
@@ -84,6 +92,17 @@ pub(crate) fn interval(field: &str, value: [f32; 2], min: f32, max: f32) -> Resu
 pub(crate) fn on_terrain(field: &str, p: [f32; 2], size: [f32; 2]) -> Result<(), SceneError> {
     in_range(&format!("{field}[0]"), p[0], 0.0, size[0])?;
     in_range(&format!("{field}[1]"), p[1], 0.0, size[1])?;
+    Ok(())
+}
+
+/// At most `max` entries in the array `field`; the first one too many is named.
+pub(crate) fn count_at_most(field: &str, len: usize, max: usize) -> Result<(), SceneError> {
+    if len > max {
+        return Err(SceneError::invalid(
+            format!("{field}[{max}]"),
+            format!("{len} entries; at most {max} are accepted"),
+        ));
+    }
     Ok(())
 }
 
@@ -120,7 +139,7 @@ mod tests {
     fn messages_name_the_problem() {
         assert_eq!(
             positive("sim.dt", 0.0, 1.0).unwrap_err().to_string(),
-            "sim.dt: 0 must be > 0"
+            "sim.dt: 0 must be > 0; allowed (0, 1]"
         );
         assert_eq!(
             finite("characters[1].alpha", f32::NAN)
@@ -132,7 +151,7 @@ mod tests {
             count_in_range("terrain.resolution", 100000, 2, 8192)
                 .unwrap_err()
                 .to_string(),
-            "terrain.resolution: 100000 exceeds the maximum 8192"
+            "terrain.resolution: 100000 exceeds the maximum 8192; allowed [2, 8192]"
         );
         assert!(interval("x", [2.0, 1.0], 0.0, 10.0).is_err());
         assert!(interval("x", [1.0, 2.0], 0.0, 10.0).is_ok());

@@ -75,6 +75,15 @@ pub enum SceneError {
         /// The error found in it.
         error: Box<SceneError>,
     },
+    /// An error on a field, with the line of the scene text the field is on
+    /// (or, for a field left to its default, the line of its table).
+    #[error("{error} (line {line})")]
+    AtLine {
+        /// 1-based line.
+        line: usize,
+        /// The error on the field.
+        error: Box<SceneError>,
+    },
     /// No built-in scene has this name.
     #[error("unknown scene \"{name}\": neither a built-in scene ({known}) nor an existing file")]
     UnknownBuiltin {
@@ -110,8 +119,19 @@ impl SceneError {
     /// The innermost error, looking through [`SceneError::InFile`].
     pub fn innermost(&self) -> &SceneError {
         match self {
-            SceneError::InFile { error, .. } => error.innermost(),
+            SceneError::InFile { error, .. } | SceneError::AtLine { error, .. } => {
+                error.innermost()
+            }
             other => other,
+        }
+    }
+
+    /// The line of the scene text the error is on, when known.
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            SceneError::InFile { error, .. } => error.line(),
+            SceneError::AtLine { line, .. } | SceneError::Syntax { line, .. } => Some(*line),
+            _ => None,
         }
     }
 

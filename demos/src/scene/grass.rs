@@ -5,7 +5,22 @@ use serde::{Deserialize, Serialize};
 use softwalk_systems::vegetation::{GrassSettings, MAX_BLADES, VegetationError, XzRect};
 
 use super::SceneError;
-use super::check::interval;
+use super::check::{interval, positive};
+
+/// Tallest accepted grass blade, metres (tall grass is a metre or two).
+pub const MAX_GRASS_HEIGHT: f32 = 3.0;
+/// Widest accepted blade at the root, metres (grass blades are millimetres to centimetres wide).
+pub const MAX_BLADE_WIDTH: f32 = 0.05;
+/// Densest accepted grass, blades per square metre.
+pub const MAX_GRASS_DENSITY: f32 = 50_000.0;
+/// Largest accepted displacement `t_max` at the foot, metres.
+pub const MAX_T_MAX: f32 = 2.0;
+/// Largest accepted fall-off `gamma`, per metre.
+pub const MAX_GAMMA: f32 = 1000.0;
+/// Largest accepted recovery frequency, rad/s.
+pub const MAX_RECOVERY_OMEGA: f32 = 1000.0;
+/// Largest accepted break threshold `break_bend`.
+pub const MAX_BREAK_BEND: f32 = 100.0;
 
 /// The paper's grass kinds, the starting point of a patch's settings.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -101,6 +116,11 @@ impl GrassPatchSpec {
         s
     }
 
+    /// Number of blades the patch scatters: density times area.
+    pub fn blade_count(&self) -> f64 {
+        f64::from(self.settings().density) * f64::from(self.area().area())
+    }
+
     /// Height of the virtual platform under a foot in this grass (a third of the blade height).
     pub fn platform_height(&self) -> f32 {
         let s = self.settings();
@@ -112,6 +132,22 @@ impl GrassPatchSpec {
         interval(&format!("{field}.x"), self.x, 0.0, size[0])?;
         interval(&format!("{field}.z"), self.z, 0.0, size[1])?;
         let settings = self.settings();
+        let bounds = [
+            ("height", settings.height, MAX_GRASS_HEIGHT),
+            ("blade_width", settings.blade_width, MAX_BLADE_WIDTH),
+            ("density", settings.density, MAX_GRASS_DENSITY),
+            ("t_max", settings.field.t_max, MAX_T_MAX),
+            ("gamma", settings.field.gamma, MAX_GAMMA),
+            (
+                "recovery_omega",
+                settings.recovery_omega,
+                MAX_RECOVERY_OMEGA,
+            ),
+            ("break_bend", settings.break_bend, MAX_BREAK_BEND),
+        ];
+        for (key, value, max) in bounds {
+            positive(&format!("{field}.{key}"), value, max)?;
+        }
         settings.validate().map_err(|e| match e {
             VegetationError::BadSetting {
                 field: name,
@@ -124,7 +160,7 @@ impl GrassPatchSpec {
             }
             other => SceneError::invalid(field, other.to_string()),
         })?;
-        let blades = f64::from(settings.density) * f64::from(self.area().area());
+        let blades = self.blade_count();
         if blades > MAX_BLADES as f64 {
             return Err(SceneError::invalid(
                 format!("{field}.density"),

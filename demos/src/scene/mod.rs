@@ -21,9 +21,14 @@ mod builtin;
 mod camera;
 mod character;
 mod check;
+mod crowd;
+mod crowding;
 mod error;
+mod field_line;
 mod grass;
+mod ignored_keys;
 mod material;
+mod png_header;
 mod render_settings;
 mod sim_settings;
 mod syntax;
@@ -34,17 +39,32 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use softwalk_systems::terrain::{MaterialTable, TerrainMaterial};
+use softwalk_systems::vegetation::MAX_BLADES;
 
 pub use builtin::{BuiltinScene, builtin_scenes};
-pub use camera::{CameraMode, CameraSpec};
-pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, PathSpec};
+pub use camera::{CameraMode, CameraSpec, MAX_CAMERA_COORDINATE};
+pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, MAX_WAYPOINTS, PathSpec};
+pub use crowd::{CrowdLayout, CrowdSpec};
+pub use crowding::{MAX_CHARACTERS, SPAWN_CLEARANCE_M};
 pub use error::SceneError;
-pub use grass::{GrassPatchSpec, GrassPreset};
-pub use render_settings::{MAX_FRAME_SIDE, RenderSettings};
+pub use grass::{
+    GrassPatchSpec, GrassPreset, MAX_BLADE_WIDTH, MAX_BREAK_BEND, MAX_GAMMA, MAX_GRASS_DENSITY,
+    MAX_GRASS_HEIGHT, MAX_RECOVERY_OMEGA, MAX_T_MAX,
+};
+pub use png_header::png_size;
+pub use render_settings::{
+    APNG_DELAY_MS, GIF_DELAY_MS, MAX_FRAME_SIDE, RenderSettings, frame_delay_ms,
+};
 pub use sim_settings::{MAX_DT, MAX_STEPS, MIN_DT, SimSettings};
 pub use terrain::{
-    MAX_RESOLUTION, MAX_TERRAIN_SIZE, MaterialRegion, Slope, TerrainShape, TerrainSpec,
+    FEATURE_SIZE_RANGE, MAX_REGIONS, MAX_RESOLUTION, MAX_SINUOSITY, MAX_TERRAIN_SIZE,
+    MaterialRegion, Slope, TerrainShape, TerrainSpec,
 };
+
+/// Most accepted `[[grass]]` patches.
+pub const MAX_GRASS_PATCHES: usize = 256;
+/// Most accepted `[[materials]]` entries.
+pub const MAX_MATERIALS: usize = 256;
 
 /// A whole scene. Build one with [`Scene::from_toml_str`], [`Scene::load`] or
 /// [`Scene::builtin`]; all three validate it.
@@ -84,7 +104,18 @@ impl Scene {
     pub fn from_toml_str(text: &str, base_dir: &Path) -> Result<Scene, SceneError> {
         let mut scene: Scene = toml::from_str(text).map_err(|e| syntax::syntax_error(text, &e))?;
         scene.base_dir = base_dir.to_path_buf();
-        scene.validate()?;
+        if let Ok(kept) = toml::Table::try_from(&scene) {
+            ignored_keys::check_no_ignored_keys(text, &kept)?;
+        }
+        scene.validate().map_err(|error| {
+            match error.field().and_then(|f| field_line::field_line(text, f)) {
+                Some(line) => SceneError::AtLine {
+                    line,
+                    error: Box::new(error),
+                },
+                None => error,
+            }
+        })?;
         Ok(scene)
     }
 
@@ -166,6 +197,8 @@ impl Scene {
     /// Checks every field; the first problem found is returned.
     pub fn validate(&self) -> Result<(), SceneError> {
         check::identifier("name", &self.name)?;
+        check::count_at_most("materials", self.materials.len(), MAX_MATERIALS)?;
+        check::count_at_most("grass", self.grass.len(), MAX_GRASS_PATCHES)?;
         self.terrain.validate()?;
         for (k, m) in self.materials.iter().enumerate() {
             let field = format!("materials[{k}]");
@@ -182,20 +215,35 @@ impl Scene {
             self.check_material(&format!("terrain.regions[{k}].material"), &r.material)?;
         }
         self.check_heightmap()?;
-        let size = self.terrain.size();
+        // Grass and paths must lie on the sampled grid, which may stop short of
+        // `size_x`/`size_z` by less than a cell.
+        let size = self.terrain.extent();
+        let mut blades = 0.0;
         for (k, g) in self.grass.iter().enumerate() {
-            g.validate(&format!("grass[{k}]"), size)?;
+            let field = format!("grass[{k}]");
+            g.validate(&field, size)?;
+            blades += g.blade_count();
+            if blades > MAX_BLADES as f64 {
+                return Err(SceneError::invalid(
+                    format!("{field}.density"),
+                    format!(
+                        "the patches up to this one hold {blades:.0} blades, more than the limit {MAX_BLADES} over all patches"
+                    ),
+                ));
+            }
         }
+        crowding::check_count(&self.characters)?;
         if self.characters.is_empty() {
             return Err(SceneError::invalid(
                 "characters",
                 "a scene needs at least one [[characters]] entry",
             ));
         }
+        let mut seen = std::collections::HashSet::with_capacity(self.characters.len());
         for (k, c) in self.characters.iter().enumerate() {
             let field = format!("characters[{k}]");
             c.validate(&field, size)?;
-            if self.characters[..k].iter().any(|o| o.name == c.name) {
+            if !seen.insert(c.name.as_str()) {
                 return Err(SceneError::invalid(
                     format!("{field}.name"),
                     format!("character \"{}\" is defined twice", c.name),
@@ -206,7 +254,14 @@ impl Scene {
         self.camera.validate(&names)?;
         self.sim.validate()?;
         self.render.validate()?;
+        self.render.validate_delay(self.sim.dt)?;
         Ok(())
+    }
+
+    /// Problems that do not stop a run: characters whose spawn points
+    /// overlap (closer than [`SPAWN_CLEARANCE_M`]), one line per pair.
+    pub fn warnings(&self) -> Vec<String> {
+        crowding::overlapping_spawns(&self.characters)
     }
 
     fn check_material(&self, field: &str, name: &str) -> Result<(), SceneError> {
@@ -236,6 +291,29 @@ impl Scene {
                 reason: "not a regular file".into(),
             });
         }
+        // The size first, from the header: a huge image is refused before it is decoded.
+        let bad = |reason: String| SceneError::BadFile {
+            field: field.clone(),
+            path: path.clone(),
+            reason,
+        };
+        match png_header::png_size(&path) {
+            None => return Err(bad("not a PNG file".into())),
+            Some((w, h)) if w < 2 || h < 2 => {
+                return Err(bad(format!(
+                    "the heightmap is {w} x {h} pixels; at least 2 x 2 are needed"
+                )));
+            }
+            Some((w, h)) if u64::from(w) * u64::from(h) > engine::geom::MAX_GRID_SAMPLES as u64 => {
+                return Err(bad(format!(
+                    "the heightmap is {w} x {h} pixels, more than the limit of {} pixels",
+                    engine::geom::MAX_GRID_SAMPLES
+                )));
+            }
+            Some(_) => {}
+        }
+        // Then the pixels: a corrupt or unsupported PNG is refused now, not when the run sets up.
+        engine::asset::load_heightmap(&path, 1.0, 1.0).map_err(|e| bad(e.to_string()))?;
         Ok(())
     }
 }

@@ -7,6 +7,16 @@ use super::check::count_in_range;
 
 /// Largest accepted frame side, pixels.
 pub const MAX_FRAME_SIDE: u32 = 8192;
+/// Frame delays a GIF can store, milliseconds (`engine::render::GifWriter`
+/// stores hundredths of a second in 16 bits).
+pub const GIF_DELAY_MS: [u32; 2] = [10, 655_350];
+/// Frame delays an APNG can store, milliseconds (`engine::render::ApngWriter`).
+pub const APNG_DELAY_MS: [u32; 2] = [0, 65_535];
+
+/// Time between two rendered frames, milliseconds, as the animation writers get it.
+pub fn frame_delay_ms(dt: f64, every: u32) -> u64 {
+    (dt * f64::from(every) * 1000.0).round() as u64
+}
 
 /// The `[render]` table.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -57,6 +67,31 @@ impl RenderSettings {
             0,
             64,
         )?;
+        Ok(())
+    }
+
+    /// Checks that an animation the scene asks for can store the time between
+    /// frames, `dt * every`; the error names `render.every`.
+    pub(crate) fn validate_delay(&self, dt: f32) -> Result<(), SceneError> {
+        let delay = frame_delay_ms(f64::from(dt), self.every);
+        let formats = [
+            (self.gif, "GIF", GIF_DELAY_MS),
+            (self.apng, "APNG", APNG_DELAY_MS),
+        ];
+        for (on, format, [lo, hi]) in formats {
+            if on && !(u64::from(lo)..=u64::from(hi)).contains(&delay) {
+                return Err(SceneError::invalid(
+                    "render.every",
+                    format!(
+                        "{} steps of sim.dt {dt} s are {delay} ms between frames; \
+                         a {format} stores {lo} to {hi} ms (set render.every so that \
+                         every * dt lies in that range, or turn render.{} off)",
+                        self.every,
+                        format.to_lowercase()
+                    ),
+                ));
+            }
+        }
         Ok(())
     }
 }

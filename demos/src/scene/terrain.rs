@@ -12,12 +12,18 @@ use softwalk_systems::terrain::TerrainError;
 use softwalk_systems::terrain::generate::{DuneParams, GridSpec, NoiseParams};
 
 use super::SceneError;
-use super::check::{count_in_range, in_range, interval, positive};
+use super::check::{count_at_most, count_in_range, in_range, interval, positive};
 
 /// Largest accepted `terrain.resolution` (samples along the longer side).
 pub const MAX_RESOLUTION: u32 = 8192;
 /// Largest accepted terrain side, metres.
 pub const MAX_TERRAIN_SIZE: f32 = 10_000.0;
+/// Most accepted `[[terrain.regions]]` entries (painting costs one region test per sample each).
+pub const MAX_REGIONS: usize = 1024;
+/// Bounds of a dune wavelength or a noise feature size, metres.
+pub const FEATURE_SIZE_RANGE: [f32; 2] = [0.01, MAX_TERRAIN_SIZE];
+/// Largest accepted dune sinuosity, periods.
+pub const MAX_SINUOSITY: f32 = 10.0;
 
 /// The `[terrain]` table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -207,6 +213,26 @@ impl TerrainShape {
             TerrainShape::Slope { .. } => self.as_slope().map_or(Ok(()), |s| s.validate(field)),
             TerrainShape::Dunes { amplitude, .. } | TerrainShape::Noise { amplitude, .. } => {
                 positive(&format!("{field}.amplitude"), *amplitude, 1000.0)?;
+                let [lo, hi] = FEATURE_SIZE_RANGE;
+                match self {
+                    TerrainShape::Dunes {
+                        wavelength,
+                        sinuosity,
+                        ..
+                    } => {
+                        in_range(&format!("{field}.wavelength"), *wavelength, lo, hi)?;
+                        in_range(
+                            &format!("{field}.sinuosity"),
+                            *sinuosity,
+                            0.0,
+                            MAX_SINUOSITY,
+                        )?;
+                    }
+                    TerrainShape::Noise { feature_size, .. } => {
+                        in_range(&format!("{field}.feature_size"), *feature_size, lo, hi)?;
+                    }
+                    _ => {}
+                }
                 // The generator checks its own parameters; a 2 x 2 probe names the bad one.
                 self.generate(GridSpec::square(1.0, 2))
                     .map(|_| ())
@@ -246,6 +272,15 @@ impl TerrainSpec {
         let cell = self.cell_size();
         let along = |size: f32| ((size / cell + 1e-3).floor() as usize + 1).max(2);
         (along(self.size_x), along(self.size_z))
+    }
+
+    /// The extent `[x, z]` the sampled grid covers, metres: `size_x` and `size_z`
+    /// rounded down to whole cells. Grass and paths must lie inside it: beyond
+    /// it there is no ground.
+    pub fn extent(&self) -> [f32; 2] {
+        let (nx, nz) = self.grid_samples();
+        let cell = self.cell_size();
+        [(nx - 1) as f32 * cell, (nz - 1) as f32 * cell]
     }
 
     /// The slope the whole terrain sits on: the shape's own slope, or `base_slope`.
@@ -289,6 +324,7 @@ impl TerrainSpec {
                 ),
             ));
         }
+        count_at_most("terrain.regions", self.regions.len(), MAX_REGIONS)?;
         for (k, region) in self.regions.iter().enumerate() {
             if let Some(x) = region.x {
                 interval(&format!("terrain.regions[{k}].x"), x, 0.0, self.size_x)?;

@@ -5,6 +5,7 @@ use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb as ObAabb;
 use obvhs::bvh2::builder::build_bvh2;
 
+use super::binned_bvh::{build_binned, ploc_degenerates};
 use super::ray::usable_max_t;
 use super::triangle::{PACKET, TriPacket};
 use super::wide_bvh::{LeafItems, WideBvh, WideRay};
@@ -23,8 +24,9 @@ const LEAF_BUILD: BvhBuildParams = BvhBuildParams {
     ..BvhBuildParams::very_slow_build()
 };
 
-/// A BVH over a static [`TriMesh`]: an obvhs PLOC binary BVH (very slow preset, with reinsertion)
-/// collapsed into a 4-wide BVH with full-precision boxes, whose leaves are
+/// A BVH over a static [`TriMesh`]: an obvhs PLOC binary BVH (very slow preset, with reinsertion),
+/// or a binned SAH one on layouts where PLOC takes quadratic time (a row of
+/// triangles, a fan of overlapping slivers), collapsed into a 4-wide BVH with full-precision boxes, whose leaves are
 /// packets of up to four triangles tested together.
 ///
 /// Packets are stored in the order the tree is laid out (depth first), each
@@ -118,7 +120,13 @@ impl MeshBvh {
             .iter()
             .map(|&[a, b, c]| ObAabb::new(a.min(b).min(c) - pad, a.max(b).max(c) + pad))
             .collect();
-        let bvh2 = build_bvh2(&boxes, LEAF_BUILD, &mut Duration::default());
+        // PLOC stalls on rows of equal triangles and on fans of overlapping
+        // slivers (quadratic time); those layouts get a binned SAH build.
+        let bvh2 = if ploc_degenerates(&boxes) {
+            build_binned(&boxes, PACKET)
+        } else {
+            build_bvh2(&boxes, LEAF_BUILD, &mut Duration::default())
+        };
         let mut packets = Packets {
             packets: Vec::with_capacity(corners.len() / 2),
             source: Vec::with_capacity(corners.len() / 2),

@@ -2,6 +2,7 @@
 //! and BVH ray casts over them ([`GridBvh`], [`MeshBvh`], [`RayScene`]).
 
 mod aabb;
+mod binned_bvh;
 mod error;
 mod grid_bvh;
 mod grid_ray;

@@ -70,63 +70,113 @@ const GRID: Rgba<u8> = Rgba([225, 228, 234, 255]);
 /// Legend box fill.
 const LEGEND_FILL: Rgba<u8> = Rgba([255, 255, 255, 220]);
 
+/// Most ticks an axis gets, whatever it is asked for.
+const MAX_TICKS: usize = 20;
+
+/// Tick steps from 1e-4 up to below 1e6 are labelled in fixed notation
+/// (`0.0025`, `120`); smaller and larger ones in scientific notation (`2.5e-7`).
+const FIXED_LABELS: std::ops::Range<f64> = 1e-4..1e6;
+
+/// How tick labels are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LabelStyle {
+    /// Fixed notation with this many decimals.
+    Fixed(usize),
+    /// Scientific notation, with as many mantissa decimals as reach the
+    /// power of ten of the tick step (this exponent).
+    Scientific(i32),
+}
+
 /// An axis range with its tick positions.
+///
+/// Computed in `f64` from `f32` data, so neither the widest (about ±3.4e38)
+/// nor the tiniest (about 1.4e-45) finite `f32` values overflow or underflow
+/// the range, its step or its labels.
 #[derive(Debug, Clone, PartialEq)]
 struct Axis {
-    min: f32,
-    max: f32,
-    ticks: Vec<f32>,
-    decimals: usize,
+    min: f64,
+    max: f64,
+    ticks: Vec<f64>,
+    style: LabelStyle,
 }
 
 impl Axis {
     /// A range covering `values` (finite ones) widened to round tick steps,
-    /// with about `target_ticks` ticks. Empty or constant data get a unit range.
+    /// with about `target_ticks` ticks (at most [`MAX_TICKS`]). No finite data
+    /// give a unit range; constant data (to `f32` precision) a range padded
+    /// by a tenth of the value each way, or by one around zero.
     fn covering(values: impl Iterator<Item = f32>, target_ticks: usize) -> Self {
         let (mut lo, mut hi) = values
             .filter(|v| v.is_finite())
-            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
+            .map(f64::from)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
                 (lo.min(v), hi.max(v))
             });
         if lo > hi {
             (lo, hi) = (0.0, 1.0);
-        } else if hi - lo <= f32::EPSILON * lo.abs().max(hi.abs()).max(1.0) {
-            let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+        }
+        let magnitude = lo.abs().max(hi.abs());
+        if hi - lo <= magnitude * f64::from(f32::EPSILON) {
+            let pad = if magnitude == 0.0 {
+                1.0
+            } else {
+                0.1 * magnitude
+            };
             (lo, hi) = (lo - pad, hi + pad);
         }
-        let step = nice_step((hi - lo) / target_ticks.max(1) as f32);
+        let target_ticks = target_ticks.clamp(1, MAX_TICKS);
+        let step = nice_step((hi - lo) / target_ticks as f64);
         let min = (lo / step).floor() * step;
         let max = (hi / step).ceil() * step;
-        let count = ((max - min) / step).round() as usize;
-        let ticks = (0..=count).map(|i| min + i as f32 * step).collect();
-        let decimals = (-step.log10().floor()).max(0.0) as usize;
+        let count = (((max - min) / step).round() as usize).clamp(1, 2 * MAX_TICKS);
+        let ticks = (0..=count).map(|i| min + i as f64 * step).collect();
         Self {
             min,
             max,
             ticks,
-            decimals,
+            style: label_style(step),
         }
     }
 
     /// Position of `v` in the range, 0 at `min` and 1 at `max`.
-    fn fraction(&self, v: f32) -> f32 {
-        (v - self.min) / (self.max - self.min)
+    fn fraction(&self, v: f64) -> f32 {
+        ((v - self.min) / (self.max - self.min)) as f32
     }
 
     /// The tick label for `v`.
-    fn label(&self, v: f32) -> String {
+    fn label(&self, v: f64) -> String {
         let v = if v.abs() < 1e-6 * (self.max - self.min) {
             0.0
         } else {
             v
         };
-        format!("{v:.*}", self.decimals)
+        match self.style {
+            LabelStyle::Fixed(decimals) => format!("{v:.decimals$}"),
+            LabelStyle::Scientific(_) if v == 0.0 => "0".to_owned(),
+            LabelStyle::Scientific(step_exponent) => {
+                let exponent = v.abs().log10().floor() as i32;
+                let decimals = (exponent - step_exponent).clamp(0, 9) as usize;
+                format!("{v:.decimals$e}")
+            }
+        }
     }
 }
 
-/// The smallest step of the form 1, 2 or 5 times a power of ten not below `raw`.
-fn nice_step(raw: f32) -> f32 {
-    let magnitude = 10f32.powf(raw.log10().floor());
+/// The label style for ticks `step` apart: just enough decimals to tell
+/// neighbouring ticks apart.
+fn label_style(step: f64) -> LabelStyle {
+    let step_exponent = step.log10().floor();
+    if FIXED_LABELS.contains(&step) {
+        LabelStyle::Fixed((-step_exponent).max(0.0) as usize)
+    } else {
+        LabelStyle::Scientific(step_exponent as i32)
+    }
+}
+
+/// The smallest step of the form 1, 2 or 5 times a power of ten not below
+/// `raw` (a positive, finite span per tick).
+fn nice_step(raw: f64) -> f64 {
+    let magnitude = 10f64.powf(raw.log10().floor());
     [1.0, 2.0, 5.0, 10.0]
         .into_iter()
         .map(|m| m * magnitude)
@@ -186,8 +236,8 @@ impl LinePlot {
         let bottom = y0 + h - pad - x_label_height - line - pad * 0.3;
         let to_px = |x: f32, y: f32| {
             Vec2::new(
-                left + xs.fraction(x) * (right - left),
-                bottom - ys.fraction(y) * (bottom - top),
+                left + xs.fraction(f64::from(x)) * (right - left),
+                bottom - ys.fraction(f64::from(y)) * (bottom - top),
             )
         };
 
@@ -198,7 +248,7 @@ impl LinePlot {
         }
         // Grid and tick labels.
         for &t in &xs.ticks {
-            let px = to_px(t, ys.min).x.round() + 0.5;
+            let px = (left + xs.fraction(t) * (right - left)).round() + 0.5;
             overlay.line(Vec2::new(px, top), Vec2::new(px, bottom), GRID, 1.0);
             let label = xs.label(t);
             let lw = text_width(font, &label);
@@ -210,7 +260,7 @@ impl LinePlot {
             );
         }
         for &t in &ys.ticks {
-            let py = to_px(xs.min, t).y.round() + 0.5;
+            let py = (bottom - ys.fraction(t) * (bottom - top)).round() + 0.5;
             overlay.line(Vec2::new(left, py), Vec2::new(right, py), GRID, 1.0);
             let label = ys.label(t);
             let lw = text_width(font, &label);
@@ -339,5 +389,114 @@ mod tests {
         let constant = Axis::covering([2.0, 2.0, f32::NAN].into_iter(), 4);
         assert!(constant.min < 2.0 && constant.max > 2.0);
         assert_eq!(constant.label(2.0), "2.0");
+    }
+
+    /// Issue 22: the torque series {0, -1e-45} of `snow-flat` with
+    /// `alpha = 1e-45` made the padding underflow, the step 0 and the number
+    /// of decimals infinite ("Formatting argument out of range").
+    #[test]
+    fn subnormal_series_get_a_finite_axis_and_short_labels() {
+        let axis = Axis::covering([0.0, -1.0e-45].into_iter(), 4);
+        assert!(axis.min <= -1.0e-45 && axis.max >= 0.0 && axis.min < axis.max);
+        for &t in &axis.ticks {
+            assert!(axis.label(t).len() < 16, "{}", axis.label(t));
+        }
+        assert_eq!(axis.label(0.0), "0");
+        let constant = Axis::covering([1.0e-45; 3].into_iter(), 4);
+        assert!(constant.min < constant.max);
+        let plot = LinePlot {
+            series: vec![Series {
+                name: "torque".into(),
+                points: vec![(0.0, 0.0), (0.1, -1.0e-45), (0.2, 0.0)],
+                color: INK,
+            }],
+            ..LinePlot::default()
+        };
+        assert_eq!(plot.render(720, 360).dimensions(), (720, 360));
+    }
+
+    #[test]
+    fn extreme_and_non_finite_series_get_finite_axes() {
+        for values in [
+            vec![f32::MAX, -f32::MAX],
+            vec![f32::MAX; 2],
+            vec![f32::INFINITY, f32::NAN, f32::NEG_INFINITY],
+            vec![f32::MIN_POSITIVE, 0.0],
+            vec![1.0e30, 1.0e30 + 1.0e24],
+        ] {
+            let axis = Axis::covering(values.iter().copied(), 5);
+            assert!(axis.min.is_finite() && axis.max.is_finite(), "{values:?}");
+            assert!(axis.min < axis.max, "{values:?}");
+            assert!(axis.ticks.len() <= 2 * MAX_TICKS + 1, "{values:?}");
+        }
+        assert_eq!(
+            Axis::covering([0.0, 3.0e7].into_iter(), 3).label(1.0e7),
+            "1e7"
+        );
+    }
+
+    fn any_series() -> impl proptest::strategy::Strategy<Value = Vec<f32>> {
+        use proptest::prelude::*;
+        let special = prop::sample::select(vec![
+            0.0,
+            -0.0,
+            1.0e-45,
+            -1.0e-45,
+            f32::MIN_POSITIVE,
+            f32::MAX,
+            -f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ]);
+        let value = prop_oneof![prop::num::f32::ANY, special, -1.0e3f32..1.0e3];
+        prop_oneof![
+            prop::collection::vec(value.clone(), 0..40),
+            (value, 1..40usize).prop_map(|(v, n)| vec![v; n]),
+        ]
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::test_runner::Config::with_cases(256))]
+
+        #[test]
+        fn any_series_gets_a_finite_covering_axis_with_distinct_labels(
+            values in any_series(),
+            ticks in 0..30usize,
+        ) {
+            let axis = Axis::covering(values.iter().copied(), ticks);
+            proptest::prop_assert!(axis.min.is_finite() && axis.max.is_finite());
+            proptest::prop_assert!(axis.min < axis.max);
+            proptest::prop_assert!((2..=2 * MAX_TICKS + 1).contains(&axis.ticks.len()));
+            for v in values.iter().filter(|v| v.is_finite()) {
+                let v = f64::from(*v);
+                proptest::prop_assert!(axis.min <= v && v <= axis.max, "{v} outside {axis:?}");
+            }
+            let labels: Vec<String> = axis.ticks.iter().map(|&t| axis.label(t)).collect();
+            for pair in labels.windows(2) {
+                proptest::prop_assert!(pair[0] != pair[1], "{labels:?}");
+            }
+            proptest::prop_assert!(labels.iter().all(|l| l.len() <= 24), "{labels:?}");
+        }
+
+        #[test]
+        fn any_series_renders_without_panicking(
+            xs in any_series(),
+            ys in any_series(),
+            width in 1..200u32,
+            height in 1..120u32,
+        ) {
+            let plot = LinePlot {
+                title: "t".into(),
+                x_label: "x".into(),
+                y_label: "y".into(),
+                series: vec![Series {
+                    name: "s".into(),
+                    points: xs.into_iter().zip(ys).collect(),
+                    color: INK,
+                }],
+            };
+            proptest::prop_assert_eq!(plot.render(width, height).dimensions(), (width, height));
+        }
     }
 }

@@ -17,7 +17,7 @@ pub enum SnapshotError {
     },
     /// No golden exists and the run is on CI, where goldens are never created.
     #[error(
-        "snapshot '{name}': golden {golden} is missing (CI is set; run locally or with UPDATE_SNAPSHOTS=1 to create it); actual image: {actual}"
+        "snapshot '{name}': golden {golden} is missing (bless to create it: UPDATE_SNAPSHOTS=1 in tests); actual image: {actual}"
     )]
     MissingGolden {
         /// Snapshot name.
@@ -67,7 +67,7 @@ pub enum SnapshotError {
 /// The report of a snapshot that differs from its golden beyond the tolerance.
 #[derive(Debug, Error)]
 #[error(
-    "snapshot '{name}': {diff_pixels} pixels differ (allowed {allowed}), {aa_pixels} anti-aliased pixels forgiven, max delta {max_delta:.3} (threshold {threshold})\n  actual:   {actual}\n  expected: {expected}\n  diff:     {diff}\n  (re-run with UPDATE_SNAPSHOTS=1 to accept the actual image)"
+    "snapshot '{name}': {diff_pixels} pixels differ (allowed {allowed}), {aa_pixels} anti-aliased pixels forgiven, max delta {max_delta:.3} (threshold {threshold})\n  actual:   {actual}\n  expected: {expected}\n  diff:     {diff}\n  (bless to accept the actual image: UPDATE_SNAPSHOTS=1 in tests)"
 )]
 pub struct Mismatch {
     /// Snapshot name.

@@ -11,8 +11,9 @@
 //! On failure `actual.png`, `expected.png` and `diff.png` are written under
 //! `<target dir>/snapshots/<name>/` and the error names them.
 //!
-//! Environment: `UPDATE_SNAPSHOTS=1` writes or refreshes goldens (the check
-//! passes); a missing golden is written locally (with a note on stderr) but
+//! Environment: `UPDATE_SNAPSHOTS=1` writes missing goldens and rewrites
+//! those that fail their tolerance (the check passes); a golden that still
+//! passes is left as it is. A missing golden is written locally (with a note on stderr) but
 //! fails when `CI` is set.
 //!
 //! ```no_run
@@ -205,39 +206,19 @@ impl Snapshot {
     }
 
     /// Checks `actual` against the golden with explicit environment settings.
+    ///
+    /// With `env.update` a golden is rewritten only when `actual` fails its
+    /// tolerance (or has another size), so blessing never churns goldens
+    /// that still pass.
     pub fn check_with(
         &self,
         actual: &RgbaImage,
         env: SnapshotEnv,
     ) -> Result<Outcome, SnapshotError> {
-        let valid_name = !self.name.is_empty()
-            && self
-                .name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
-        if !valid_name {
-            return Err(SnapshotError::InvalidName {
-                name: self.name.clone(),
-            });
-        }
+        self.check_name()?;
         let golden = self.golden_path();
         if !golden.exists() {
-            if env.ci && !env.update {
-                let actual_path = self.artifact_path().join("actual.png");
-                save_png_creating_dir(&actual_path, actual)?;
-                return Err(SnapshotError::MissingGolden {
-                    name: self.name.clone(),
-                    golden,
-                    actual: actual_path,
-                });
-            }
-            save_png_creating_dir(&golden, actual)?;
-            eprintln!(
-                "snapshot '{}': created golden {}",
-                self.name,
-                golden.display()
-            );
-            return Ok(Outcome::Created(golden));
+            return self.create_golden(actual, env);
         }
         let expected = image::open(&golden)
             .map_err(|source| SnapshotError::ReadGolden {
@@ -249,8 +230,22 @@ impl Snapshot {
             self.remove_stale_artifacts();
             return Ok(Outcome::Identical);
         }
+        let comparison = (expected.dimensions() == actual.dimensions())
+            .then(|| pixelmatch::compare(&expected, actual, self.tolerance.threshold));
+        if let Some(c) = comparison
+            .as_ref()
+            .filter(|c| c.diff_pixels <= self.tolerance.max_diff_pixels)
+        {
+            self.remove_stale_artifacts();
+            return Ok(Outcome::WithinTolerance {
+                diff_pixels: c.diff_pixels,
+                aa_pixels: c.aa_pixels,
+                max_delta: c.max_delta,
+            });
+        }
         if env.update {
             save_png(&golden, actual)?;
+            self.remove_stale_artifacts();
             eprintln!(
                 "snapshot '{}': updated golden {}",
                 self.name,
@@ -258,13 +253,66 @@ impl Snapshot {
             );
             return Ok(Outcome::Updated(golden));
         }
+        Err(self.report_failure(&expected, actual, comparison)?)
+    }
+
+    /// Refuses names that are not plain file stems.
+    fn check_name(&self) -> Result<(), SnapshotError> {
+        let valid = !self.name.is_empty()
+            && self
+                .name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        if valid {
+            Ok(())
+        } else {
+            Err(SnapshotError::InvalidName {
+                name: self.name.clone(),
+            })
+        }
+    }
+
+    /// Writes a missing golden, or fails on CI (unless updating) after
+    /// saving the actual image.
+    fn create_golden(
+        &self,
+        actual: &RgbaImage,
+        env: SnapshotEnv,
+    ) -> Result<Outcome, SnapshotError> {
+        let golden = self.golden_path();
+        if env.ci && !env.update {
+            let actual_path = self.artifact_path().join("actual.png");
+            save_png_creating_dir(&actual_path, actual)?;
+            return Err(SnapshotError::MissingGolden {
+                name: self.name.clone(),
+                golden,
+                actual: actual_path,
+            });
+        }
+        save_png_creating_dir(&golden, actual)?;
+        eprintln!(
+            "snapshot '{}': created golden {}",
+            self.name,
+            golden.display()
+        );
+        Ok(Outcome::Created(golden))
+    }
+
+    /// Writes the actual, expected and (for same-sized images) diff PNGs of
+    /// a failed check and returns the error naming them.
+    fn report_failure(
+        &self,
+        expected: &RgbaImage,
+        actual: &RgbaImage,
+        comparison: Option<pixelmatch::Comparison>,
+    ) -> Result<SnapshotError, SnapshotError> {
         let artifacts = self.artifact_path();
         let (actual_path, expected_path) =
             (artifacts.join("actual.png"), artifacts.join("expected.png"));
-        if expected.dimensions() != actual.dimensions() {
-            save_png_creating_dir(&actual_path, actual)?;
-            save_png(&expected_path, &expected)?;
-            return Err(SnapshotError::SizeMismatch {
+        save_png_creating_dir(&actual_path, actual)?;
+        save_png(&expected_path, expected)?;
+        let Some(comparison) = comparison else {
+            return Ok(SnapshotError::SizeMismatch {
                 name: self.name.clone(),
                 expected_width: expected.width(),
                 expected_height: expected.height(),
@@ -273,21 +321,10 @@ impl Snapshot {
                 actual: actual_path,
                 expected: expected_path,
             });
-        }
-        let comparison = pixelmatch::compare(&expected, actual, self.tolerance.threshold);
-        if comparison.diff_pixels <= self.tolerance.max_diff_pixels {
-            self.remove_stale_artifacts();
-            return Ok(Outcome::WithinTolerance {
-                diff_pixels: comparison.diff_pixels,
-                aa_pixels: comparison.aa_pixels,
-                max_delta: comparison.max_delta,
-            });
-        }
+        };
         let diff_path = artifacts.join("diff.png");
-        save_png_creating_dir(&actual_path, actual)?;
-        save_png(&expected_path, &expected)?;
         save_png(&diff_path, &comparison.diff_image)?;
-        Err(SnapshotError::Mismatch(Box::new(Mismatch {
+        Ok(SnapshotError::Mismatch(Box::new(Mismatch {
             name: self.name.clone(),
             diff_pixels: comparison.diff_pixels,
             allowed: self.tolerance.max_diff_pixels,

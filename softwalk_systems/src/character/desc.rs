@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::balance::DEFAULT_PASSIVE_DAMPING;
 use super::error::{CharacterError, check_range};
 
 /// What a scene file says about a character; [`super::CharacterBody::new`] turns it into a body.
@@ -20,7 +21,7 @@ pub struct CharacterDesc {
     /// Balance stiffness alpha of eq. 1 (N·m per m of COM offset).
     #[serde(default = "default_alpha")]
     pub alpha: f32,
-    /// Balance swing gain beta of eq. 1 (N·m·s/rad).
+    /// Balance swing gain beta of eq. 1 (N·m·s/rad), in `[0, 12)`: below the passive damping.
     #[serde(default = "default_beta")]
     pub beta: f32,
     /// Walking Froude number v²/(g·L) that sets the speed (0.02 to 0.5).
@@ -95,7 +96,17 @@ impl CharacterDesc {
         check_range("mass", self.mass, 1.0, 500.0)?;
         check_range("leg_length_factor", self.leg_length_factor, 0.7, 1.3)?;
         check_range("alpha", self.alpha, 0.0, 1.0e4)?;
-        check_range("beta", self.beta, 0.0, 1.0e4)?;
+        // The balance refuses a beta at or above its passive damping (the swing would grow).
+        if !(self.beta.is_finite() && (0.0..DEFAULT_PASSIVE_DAMPING).contains(&self.beta)) {
+            return Err(CharacterError::InvalidField {
+                field: "beta",
+                reason: format!(
+                    "{} is not a finite number in [0, {DEFAULT_PASSIVE_DAMPING}) \
+                     (it must stay below the passive damping); allowed [0, {DEFAULT_PASSIVE_DAMPING})",
+                    self.beta
+                ),
+            });
+        }
         check_range("froude", self.froude, 0.02, 0.5)?;
         check_range("proxy_mass", self.proxy_mass, 0.01, 500.0)?;
         Ok(())

@@ -93,7 +93,8 @@ pub const MAX_FOOT_FALL_SPEED: f32 = 3.0;
 /// Bisection steps when solving the foot pitch a leg needs (resolution below 0.001 rad).
 const PITCH_STEPS: usize = 11;
 
-/// One foot's sole placed on its key: sole, frame, ankle target and contact point.
+/// One foot's sole placed on its key: sole, frame, ankle target and contact
+/// point, with the flat frame and the pitch it was placed from.
 #[derive(Debug, Clone, Copy)]
 struct FootPlacement {
     sole: FootSole,
@@ -101,6 +102,20 @@ struct FootPlacement {
     normal: Vec3,
     ankle: Vec3,
     lowest: Vec3,
+    frame: FootFrame,
+    pitch: f32,
+}
+
+impl FootPlacement {
+    /// The placement moved by `offset`.
+    fn moved(mut self, offset: Vec3) -> Self {
+        self.sole.heel += offset;
+        self.sole.toe += offset;
+        self.centre += offset;
+        self.ankle += offset;
+        self.lowest += offset;
+        self
+    }
 }
 
 /// Where one foot goes this step before its roll: the flat sole on the key.
@@ -158,7 +173,34 @@ impl FootFrame {
             normal,
             ankle: at(ankle.z, ankle.y),
             lowest: pivot,
+            frame: *self,
+            pitch,
         }
+    }
+
+    /// The pitch nearest `from` on the way to `limit` at which `accept`
+    /// holds for the placed foot (`limit` when it holds nowhere before).
+    fn pitch_where(
+        &self,
+        body: &CharacterBody,
+        from: f32,
+        limit: f32,
+        accept: impl Fn(&FootPlacement) -> bool,
+    ) -> f32 {
+        let accepts = |pitch: f32| accept(&self.place(body, pitch));
+        if accepts(from) {
+            return from;
+        }
+        let (mut refused, mut accepted) = (from, limit);
+        for _ in 0..PITCH_STEPS {
+            let mid = 0.5 * (refused + accepted);
+            if accepts(mid) {
+                accepted = mid;
+            } else {
+                refused = mid;
+            }
+        }
+        accepted
     }
 
     /// The pitch nearest `from` on the way to `limit` at which a leg of
@@ -173,21 +215,33 @@ impl FootFrame {
         from: f32,
         limit: f32,
     ) -> f32 {
-        let reaches = |pitch: f32| self.place(body, pitch).ankle.distance(hip) <= reach;
-        if reaches(from) {
-            return from;
-        }
-        let (mut missing, mut reaching) = (from, limit);
-        for _ in 0..PITCH_STEPS {
-            let mid = 0.5 * (missing + reaching);
-            if reaches(mid) {
-                reaching = mid;
-            } else {
-                missing = mid;
-            }
-        }
-        reaching
+        self.pitch_where(body, from, limit, |foot| foot.ankle.distance(hip) <= reach)
     }
+}
+
+/// A knee that cannot bend as fast as its foot rolls leaves the leg longer
+/// than the foot needs. The foot then unrolls towards flat about the part on
+/// the ground until its ankle is `length` from `hip`, so the sole neither
+/// sinks into the ground nor slides; the hip line takes what unrolling
+/// cannot. Returns `foot` when unrolling would not lengthen the leg.
+fn unroll_to_length(
+    body: &CharacterBody,
+    hip: Vec3,
+    foot: &FootPlacement,
+    length: f32,
+) -> FootPlacement {
+    let distance = |placed: &FootPlacement| placed.ankle.distance(hip);
+    if foot.pitch == 0.0 || distance(foot) >= length {
+        return *foot;
+    }
+    let flat = foot.frame.place(body, 0.0);
+    if distance(&flat) <= distance(foot) {
+        return *foot;
+    }
+    let pitch = foot
+        .frame
+        .pitch_where(body, foot.pitch, 0.0, |placed| distance(placed) >= length);
+    foot.frame.place(body, pitch)
 }
 
 /// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
@@ -233,9 +287,9 @@ pub fn foot_ik_stage(
     let feet = place_feet(ik, body, gait, rays, &hips, forward, dt);
     ik.pelvis_drop = follow_pelvis(ik, body, gait, rays, &hips, &feet, dt);
     pelvis.y -= ik.pelvis_drop;
-    let soles = solve_legs(ik, pose, body, &hips, &feet, forward, dt);
+    let feet = solve_legs(ik, pose, body, &hips, &feet, forward, dt);
     pose_upper_body(pose, body, gait, proxy, pelvis, forward, right);
-    foot_states(ik, pose, gait, rays, &feet, &soles, dt)
+    foot_states(ik, pose, gait, rays, &feet, dt)
 }
 
 /// Places each foot on its key with the scheduled roll, plus the roll a
@@ -335,7 +389,8 @@ fn follow_pelvis(
 
 /// Solves both legs from the hips (lowered by `ik.pelvis_drop`) to their
 /// ankles, the knees within their range and speed, into `pose`; returns the
-/// soles moved to follow the ankles the legs really reached.
+/// feet as placed on the ankles the legs really reached (unrolled where a
+/// knee could not bend fast enough, see [`unroll_to_length`]).
 fn solve_legs(
     ik: &mut FootIK,
     pose: &mut Pose,
@@ -344,7 +399,7 @@ fn solve_legs(
     feet: &[FootPlacement; 2],
     forward: Vec3,
     dt: f32,
-) -> [FootSole; 2] {
+) -> [FootPlacement; 2] {
     let legs = [
         (
             Joint::HipLeft,
@@ -360,7 +415,7 @@ fn solve_legs(
         ),
     ];
     let foot_radius = body.bone_radius(super::skeleton::Bone::FootLeft);
-    let mut soles = [feet[0].sole, feet[1].sole];
+    let mut placed = *feet;
     let mut knees = [0.0; 2];
     for (k, &(hip, knee, ankle, toe)) in legs.iter().enumerate() {
         let hip_at = hips[k] - Vec3::Y * ik.pelvis_drop;
@@ -373,19 +428,22 @@ fn solve_legs(
             let step = MAX_KNEE_SPEED * dt;
             ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
         }
+        let length = ankle_target.distance(hip_at);
+        let foot = unroll_to_length(body, hip_at, &feet[k], length);
+        if foot.pitch != feet[k].pitch {
+            ankle_target = hip_at + (foot.ankle - hip_at).normalize_or_zero() * length;
+        }
         let s = solve_two_bone(hip_at, ankle_target, pole, l1, l2);
         knees[k] = flexion_at_distance(s.end.distance(hip_at), l1, l2);
         // The foot follows the ankle the IK really reached.
-        let miss = s.end - feet[k].ankle;
-        soles[k].heel += miss;
-        soles[k].toe += miss;
+        placed[k] = foot.moved(s.end - foot.ankle);
         pose.joints[hip as usize] = hip_at;
         pose.joints[knee as usize] = s.mid;
         pose.joints[ankle as usize] = s.end;
-        pose.joints[toe as usize] = soles[k].toe + feet[k].normal * foot_radius;
+        pose.joints[toe as usize] = placed[k].sole.toe + placed[k].normal * foot_radius;
     }
     ik.knee_flexion = Some(knees);
-    soles
+    placed
 }
 
 /// Poses the trunk, head and arms over `pelvis`, rotated by the proxy's
@@ -442,16 +500,15 @@ fn foot_states(
     gait: &Gait,
     rays: &FootRays,
     feet: &[FootPlacement; 2],
-    soles: &[FootSole; 2],
     dt: f32,
 ) -> [FootState; 2] {
     let ankles = [pose.joint(Joint::AnkleLeft), pose.joint(Joint::AnkleRight)];
-    ik.contact_points = [0, 1].map(|k| feet[k].lowest + (soles[k].heel - feet[k].sole.heel));
+    ik.contact_points = [feet[0].lowest, feet[1].lowest];
     let states = Side::BOTH.map(|side| {
         let k = side.index();
         FootState {
             side,
-            sole: soles[k],
+            sole: feet[k].sole,
             ankle: ankles[k],
             velocity: if dt > 0.0 {
                 (ankles[k] - ik.last_ankles[k]) / dt
@@ -459,9 +516,61 @@ fn foot_states(
                 Vec3::ZERO
             },
             phase: gait.feet[k].phase,
-            contact: rays.feet[k].hit && rays.feet[k].pressing,
+            contact: rays.feet[k].hit && gait.feet[k].phase == FootPhase::Stance,
+            pressing: rays.feet[k].hit && rays.feet[k].pressing,
         }
     });
     ik.last_ankles = ankles;
     states
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::character::CharacterDesc;
+
+    /// A flat foot frame on level ground at height 0, pointing along +X.
+    fn level_frame(contact_along: f32) -> FootFrame {
+        FootFrame {
+            centre: Vec3::ZERO,
+            normal: Vec3::Y,
+            along: Vec3::X,
+            contact_along,
+        }
+    }
+
+    #[test]
+    fn a_knee_too_slow_for_a_heel_rise_unrolls_the_foot_about_its_toe() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let frame = level_frame(0.5 * body.foot_length);
+        let lifted = frame.place(&body, -0.6);
+        // A hip behind and above the foot, as over a trailing leg at toe-off:
+        // the knee may not bend as far as the heel rise asks, so the leg is
+        // 3 cm longer than the lifted foot needs.
+        let hip = lifted.ankle + Vec3::new(-0.3, 0.75, 0.0);
+        let length = lifted.ankle.distance(hip) + 0.03;
+        let foot = unroll_to_length(&body, hip, &lifted, length);
+        assert!(
+            foot.pitch > lifted.pitch && foot.pitch < 0.0,
+            "{}",
+            foot.pitch
+        );
+        assert!(foot.sole.toe.distance(lifted.sole.toe) < 1e-5);
+        assert!((foot.ankle.distance(hip) - length).abs() < 2e-3);
+        assert!(foot.sole.heel.y >= -1e-5 && foot.sole.toe.y >= -1e-5);
+    }
+
+    #[test]
+    fn a_foot_is_left_alone_when_unrolling_cannot_lengthen_the_leg() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let flat = level_frame(0.0).place(&body, 0.0);
+        let hip = flat.ankle + Vec3::new(0.0, 0.8, 0.0);
+        let same = unroll_to_length(&body, hip, &flat, 0.9);
+        assert_eq!(same.pitch, 0.0);
+        assert_eq!(same.ankle, flat.ankle);
+        // A leg already long enough keeps its lifted heel.
+        let lifted = level_frame(0.5 * body.foot_length).place(&body, -0.4);
+        let near = lifted.ankle.distance(hip);
+        assert_eq!(unroll_to_length(&body, hip, &lifted, near).pitch, -0.4);
+    }
 }

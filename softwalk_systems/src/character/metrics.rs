@@ -28,11 +28,13 @@ pub struct CharacterMetrics {
     pub feet: [Vec3; 2],
     /// Each sole after IK (left first), heel and toe.
     pub soles: [FootSole; 2],
-    /// Whether each foot presses the ground (see [`FootState::contact`]).
+    /// Whether each foot bears weight on ground (see [`FootState::contact`]).
     pub contact: [bool; 2],
-    /// Whether each foot is planted: in the stance of its walk cycle, bearing
-    /// weight (a foot pushing into soft ground at the end of its swing presses
-    /// the ground, see `contact`, but is not planted yet).
+    /// Whether each foot presses the ground (see [`FootState::pressing`]): a
+    /// foot pushing into soft ground at the end of its swing presses it but
+    /// bears no weight yet.
+    pub pressing: [bool; 2],
+    /// Whether each foot is planted: in the stance of its walk cycle.
     pub planted: [bool; 2],
     /// Height of each foot's IK target (sole centre: ground key plus swing lift).
     pub ik_target_y: [f32; 2],
@@ -60,6 +62,7 @@ impl CharacterMetrics {
             feet: ik.contact_points,
             soles: feet.map(|f| f.sole),
             contact: feet.map(|f| f.contact),
+            pressing: feet.map(|f| f.pressing),
             planted: feet.map(|f| f.phase == FootPhase::Stance),
             ik_target_y: ik.sole_targets.map(|t| t.y),
             knee_flexion: pose.knee_flexion(),

@@ -1,18 +1,17 @@
 //! Building a simulation: terrain, meshes, grass and characters into an [`App`].
 
 use engine::ecs::Entity;
-use engine::geom::{RayScene, TriMesh};
+use engine::geom::TriMesh;
 use engine::schedule::App;
 
 use super::components::{
-    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, TerrainDirty,
-    TerrainVolume, WalkerMetrics,
+    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, WalkerMetrics,
 };
 use super::error::SimError;
+use super::ground_state::GroundState;
 use super::ground_view::SceneGround;
 use super::pipeline::add_pipeline;
 use super::sole_ground::SoleGround;
-use super::systems_terrain::TerrainWindows;
 use super::timing::SystemTimings;
 use crate::character::{Character, CharacterDesc, WalkPath};
 use crate::foot::{FootSole, Side};
@@ -23,7 +22,6 @@ use crate::vegetation::{GrassPatch, GrassSettings, VegetationFriction, VirtualPl
 /// (which are placed on what is already there), then [`SimBuilder::build`].
 pub struct SimBuilder {
     app: App,
-    terrain: Option<Entity>,
 }
 
 impl SimBuilder {
@@ -31,38 +29,36 @@ impl SimBuilder {
     pub fn new(dt: f32) -> Result<Self, SimError> {
         let mut app = App::new(dt)?;
         let world = &mut app.world;
-        world.insert_resource(RayScene::new());
         world.insert_resource(SystemFault::default());
-        world.insert_resource(TerrainWindows::default());
-        world.insert_resource(TerrainDirty::default());
         world.insert_resource(Props::default());
-        world.insert_resource(TerrainVolume(0.0));
         world.insert_resource(SystemTimings::default());
+        world.insert_resource(crate::terrain::SmoothScratch::default());
+        world.insert_resource(crate::terrain::SettleScratch::default());
         world.insert_resource(VegetationFriction::default());
         add_pipeline(&mut app.schedule);
-        Ok(SimBuilder { app, terrain: None })
+        Ok(SimBuilder { app })
     }
 
-    /// Sets the terrain (one per simulation) and builds its BVH.
-    pub fn terrain(&mut self, heightfield: Heightfield) -> Result<Entity, SimError> {
+    /// Sets the terrain (one per simulation, a [`GroundState`] resource) and
+    /// builds its BVH; a second call replaces it and keeps the meshes.
+    pub fn terrain(&mut self, heightfield: Heightfield) -> Result<(), SimError> {
         let world = &mut self.app.world;
-        if let Some(old) = self.terrain.take() {
-            let _ = world.despawn(old);
+        if let Some(mut ground) = world.get_resource_mut::<GroundState>() {
+            ground.set_terrain(heightfield);
+            return Ok(());
         }
-        world
-            .resource_mut::<RayScene>()
-            .set_grid(heightfield.grid());
-        world.resource_mut::<TerrainVolume>().0 = heightfield.grid().volume();
-        let entity = world.spawn((heightfield,));
-        self.terrain = Some(entity);
-        Ok(entity)
+        world.insert_resource(GroundState::new(heightfield));
+        Ok(())
     }
 
-    /// Adds a static mesh (rocks, steps) the feet can stand on.
+    /// Adds a static mesh (rocks, steps) the feet can stand on; after the terrain.
     pub fn mesh(&mut self, mesh: TriMesh) -> Result<(), SimError> {
-        let world = &mut self.app.world;
-        world.resource_mut::<RayScene>().add_mesh(mesh.clone())?;
-        world.resource_mut::<Props>().0.push(mesh);
+        self.app
+            .world
+            .get_resource_mut::<GroundState>()
+            .ok_or(SimError::NoTerrain)?
+            .add_mesh(mesh.clone())?;
+        self.app.world.resource_mut::<Props>().0.push(mesh);
         Ok(())
     }
 
@@ -136,8 +132,8 @@ impl SimBuilder {
     /// Runs `f` with the scene's current ground (terrain and meshes).
     /// The terrain heights under each sole (the soles' own heights without a terrain).
     fn ground_under(&self, soles: &[FootSole; 2]) -> [SoleGround; 2] {
-        let mut terrains = self.app.world.query::<&Heightfield>();
-        let grid = terrains.iter().next().map(|t| t.grid());
+        let ground = self.app.world.get_resource::<GroundState>();
+        let grid = ground.as_deref().map(|g| g.terrain().grid());
         soles.map(|sole| match grid {
             Some(grid) => SoleGround::under(grid, &sole),
             None => SoleGround::flush(&sole),
@@ -146,18 +142,18 @@ impl SimBuilder {
 
     fn with_ground<T>(&self, f: impl FnOnce(&SceneGround<'_>) -> T) -> T {
         let world = &self.app.world;
-        let scene = world.resource::<RayScene>();
-        let mut terrains = world.query::<&Heightfield>();
-        let terrain = terrains.iter().next();
-        f(&SceneGround {
-            scene: &scene,
-            terrain,
-        })
+        match world.get_resource::<GroundState>() {
+            Some(ground) => f(&ground.view()),
+            None => f(&SceneGround {
+                scene: &engine::geom::RayScene::new(),
+                terrain: None,
+            }),
+        }
     }
 
     /// The app, its schedule resolved. Fails without a terrain.
     pub fn build(mut self) -> Result<App, SimError> {
-        if self.terrain.is_none() {
+        if !self.app.world.contains_resource::<GroundState>() {
             return Err(SimError::NoTerrain);
         }
         self.app.schedule.build()?;

@@ -55,11 +55,6 @@ pub struct WalkerMetrics {
     pub path_finished: bool,
 }
 
-/// Resource: the terrain's total volume, kept up to date from what each step
-/// carved and compacted (not by summing the grid every step).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TerrainVolume(pub f64);
-
 /// Resource: the first fault a system reported; [`crate::sim::step`] turns it into an error.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SystemFault(pub Option<(&'static str, String)>);
@@ -77,15 +72,3 @@ impl SystemFault {
 /// given to [`super::SimBuilder::mesh`], for drawing.
 #[derive(Debug, Clone, Default)]
 pub struct Props(pub Vec<engine::geom::TriMesh>);
-
-/// Resource: the union of the terrain rectangles changed since a consumer (the
-/// renderer) last took it with [`TerrainDirty::take`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct TerrainDirty(pub engine::geom::GridRect);
-
-impl TerrainDirty {
-    /// Returns the accumulated rectangle and clears it.
-    pub fn take(&mut self) -> engine::geom::GridRect {
-        std::mem::take(&mut self.0)
-    }
-}

@@ -13,7 +13,7 @@
 //! | 6 | `carve` | stance feet imprint the ground (d_t, c_t) |
 //! | 7 | `smooth` | Gaussian filter of strength s_t in the dirty windows |
 //! | 8 | `settle` | slopes above the angle of repose slump |
-//! | 9 | `refit` | the ground BVH refits the tiles that changed |
+//! | 9 | `refit` | closes the step's change log: its rectangles become stale BVH tiles (refit lazily) and the renderer's re-meshing |
 //! | 10 | `grass_deform` | eq. 2 on the blades near every foot; recovery |
 //! | 11 | `metrics` | what the step recorded, per character |
 //!
@@ -42,6 +42,7 @@
 mod builder;
 mod components;
 mod error;
+mod ground_state;
 mod ground_view;
 pub mod labels;
 mod pipeline;
@@ -55,10 +56,10 @@ mod world_hash;
 
 pub use builder::SimBuilder;
 pub use components::{
-    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, TerrainDirty,
-    TerrainVolume, WalkerMetrics,
+    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, WalkerMetrics,
 };
 pub use error::SimError;
+pub use ground_state::GroundState;
 pub use ground_view::SceneGround;
 pub use pipeline::add_pipeline;
 pub use run::{run_steps, step};
@@ -67,9 +68,7 @@ pub use systems_character::{
     balance_system, foot_ik_system, foot_raycast_system, gait_system, ground_response_system,
     metrics_system,
 };
-pub use systems_terrain::{
-    TerrainWindows, carve_system, refit_system, settle_system, smooth_system,
-};
+pub use systems_terrain::{carve_system, refit_system, settle_system, smooth_system};
 pub use systems_vegetation::{grass_deform_system, platform_system};
 pub use timing::SystemTimings;
 pub use world_hash::{WorldHasher, world_hash};

@@ -1,19 +1,22 @@
 //! The character systems: ground response, gait, foot rays, balance, foot IK, metrics.
 
 use engine::ecs::World;
-use engine::geom::RayScene;
 use engine::schedule::Time;
 
 use super::components::{BaseGains, Feet, Platforms, SystemFault, WalkerMetrics};
-use super::ground_view::SceneGround;
+use super::ground_state::GroundState;
 use super::labels;
 use super::sole_ground::SoleGround;
 use crate::character::{
     Balance, CharacterBody, CharacterMetrics, FootIK, FootRays, Gait, GaitModifiers, Pose,
     RigidProxy, WalkPath, balance_stage, foot_ik_stage, foot_raycast_stage, gait_stage,
 };
-use crate::terrain::{GaitResponse, Heightfield};
+use crate::terrain::GaitResponse;
 use crate::vegetation::{GrassPatch, PlatformSettings, VegetationFriction};
+
+/// Characters per parallel batch of the per-character systems: a character's
+/// stage costs a few microseconds, so a batch amortises the task overhead.
+pub(crate) const CHARACTER_BATCH: usize = 4;
 
 /// The fixed step of the current run.
 pub(crate) fn step_dt(world: &World) -> f32 {
@@ -53,10 +56,11 @@ pub fn ground_response_system(world: &mut World) {
         .get_resource::<VegetationFriction>()
         .map(|f| *f)
         .unwrap_or_default();
-    let mut terrains = world.query::<&Heightfield>();
-    let terrain = terrains.iter().next();
+    let ground = world.get_resource::<GroundState>();
+    let terrain = ground.as_deref().map(GroundState::terrain);
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();
+    let fault = std::sync::Mutex::new(None);
     let mut walkers = world.query::<(
         &Gait,
         &FootRays,
@@ -64,7 +68,7 @@ pub fn ground_response_system(world: &mut World) {
         &mut Balance,
         &BaseGains,
     )>();
-    for (gait, rays, modifiers, balance, base) in walkers.iter() {
+    walkers.par_for_each(CHARACTER_BATCH, |(gait, rays, modifiers, balance, base)| {
         let p = gait.pelvis.position;
         let response = terrain
             .and_then(|t| t.material_at(p.x, p.y))
@@ -79,64 +83,77 @@ pub fn ground_response_system(world: &mut World) {
         let h = sensed_vegetation(&patches, p.x, p.y);
         let beta = base.beta * friction.beta(h) / friction.beta_bare;
         if let Err(e) = balance.set_gains(base.alpha, beta) {
-            world
-                .resource_mut::<SystemFault>()
-                .report(labels::GROUND_RESPONSE, e.to_string());
+            report_fault(&fault, e.to_string());
         }
+    });
+    if let Some(message) = fault.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        world
+            .resource_mut::<SystemFault>()
+            .report(labels::GROUND_RESPONSE, message);
+    }
+}
+
+/// Keeps the smallest message reported by the characters of a parallel
+/// system (so the fault does not depend on the thread count).
+fn report_fault(fault: &std::sync::Mutex<Option<String>>, message: String) {
+    let mut slot = fault.lock().unwrap_or_else(|e| e.into_inner());
+    if slot.as_ref().is_none_or(|m| message < *m) {
+        *slot = Some(message);
     }
 }
 
 /// System `gait`: advances every character's walk cycle.
 pub fn gait_system(world: &mut World) {
     let dt = step_dt(world);
-    for (gait, body, path, modifiers) in
-        world.query_mut::<(&mut Gait, &CharacterBody, &WalkPath, &GaitModifiers)>()
-    {
-        gait_stage(gait, body, path, modifiers, dt);
-    }
+    world
+        .query_mut::<(&mut Gait, &CharacterBody, &WalkPath, &GaitModifiers)>()
+        .par_for_each(CHARACTER_BATCH, |(gait, body, path, modifiers)| {
+            gait_stage(gait, body, path, modifiers, dt);
+        });
 }
 
 /// System `foot_raycast`: vertical rays through the ground BVH (terrain and meshes).
 pub fn foot_raycast_system(world: &mut World) {
-    let scene = world.get_resource::<RayScene>();
-    let Some(scene) = scene.as_deref() else {
+    let Some(state) = world.get_resource::<GroundState>() else {
         return;
     };
-    let mut terrains = world.query::<&Heightfield>();
-    let terrain = terrains.iter().next();
-    let ground = SceneGround { scene, terrain };
-    for (rays, gait, body) in world
+    let ground = state.view();
+    world
         .query::<(&mut FootRays, &Gait, &CharacterBody)>()
-        .iter()
-    {
-        foot_raycast_stage(rays, gait, body, &ground);
-    }
+        .par_for_each(CHARACTER_BATCH, |(rays, gait, body)| {
+            foot_raycast_stage(rays, gait, body, &ground);
+        });
 }
 
 /// System `balance`: eq. 1 on each character's rigid proxy.
 pub fn balance_system(world: &mut World) {
     let dt = step_dt(world);
-    for (proxy, balance, body, gait, rays) in
-        world.query_mut::<(&mut RigidProxy, &Balance, &CharacterBody, &Gait, &FootRays)>()
-    {
-        balance_stage(proxy, balance, body, gait, rays, dt);
-    }
+    world
+        .query_mut::<(&mut RigidProxy, &Balance, &CharacterBody, &Gait, &FootRays)>()
+        .par_for_each(CHARACTER_BATCH, |(proxy, balance, body, gait, rays)| {
+            balance_stage(proxy, balance, body, gait, rays, dt);
+        });
 }
 
 /// System `foot_ik`: legs to the keys, pelvis drop, tilt; writes [`Feet`].
 pub fn foot_ik_system(world: &mut World) {
     let dt = step_dt(world);
-    for (ik, pose, body, gait, rays, proxy, feet) in world.query_mut::<(
-        &mut FootIK,
-        &mut Pose,
-        &CharacterBody,
-        &Gait,
-        &FootRays,
-        &RigidProxy,
-        &mut Feet,
-    )>() {
-        feet.0 = foot_ik_stage(ik, pose, body, gait, rays, proxy, dt);
-    }
+    world
+        .query_mut::<(
+            &mut FootIK,
+            &mut Pose,
+            &CharacterBody,
+            &Gait,
+            &FootRays,
+            &RigidProxy,
+            &mut Feet,
+        )>()
+        .par_for_each(
+            CHARACTER_BATCH,
+            |(ik, pose, body, gait, rays, proxy, feet)| {
+                feet.0 = foot_ik_stage(ik, pose, body, gait, rays, proxy, dt);
+            },
+        );
 }
 
 /// System `metrics`: records each character's [`WalkerMetrics`] for this step,
@@ -144,8 +161,8 @@ pub fn foot_ik_system(world: &mut World) {
 pub fn metrics_system(world: &mut World) {
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();
-    let mut terrains = world.query::<&Heightfield>();
-    let grid = terrains.iter().next().map(|t| t.grid());
+    let ground = world.get_resource::<GroundState>();
+    let grid = ground.as_deref().map(|g| g.terrain().grid());
     let mut walkers = world.query::<(
         &CharacterBody,
         &Pose,
@@ -158,7 +175,8 @@ pub fn metrics_system(world: &mut World) {
         Option<&Platforms>,
         &mut WalkerMetrics,
     )>();
-    for (body, pose, proxy, ik, feet, gait, rays, path, platforms, out) in walkers.iter() {
+    walkers.par_for_each(CHARACTER_BATCH, |item| {
+        let (body, pose, proxy, ik, feet, gait, rays, path, platforms, out) = item;
         let character = CharacterMetrics::capture(body, pose, proxy, ik, &feet.0);
         let platform_y = match platforms {
             Some(p) => p.0.each_ref().map(|pl| {
@@ -182,5 +200,5 @@ pub fn metrics_system(world: &mut World) {
             path_distance: gait.distance,
             path_finished: path.is_some_and(|p| p.is_finished(gait.distance)),
         };
-    }
+    });
 }

@@ -1,99 +1,91 @@
-//! The terrain systems: carve, smooth, settle, refit. Each touches only the
-//! dirty windows around the feet.
+//! The terrain systems: carve, smooth, settle, refit. Each works on the
+//! rectangles around the feet, one by one: two feet far apart cost two small
+//! rectangles, never the box between them.
 
 use engine::ecs::World;
-use engine::geom::{GridRect, RayScene};
 
-use super::components::{Feet, FootPrints, SystemFault, TerrainDirty, TerrainVolume};
+use super::components::{Feet, FootPrints, SystemFault};
+use super::ground_state::GroundState;
 use super::labels;
 use super::systems_character::step_dt;
-use crate::terrain::{Heightfield, carve, settle_pending, settle_step, smooth, stage_window};
-
-/// Resource: the rectangles carving and smoothing changed this step, passed
-/// from `carve` to `smooth` to `settle`.
-#[derive(Debug, Clone, Default)]
-pub struct TerrainWindows {
-    /// One rectangle per foot that carved this step.
-    pub carved: Vec<GridRect>,
-    /// What smoothing changed for each carved rectangle (same order).
-    pub smoothed: Vec<GridRect>,
-}
+use crate::terrain::{
+    SettleScratch, SmoothScratch, carve, settle_pending_with, settle_step_with, smooth_with,
+    stage_window,
+};
 
 /// System `carve`: every stance foot in contact presses its sole into the
-/// ground; c_t of the displaced volume is compacted, the rest goes to the rim.
+/// ground, character by character in query order and left foot first (a
+/// fixed order, whatever the thread count); c_t of the displaced volume is
+/// compacted, the rest goes to the rim. Starts the step's change log.
 pub fn carve_system(world: &mut World) {
     let dt = step_dt(world);
-    let mut windows = world.resource_mut::<TerrainWindows>();
-    windows.carved.clear();
-    windows.smoothed.clear();
-    let mut terrains = world.query::<&mut Heightfield>();
-    let Some(hf) = terrains.iter().next() else {
+    let Some(mut ground) = world.get_resource_mut::<GroundState>() else {
         return;
     };
+    let hf = ground.terrain_mut();
     hf.begin_step();
     for (feet, prints) in world.query::<(&Feet, &mut FootPrints)>().iter() {
         for (foot, print) in feet.0.iter().zip(prints.0.iter_mut()) {
-            match carve(hf, print, &foot.sole, foot.contact, dt) {
-                Ok(rect) if !rect.is_empty() => windows.carved.push(rect),
-                Ok(_) => {}
-                Err(e) => world
+            if let Err(e) = carve(hf, print, &foot.sole, foot.pressing, dt) {
+                world
                     .resource_mut::<SystemFault>()
-                    .report(labels::CARVE, e.to_string()),
+                    .report(labels::CARVE, e.to_string());
             }
         }
     }
     let changes = hf.changes();
-    world.resource_mut::<TerrainVolume>().0 += changes.rim_volume - changes.carved_volume;
+    let delta = changes.rim_volume - changes.carved_volume;
+    ground.add_volume(delta);
 }
 
-/// System `smooth`: the Gaussian filter of strength s_t, conservative, in each carved window.
+/// System `smooth`: the Gaussian filter of strength s_t, conservative, in
+/// each rectangle carved this step. Its work buffers are the
+/// [`SmoothScratch`] resource (fresh ones without it).
 pub fn smooth_system(world: &mut World) {
     let dt = step_dt(world);
-    let mut windows = world.resource_mut::<TerrainWindows>();
-    let mut terrains = world.query::<&mut Heightfield>();
-    let Some(hf) = terrains.iter().next() else {
+    let Some(mut ground) = world.get_resource_mut::<GroundState>() else {
         return;
     };
-    let smoothed: Vec<GridRect> = windows
-        .carved
-        .iter()
-        .map(|&rect| smooth(hf, rect, dt))
-        .collect();
-    windows.smoothed = smoothed;
+    let mut scratch = world.get_resource_mut::<SmoothScratch>();
+    let mut fresh = SmoothScratch::default();
+    let scratch = scratch.as_deref_mut().unwrap_or(&mut fresh);
+    let hf = ground.terrain_mut();
+    let carved = hf.changes().carved.clone();
+    for rect in carved {
+        smooth_with(hf, scratch, rect, dt);
+    }
 }
 
 /// System `settle`: slopes steeper than the angle of repose slump, mass-conserving,
-/// inside each carved window grown by the settling margin. The work is spread
+/// inside each carved rectangle grown by the settling margin. The work is spread
 /// over steps ([`settle_step`]): what earlier steps left pending (a released
-/// print still slumping) continues first.
+/// print still slumping) continues first. Its work buffers are the
+/// [`SettleScratch`] resource (fresh ones without it).
 pub fn settle_system(world: &mut World) {
     let dt = step_dt(world);
-    let windows = world.resource::<TerrainWindows>();
-    let mut terrains = world.query::<&mut Heightfield>();
-    let Some(hf) = terrains.iter().next() else {
+    let Some(mut ground) = world.get_resource_mut::<GroundState>() else {
         return;
     };
-    settle_pending(hf, dt);
-    for (k, &carved) in windows.carved.iter().enumerate() {
-        // Without a smooth system (removed or replaced), settling starts from the carved window.
-        let seeds = windows.smoothed.get(k).copied().unwrap_or(carved);
-        settle_step(hf, stage_window(hf, carved), seeds, dt);
+    let mut scratch = world.get_resource_mut::<SettleScratch>();
+    let mut fresh = SettleScratch::default();
+    let scratch = scratch.as_deref_mut().unwrap_or(&mut fresh);
+    let hf = ground.terrain_mut();
+    settle_pending_with(hf, scratch, dt);
+    let changes = hf.changes();
+    let windows: Vec<_> = (changes.carved.iter().enumerate())
+        // Without a smooth system (removed or replaced), settling starts from the carved rectangle.
+        .map(|(k, &carved)| (carved, changes.smoothed.get(k).copied().unwrap_or(carved)))
+        .collect();
+    for (carved, seeds) in windows {
+        settle_step_with(hf, scratch, stage_window(hf, carved), seeds, dt);
     }
 }
 
-/// System `refit`: the ground BVH refits only the tiles the step changed.
+/// System `refit`: closes the step's change log. The rectangles it changed
+/// join the grid BVH's stale tiles (refit when a general ray needs them,
+/// [`GroundState::cast`]) and the rectangles the renderer re-meshes.
 pub fn refit_system(world: &mut World) {
-    let mut terrains = world.query::<&mut Heightfield>();
-    let Some(hf) = terrains.iter().next() else {
-        return;
-    };
-    let rect = hf.take_dirty();
-    if rect.is_empty() {
-        return;
+    if let Some(mut ground) = world.get_resource_mut::<GroundState>() {
+        ground.end_step();
     }
-    if let Some(mut scene) = world.get_resource_mut::<RayScene>() {
-        scene.refit_grid(hf.grid(), rect);
-    }
-    let mut dirty = world.resource_mut::<TerrainDirty>();
-    dirty.0 = dirty.0.union(&rect);
 }

@@ -3,7 +3,7 @@
 use engine::ecs::World;
 
 use super::components::{Feet, Platforms};
-use super::systems_character::{step_dt, vegetation_at};
+use super::systems_character::{CHARACTER_BATCH, step_dt, vegetation_at};
 use crate::character::FootRays;
 use crate::foot::FootState;
 use crate::vegetation::GrassPatch;
@@ -19,7 +19,7 @@ pub fn platform_system(world: &mut World) {
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();
     let mut walkers = world.query::<(&mut Platforms, &mut FootRays, &Feet)>();
-    for (platforms, rays, feet) in walkers.iter() {
+    walkers.par_for_each(CHARACTER_BATCH, |(platforms, rays, feet)| {
         for (k, platform) in platforms.0.iter_mut().enumerate() {
             let foot = &feet.0[k];
             let at = foot.sole.center();
@@ -34,7 +34,7 @@ pub fn platform_system(world: &mut World) {
                 .filter(|top| top.covers(at.x, at.z) && top.top_y > key.point.y)
                 .map(|top| top.top_y);
         }
-    }
+    });
 }
 
 /// System `grass_deform`: eq. 2 for every foot of every character on every

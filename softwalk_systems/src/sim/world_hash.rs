@@ -5,8 +5,8 @@ use engine::schedule::Time;
 use glam::Vec3;
 
 use super::components::Feet;
+use super::ground_state::GroundState;
 use crate::character::{Gait, Pose, RigidProxy};
-use crate::terrain::Heightfield;
 use crate::vegetation::{Bend, GrassPatch};
 
 /// FNV-1a over the exact bits of what it is fed: equal hashes mean bit-identical inputs
@@ -70,7 +70,8 @@ pub fn world_hash(world: &World) -> u64 {
     if let Some(t) = world.get_resource::<Time>() {
         h.u64(t.step);
     }
-    for hf in world.query::<&Heightfield>().iter() {
+    if let Some(ground) = world.get_resource::<GroundState>() {
+        let hf = ground.terrain();
         h.f32s(hf.grid().heights());
         h.bytes(hf.disturbed());
     }
@@ -88,7 +89,7 @@ pub fn world_hash(world: &World) -> u64 {
         for f in &feet.0 {
             h.vec3(f.sole.heel);
             h.vec3(f.sole.toe);
-            h.bytes(&[u8::from(f.contact)]);
+            h.bytes(&[u8::from(f.contact), u8::from(f.pressing)]);
         }
     }
     for patch in world.query::<&GrassPatch>().iter() {

@@ -144,7 +144,10 @@ pub fn carve(
     if !contact {
         let released = print.release();
         let changes = hf.parts_mut().changes;
-        changes.released = changes.released.union(&released);
+        changes.released.add(released);
+        if !released.is_empty() {
+            changes.carved.push(released);
+        }
         return Ok(released);
     }
     let grid = hf.grid();
@@ -219,7 +222,8 @@ pub fn carve(
     // Everything this contact has pressed stays held until the foot lifts, not
     // only what is under the sole now: a rolling foot lifts its heel
     // mid-stance, and smoothing must not pour the rim back under it every step.
-    parts.changes.held.extend_from_slice(&print.pressed);
+    let held_bounds = print.touched.union(&rect);
+    parts.changes.held.push_group(held_bounds, &print.pressed);
     if removed == 0.0 {
         return Ok(GridRect::EMPTY);
     }
@@ -238,6 +242,7 @@ pub fn carve(
     parts.changes.compacted_volume += compacted * area;
     parts.changes.rim_volume += to_rim * area;
     print.touched = print.touched.union(&rect);
+    parts.changes.carved.push(rect);
     hf.mark_dirty(rect);
     Ok(rect)
 }

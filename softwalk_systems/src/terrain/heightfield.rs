@@ -1,16 +1,16 @@
 //! The `Heightfield` component: a height grid with a material per sample,
 //! the initial surface (over firm ground, a loose layer per material), a
-//! trodden-ground mask, dirty-window tracking and a per-step change record.
+//! trodden-ground mask and a per-step change record (a list of changed rectangles).
 
 use engine::geom::{GridRect, HeightGrid};
 use glam::Vec2;
 
+use super::dirty_rects::DirtyRects;
 use super::error::TerrainError;
+use super::held::HeldSamples;
 use super::material::TerrainMaterial;
 use super::material_table::{MaterialId, MaterialTable};
-use super::patch::Patch;
-use super::settle::{PendingSettle, SettleBuffers};
-use super::smooth::SmoothBuffers;
+use super::settle::PendingSettle;
 
 /// `disturbed` value of a sample pressed by a sole.
 pub const DISTURBED_PRESSED: u8 = 255;
@@ -24,8 +24,14 @@ pub const DISTURBED_SLUMPED: u8 = 32;
 /// Volumes are in cubic metres, accumulated in `f64`.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct StepChanges {
-    /// Union of every rectangle whose samples changed.
-    pub rect: GridRect,
+    /// The rectangles whose samples changed, merged only where they overlap or touch.
+    pub rects: DirtyRects,
+    /// One rectangle per [`super::carve`] call that touched the ground this
+    /// step (a foot pressing, or the print of a foot that lifted), in call order.
+    pub carved: Vec<GridRect>,
+    /// The window of each [`super::smooth`] call this step, in call order
+    /// (the smooth system calls it once per carved rectangle, same order).
+    pub smoothed: Vec<GridRect>,
     /// Volume removed from contact samples by carving.
     pub carved_volume: f64,
     /// Part of the carved volume compacted (lost): c_t of it.
@@ -34,11 +40,11 @@ pub struct StepChanges {
     pub rim_volume: f64,
     /// Samples held by a foot: everything its current contact has pressed so far
     /// (smoothing and settling leave them alone until the foot lifts).
-    pub held: Vec<usize>,
-    /// Union of the rectangles released this step by feet that lifted (see
+    pub held: HeldSamples,
+    /// The rectangles released this step by feet that lifted (see
     /// [`super::carve`]): their settling starts in the next step
     /// ([`super::settle_step`]), as the release step already smooths them.
-    pub released: GridRect,
+    pub released: DirtyRects,
     /// Pairwise transfers made by settling.
     pub settle_transfers: usize,
     /// Samples visited by settling sweeps (its work).
@@ -57,8 +63,9 @@ pub struct StepChanges {
 /// it). Carving, compaction and settling never take a sample below its floor.
 ///
 /// Every stage that edits heights reports the edited rectangle through
-/// [`Heightfield::mark_dirty`]; consumers (BVH refit, render patches) read it
-/// with [`Heightfield::take_dirty`].
+/// [`Heightfield::mark_dirty`]; it joins this step's list of changed
+/// rectangles ([`StepChanges::rects`]), which the BVH refit and the render
+/// patches read.
 #[derive(Debug, Clone)]
 pub struct Heightfield {
     grid: HeightGrid,
@@ -67,35 +74,8 @@ pub struct Heightfield {
     table: MaterialTable,
     material: Vec<u8>,
     disturbed: Vec<u8>,
-    dirty: GridRect,
     changes: StepChanges,
-    buffers: StageBuffers,
     pending_settle: Vec<PendingSettle>,
-}
-
-/// Work buffers the stages reuse from step to step, so they are not
-/// reallocated once they have grown to the largest window. Not part of the
-/// terrain's state: a clone starts with empty buffers.
-#[derive(Default)]
-pub(crate) struct StageBuffers {
-    /// The window smoothing or settling works on.
-    pub patch: Patch,
-    /// Smoothing's edge and height buffers.
-    pub smooth: SmoothBuffers,
-    /// Settling's work lists.
-    pub settle: SettleBuffers,
-}
-
-impl Clone for StageBuffers {
-    fn clone(&self) -> Self {
-        StageBuffers::default()
-    }
-}
-
-impl std::fmt::Debug for StageBuffers {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("StageBuffers")
-    }
 }
 
 impl Heightfield {
@@ -113,9 +93,7 @@ impl Heightfield {
             table,
             material: vec![fill.0; n],
             disturbed: vec![0; n],
-            dirty: GridRect::EMPTY,
             changes: StepChanges::default(),
-            buffers: StageBuffers::default(),
             pending_settle: Vec::new(),
         })
     }
@@ -253,20 +231,20 @@ impl Heightfield {
         Ok(())
     }
 
-    /// Adds `rect` to the dirty window (what caches must redo).
+    /// Adds `rect` to this step's changed rectangles (what caches must redo).
     pub fn mark_dirty(&mut self, rect: GridRect) {
-        self.dirty = self.dirty.union(&rect);
-        self.changes.rect = self.changes.rect.union(&rect);
+        self.changes.rects.add(rect);
     }
 
-    /// The dirty window accumulated since the last [`Heightfield::take_dirty`].
-    pub fn dirty(&self) -> GridRect {
-        self.dirty
+    /// The rectangles changed since the last [`Heightfield::begin_step`]
+    /// (merged as of the last [`Heightfield::merge_dirty`]).
+    pub fn dirty(&self) -> &DirtyRects {
+        &self.changes.rects
     }
 
-    /// Returns the dirty window and clears it (hand it to the BVH refit).
-    pub fn take_dirty(&mut self) -> GridRect {
-        std::mem::replace(&mut self.dirty, GridRect::EMPTY)
+    /// Merges this step's changed rectangles where they overlap or touch.
+    pub fn merge_dirty(&mut self) {
+        self.changes.rects.merge();
     }
 
     /// What changed since the last [`Heightfield::begin_step`].
@@ -290,16 +268,6 @@ impl Heightfield {
     /// The settling work left for later steps.
     pub(crate) fn pending_settle_mut(&mut self) -> &mut Vec<PendingSettle> {
         &mut self.pending_settle
-    }
-
-    /// Lends the stages' work buffers (give them back with [`Heightfield::return_buffers`]).
-    pub(crate) fn take_buffers(&mut self) -> StageBuffers {
-        std::mem::take(&mut self.buffers)
-    }
-
-    /// Gives back the buffers lent by [`Heightfield::take_buffers`].
-    pub(crate) fn return_buffers(&mut self, buffers: StageBuffers) {
-        self.buffers = buffers;
     }
 
     /// Mutable access for the stages: heights, materials, disturbed mask, step record.
@@ -390,16 +358,19 @@ mod tests {
     }
 
     #[test]
-    fn dirty_window_accumulates_and_clears() {
+    fn dirty_rectangles_accumulate_apart_and_clear_each_step() {
         let mut hf = field();
         assert!(hf.dirty().is_empty());
         hf.mark_dirty(GridRect::new(1, 1, 3, 3));
-        hf.mark_dirty(GridRect::new(5, 0, 6, 2));
-        assert_eq!(hf.dirty(), GridRect::new(1, 0, 6, 3));
-        assert_eq!(hf.take_dirty(), GridRect::new(1, 0, 6, 3));
-        assert!(hf.dirty().is_empty());
-        assert_eq!(hf.begin_step().rect, GridRect::new(1, 0, 6, 3));
-        assert!(hf.changes().rect.is_empty());
+        hf.mark_dirty(GridRect::new(30, 30, 32, 32));
+        hf.mark_dirty(GridRect::new(3, 0, 6, 2));
+        hf.merge_dirty();
+        assert_eq!(
+            hf.dirty().rects(),
+            &[GridRect::new(1, 0, 6, 3), GridRect::new(30, 30, 32, 32)]
+        );
+        assert_eq!(hf.begin_step().rects.area(), 4 + 15);
+        assert!(hf.changes().rects.is_empty());
     }
 
     #[test]

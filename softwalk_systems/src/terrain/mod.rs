@@ -14,7 +14,9 @@
 //! same scene gives the same prints at any grid resolution and step rate.
 //!
 //! Each stage returns the rectangle it may have changed and reports it with
-//! [`Heightfield::mark_dirty`]; the BVH refit reads [`Heightfield::take_dirty`].
+//! [`Heightfield::mark_dirty`]: this step's changed rectangles
+//! ([`StepChanges::rects`], a [`DirtyRects`] list) are what the BVH refit
+//! and the renderer redo.
 //!
 //! ```
 //! use glam::Vec2;
@@ -32,10 +34,12 @@
 //! ```
 
 mod carve;
+mod dirty_rects;
 mod error;
 mod footprint;
 pub mod generate;
 mod heightfield;
+mod held;
 mod material;
 mod material_data;
 mod material_table;
@@ -49,21 +53,27 @@ mod units;
 pub use carve::{
     CONTACT_TOLERANCE, FootPrint, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, rim_width,
 };
+pub use dirty_rects::DirtyRects;
 pub use error::TerrainError;
 pub use footprint::Footprint;
 pub use heightfield::{
     DISTURBED_PRESSED, DISTURBED_RIM, DISTURBED_SLUMPED, Heightfield, StepChanges,
 };
+pub use held::HeldSamples;
 pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
 pub use material_table::{MaterialId, MaterialTable};
 pub use settle::{
     SETTLE_AREA_RATE_M2_S, SETTLE_MARGIN_M, SETTLE_MAX_SWEEPS, SETTLE_OVERRELAXATION,
-    SETTLE_RUNOUT_SLOPE, SETTLE_TOLERANCE, settle, settle_from, settle_margin_cells,
-    settle_max_sweeps, settle_pending, settle_step, settle_step_visits, stage_window,
+    SETTLE_RUNOUT_SLOPE, SETTLE_TOLERANCE, SettleScratch, settle, settle_from, settle_margin_cells,
+    settle_max_sweeps, settle_pending, settle_pending_with, settle_step, settle_step_visits,
+    settle_step_with, stage_window,
 };
 pub use smooth::{
-    DIFFUSION_RATE, MAX_SMOOTHING_PASSES, smooth, smoothing_duration, smoothing_pass_equivalent,
-    smoothing_radius, smoothing_reach_m, smoothing_variance_rate,
+    DIFFUSION_RATE, MAX_SMOOTHING_PASSES, SmoothScratch, smooth, smooth_with, smoothing_duration,
+    smoothing_pass_equivalent, smoothing_radius, smoothing_reach_m, smoothing_variance_rate,
 };
-pub use step::{FootSize, FootholdReport, plant_foothold, press_into, sole_on_ground, step_foot};
+pub use step::{
+    FootSize, FootholdReport, StageScratch, plant_foothold, press_into, sole_on_ground, step_foot,
+    step_foot_with,
+};
 pub use units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};

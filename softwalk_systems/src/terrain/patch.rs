@@ -1,8 +1,9 @@
 //! A window of the terrain copied into contiguous local buffers with a
 //! one-sample frame, so the smoothing and settling loops run on small dense
-//! arrays without bounds tests and write back once. The buffers live in the
-//! [`super::Heightfield`] and are reused from step to step (not reallocated
-//! once they have grown to the largest window).
+//! arrays without bounds tests and write back once. A patch belongs to the
+//! stage's scratch ([`super::SmoothScratch`], [`super::SettleScratch`]) and is
+//! reused from call to call (not reallocated once it has grown to the largest
+//! window).
 
 use engine::geom::GridRect;
 
@@ -75,7 +76,7 @@ impl Patch {
                 *f = u8::from(d != 0) * DISTURBED;
             }
         }
-        for &k in &parts.changes.held {
+        for k in parts.changes.held.near(rect) {
             let (i, j) = (k % nx, k / nx);
             if rect.contains(i, j) {
                 let l = self.local(i, j);

@@ -5,7 +5,7 @@ use std::ops::Range;
 
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_SLUMPED, Heightfield, StageBuffers};
+use super::heightfield::{DISTURBED_SLUMPED, Heightfield};
 use super::material::TerrainMaterial;
 use super::patch::{DISTURBED, FIXED, Patch, edge_moves};
 use super::smooth::smoothing_radius;
@@ -100,13 +100,31 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
     settle_from(hf, window, window)
 }
 
+/// The work buffers of the settling calls (`*_with`), reused from call to
+/// call (they grow to the largest window and are not reallocated after).
+/// Not part of any terrain's state.
+#[derive(Default)]
+pub struct SettleScratch {
+    patch: Patch,
+    buffers: SettleBuffers,
+}
+
+impl std::fmt::Debug for SettleScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SettleScratch")
+    }
+}
+
 /// [`settle`] inside `window`, with the first sweep only over `seeds` (grown
 /// by one sample): the samples that changed since the window was last stable,
 /// e.g. the rectangles carving and smoothing report. Everything else in the
 /// window is assumed stable; slumps still spread anywhere in `window`.
 pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> GridRect {
     match first_sweep(hf, window, seeds) {
-        Some((w, first)) => relax_window(hf, w, &Start::Scan(first), usize::MAX, 0).changed,
+        Some((w, first)) => {
+            let scratch = &mut SettleScratch::default();
+            relax_window(hf, scratch, w, &Start::Scan(first), usize::MAX, 0).changed
+        }
         None => GridRect::EMPTY,
     }
 }
@@ -125,11 +143,24 @@ pub fn settle_from(hf: &mut Heightfield, window: GridRect, seeds: GridRect) -> G
 /// whole print. The end state meets the same stopping rule as [`settle_from`]
 /// (no moving slope above repose by more than [`SETTLE_TOLERANCE`]); the
 /// order of the transfers differs slightly when a sweep is cut.
+///
+/// Works in fresh buffers; [`settle_step_with`] reuses a caller's.
 pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect, dt: f32) -> GridRect {
+    settle_step_with(hf, &mut SettleScratch::default(), window, seeds, dt)
+}
+
+/// [`settle_step`] in the buffers of `scratch`.
+pub fn settle_step_with(
+    hf: &mut Heightfield,
+    scratch: &mut SettleScratch,
+    window: GridRect,
+    seeds: GridRect,
+    dt: f32,
+) -> GridRect {
     let Some((w, first)) = first_sweep(hf, window, seeds) else {
         return GridRect::EMPTY;
     };
-    if !hf.changes().released.intersect(&seeds).is_empty() {
+    if hf.changes().released.intersects(&seeds) {
         hf.pending_settle_mut().push(PendingSettle {
             window: w,
             start: Start::Scan(first),
@@ -138,7 +169,7 @@ pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect, dt: 
         return GridRect::EMPTY;
     }
     let budget = settle_step_visits(hf, dt);
-    let outcome = relax_window(hf, w, &Start::Scan(first), budget, 0);
+    let outcome = relax_window(hf, scratch, w, &Start::Scan(first), budget, 0);
     hf.pending_settle_mut().extend(outcome.left);
     outcome.changed
 }
@@ -148,7 +179,14 @@ pub fn settle_step(hf: &mut Heightfield, window: GridRect, seeds: GridRect, dt: 
 /// this step of `dt` seconds (half as many for a released print's first
 /// sweep); returns the rectangle of samples that changed. Call it once per
 /// step (the terrain systems and [`super::step_foot`] do).
+///
+/// Works in fresh buffers; [`settle_pending_with`] reuses a caller's.
 pub fn settle_pending(hf: &mut Heightfield, dt: f32) -> GridRect {
+    settle_pending_with(hf, &mut SettleScratch::default(), dt)
+}
+
+/// [`settle_pending`] in the buffers of `scratch`.
+pub fn settle_pending_with(hf: &mut Heightfield, scratch: &mut SettleScratch, dt: f32) -> GridRect {
     let pending = std::mem::take(hf.pending_settle_mut());
     let mut changed = GridRect::EMPTY;
     let visits = settle_step_visits(hf, dt);
@@ -157,7 +195,7 @@ pub fn settle_pending(hf: &mut Heightfield, dt: f32) -> GridRect {
             Start::Scan(_) => release_scan_visits(visits),
             Start::Queued(_) => visits,
         };
-        let outcome = relax_window(hf, work.window, &work.start, budget, work.sweeps);
+        let outcome = relax_window(hf, scratch, work.window, &work.start, budget, work.sweeps);
         changed = changed.union(&outcome.changed);
         hf.pending_settle_mut().extend(outcome.left);
     }
@@ -246,6 +284,7 @@ struct Outcome {
 /// `budget` visits.
 fn relax_window(
     hf: &mut Heightfield,
+    scratch: &mut SettleScratch,
     w: GridRect,
     start: &Start,
     budget: usize,
@@ -253,10 +292,12 @@ fn relax_window(
 ) -> Outcome {
     let cell = hf.grid().cell_size();
     let max_sweeps = settle_max_sweeps(hf);
-    let mut buffers = hf.take_buffers();
     let outcome = {
         let mut parts = hf.parts_mut();
-        let StageBuffers { patch, settle, .. } = &mut buffers;
+        let SettleScratch {
+            patch,
+            buffers: settle,
+        } = scratch;
         patch.load(&parts, w);
         settle.limits(patch, parts.table.materials(), cell);
         let SettleBuffers {
@@ -322,7 +363,6 @@ fn relax_window(
         });
         Outcome { changed, left }
     };
-    hf.return_buffers(buffers);
     if !outcome.changed.is_empty() {
         hf.mark_dirty(outcome.changed);
     }
@@ -649,7 +689,10 @@ mod tests {
         assert_eq!(hf.grid(), &snow);
         let mut hf = pillar(0);
         let k = hf.grid().index(20, 20);
-        hf.parts_mut().changes.held.push(k);
+        hf.parts_mut()
+            .changes
+            .held
+            .push_group(GridRect::new(20, 20, 21, 21), &[k]);
         let held = hf.grid().clone();
         assert!(settle(&mut hf, GridRect::new(5, 5, 36, 36)).is_empty());
         assert_eq!(hf.grid(), &held);
@@ -738,7 +781,7 @@ mod tests {
         let mut deferred = block();
         let before = deferred.grid().clone();
         deferred.begin_step();
-        deferred.parts_mut().changes.released = seeds;
+        deferred.parts_mut().changes.released.add(seeds);
         assert!(settle_step(&mut deferred, window, seeds, DT).is_empty());
         assert_eq!(deferred.grid(), &before);
         assert_eq!(deferred.changes().settle_visits, 0);

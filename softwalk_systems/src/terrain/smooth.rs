@@ -1,9 +1,11 @@
 //! Smoothing: the paper's Gaussian filter of strength s_t, as conservative
 //! diffusion restricted to a dirty window, in metres and seconds.
 
+use std::ops::Range;
+
 use engine::geom::GridRect;
 
-use super::heightfield::{DISTURBED_RIM, Heightfield, StageBuffers};
+use super::heightfield::{DISTURBED_RIM, Heightfield};
 use super::patch::{Patch, edge_moves};
 use super::units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};
 
@@ -64,8 +66,7 @@ pub fn smoothing_radius(hf: &Heightfield) -> usize {
 /// smoothing of a rim around a planted sole, which goes on for the stance.
 pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
     let window = window.intersect(&hf.grid().full_rect());
-    let released = hf.changes().released;
-    if !window.is_empty() && released.intersect(&window) == window {
+    if hf.changes().released.contains_rect(&window) {
         1.0 / REFERENCE_RATE_HZ
     } else {
         dt
@@ -97,22 +98,53 @@ pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
 /// sole this step (the foot occupies the print; its walls are smoothed once
 /// it lifts).
 ///
-/// Only the rectangle of samples that actually changed is marked dirty.
+/// Only the rectangle of samples that actually changed is marked dirty; the
+/// window is recorded in [`super::StepChanges::smoothed`].
+///
+/// Works in fresh buffers; [`smooth_with`] reuses a caller's.
 pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
+    smooth_with(hf, &mut SmoothScratch::default(), window, dt)
+}
+
+/// The work buffers of [`smooth_with`], reused from call to call (they grow
+/// to the largest window and are not reallocated after). Not part of any
+/// terrain's state.
+#[derive(Default)]
+pub struct SmoothScratch {
+    patch: Patch,
+    buffers: SmoothBuffers,
+}
+
+impl std::fmt::Debug for SmoothScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SmoothScratch")
+    }
+}
+
+/// [`smooth`] in the buffers of `scratch`.
+pub fn smooth_with(
+    hf: &mut Heightfield,
+    scratch: &mut SmoothScratch,
+    window: GridRect,
+    dt: f32,
+) -> GridRect {
     let full = hf.grid().full_rect();
     let radius = smoothing_radius(hf);
     let w = window
         .intersect(&full)
         .expand(radius, full.width(), full.height());
+    hf.parts_mut().changes.smoothed.push(w);
     if w.is_empty() || !(dt.is_finite() && dt > 0.0) || hf.table().max_smoothness() == 0.0 {
         return w;
     }
     let duration = smoothing_duration(hf, window, dt);
     let scale = smoothing_pass_equivalent(1.0, hf.grid().cell_size(), duration);
-    let mut buffers = hf.take_buffers();
     let changed = {
         let mut parts = hf.parts_mut();
-        let StageBuffers { patch, smooth, .. } = &mut buffers;
+        let SmoothScratch {
+            patch,
+            buffers: smooth,
+        } = scratch;
         patch.load(&parts, w);
         smooth.smoothness.clear();
         smooth
@@ -125,7 +157,6 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
         parts.changes.smoothing_capped += usize::from(capped);
         changed
     };
-    hf.return_buffers(buffers);
     if !changed.is_empty() {
         hf.mark_dirty(changed);
     }
@@ -182,15 +213,22 @@ impl SmoothBuffers {
         self.next.extend_from_slice(&patch.heights);
         self.changed.clear();
         self.changed.resize(n, 0);
+        // Only the samples a conducting edge touches can move: the passes
+        // run over their span of inner-row indices; the others keep their
+        // bits (their fluxes would all be zero).
+        let span = conducting_span(&self.edge_x, &self.edge_z, s, n);
+        self.give.clear();
+        self.give.resize(len, 0.0);
         for _ in 0..passes {
-            self.give.clear();
-            self.give.extend(
-                patch
-                    .heights
-                    .iter()
-                    .zip(&patch.floor)
-                    .map(|(&h, &f)| 0.25 * (h - f).max(0.0)),
-            );
+            // The give of the span and of its neighbours one row away.
+            let near = span.start..(span.end + 2 * s).min(len);
+            for ((g, &h), &f) in self.give[near.clone()]
+                .iter_mut()
+                .zip(&patch.heights[near.clone()])
+                .zip(&patch.floor[near])
+            {
+                *g = 0.25 * (h - f).max(0.0);
+            }
             let h = &patch.heights;
             let (up, down) = (&h[..n], &h[2 * s..2 * s + n]);
             let (left, centre, right) = (&h[s - 1..s - 1 + n], &h[s..s + n], &h[s + 1..s + 1 + n]);
@@ -207,7 +245,7 @@ impl SmoothBuffers {
             // `max`/`min` rather than `clamp`: this form lets the loop vectorise.
             let flux =
                 |r: f32, ha: f32, hb: f32, ga: f32, gb: f32| (r * (hb - ha)).max(-ga).min(gb);
-            for k in 0..n {
+            for k in span.clone() {
                 let (hc, gc) = (centre[k], g_centre[k]);
                 let flux_right = flux(ex[k], hc, right[k], gc, g_right[k]);
                 let flux_left = flux(ex_left[k], left[k], hc, g_left[k], gc);
@@ -276,6 +314,26 @@ impl SmoothBuffers {
             .chain(&self.edge_z)
             .fold(0.0, |a, &e| a.max(e))
     }
+}
+
+/// The inner-row indices `k` (local sample `s + k`, `k < n`) of the samples
+/// a conducting edge touches: an `edge_x[l]` joins local samples `l` and
+/// `l + 1`, an `edge_z[l]` joins `l` and `l + stride`. Empty when no edge conducts.
+fn conducting_span(edge_x: &[f32], edge_z: &[f32], stride: usize, n: usize) -> Range<usize> {
+    let first = |e: &[f32]| e.iter().position(|&r| r != 0.0);
+    let last = |e: &[f32]| e.iter().rposition(|&r| r != 0.0);
+    let lo = match (first(edge_x), first(edge_z)) {
+        (Some(a), Some(b)) => a.min(b),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => return 0..0,
+    };
+    let hi = last(edge_x)
+        .map(|l| l + 1)
+        .max(last(edge_z).map(|l| l + stride))
+        .unwrap_or(lo);
+    let start = lo.saturating_sub(stride).min(n);
+    let end = (hi + 1).saturating_sub(stride).min(n);
+    start..end.max(start)
 }
 
 #[cfg(test)]
@@ -452,7 +510,7 @@ mod tests {
         let mut hf = field(flat(GridSpec::square(1.0, 41), 1.0).unwrap());
         let print = GridRect::new(10, 10, 20, 20);
         assert_eq!(smoothing_duration(&hf, print, 1.0 / 120.0), 1.0 / 120.0);
-        hf.parts_mut().changes.released = print;
+        hf.parts_mut().changes.released.add(print);
         for dt in [1.0 / 30.0, 1.0 / 120.0] {
             assert_eq!(smoothing_duration(&hf, print, dt), 1.0 / REFERENCE_RATE_HZ);
             // A stance window reaching past the released print keeps its dt.

@@ -7,8 +7,8 @@ use glam::{Vec2, Vec3};
 use super::carve::{FootPrint, carve};
 use super::error::TerrainError;
 use super::heightfield::{Heightfield, StepChanges};
-use super::settle::{settle_pending, settle_step, stage_window};
-use super::smooth::smooth;
+use super::settle::{SettleScratch, settle_pending_with, settle_step_with, stage_window};
+use super::smooth::{SmoothScratch, smooth_with};
 use crate::foot::FootSole;
 
 /// Carve, smooth and settle for one foot, as the terrain systems do in one
@@ -28,18 +28,39 @@ pub fn step_foot(
     contact: bool,
     dt: f32,
 ) -> Result<GridRect, TerrainError> {
+    step_foot_with(hf, &mut StageScratch::default(), print, sole, contact, dt)
+}
+
+/// The work buffers of smoothing and settling for [`step_foot_with`].
+#[derive(Debug, Default)]
+pub struct StageScratch {
+    /// Smoothing's buffers.
+    pub smooth: SmoothScratch,
+    /// Settling's buffers.
+    pub settle: SettleScratch,
+}
+
+/// [`step_foot`] in the buffers of `scratch` (reused from step to step).
+pub fn step_foot_with(
+    hf: &mut Heightfield,
+    scratch: &mut StageScratch,
+    print: &mut FootPrint,
+    sole: &FootSole,
+    contact: bool,
+    dt: f32,
+) -> Result<GridRect, TerrainError> {
     let carved = carve(hf, print, sole, contact, dt)?;
     let smoothed = if carved.is_empty() {
         GridRect::EMPTY
     } else {
-        smooth(hf, carved, dt)
+        smooth_with(hf, &mut scratch.smooth, carved, dt)
     };
-    let earlier = settle_pending(hf, dt);
+    let earlier = settle_pending_with(hf, &mut scratch.settle, dt);
     if carved.is_empty() {
         return Ok(earlier);
     }
     let window = stage_window(hf, carved);
-    settle_step(hf, window, smoothed, dt);
+    settle_step_with(hf, &mut scratch.settle, window, smoothed, dt);
     Ok(window.union(&earlier))
 }
 
@@ -162,11 +183,12 @@ pub fn plant_foothold(
     dt: f32,
 ) -> Result<FootholdReport, TerrainError> {
     let mut report = FootholdReport::default();
+    let mut scratch = StageScratch::default();
     let mut k = 0;
     while k <= steps || hf.settling_pending() {
         hf.begin_step();
         let sole = press_into(hf, sole_on_ground(hf, center, heading, size)?, dt);
-        let rect = step_foot(hf, print, &sole, k < steps, dt)?;
+        let rect = step_foot_with(hf, &mut scratch, print, &sole, k < steps, dt)?;
         report.add(rect, hf.changes());
         k += 1;
     }

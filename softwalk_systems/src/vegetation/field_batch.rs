@@ -7,12 +7,19 @@
 //! [`DeformationField::on_upright_blade`] in the same order (a skipped foot
 //! adds `+0.0`, which leaves the sum unchanged as it is never `-0.0`), so the
 //! result is bit-identical to the scalar path.
+//!
+//! With many feet, the feet are binned into a coarse grid ([`FootBins`],
+//! bins as wide as the field's reach) and each chunk is evaluated only
+//! against the feet of the bins within reach of its blades, in their index
+//! order: the feet left out would add only `+0.0`, so the result is the same
+//! bits and the cost follows the feet near each blade, not all of them.
 
 use glam::Vec3;
 
 use super::blade::Bend;
 use super::field::DeformationField;
 use super::field_memo::FieldMemo;
+use super::foot_bins::FootBins;
 use super::lanes::{F8, LANES, Mask};
 
 /// Upright geometry of [`LANES`] blades: root X and Z, middle and tip Y.
@@ -22,6 +29,18 @@ struct Upright {
     z: [f32; LANES],
     mid_y: [f32; LANES],
     tip_y: [f32; LANES],
+}
+
+impl Upright {
+    /// The XZ bounding box `(min, max)` of the first `used` blades.
+    fn bounds(&self, used: usize) -> ([f32; 2], [f32; 2]) {
+        let (mut lo, mut hi) = ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]);
+        for l in 0..used {
+            lo = [lo[0].min(self.x[l]), lo[1].min(self.z[l])];
+            hi = [hi[0].max(self.x[l]), hi[1].max(self.z[l])];
+        }
+        (lo, hi)
+    }
 }
 
 /// A translation of [`LANES`] points.
@@ -71,7 +90,14 @@ impl Points {
 pub(crate) struct FieldBatch {
     upright: Vec<Upright>,
     len: usize,
+    bins: FootBins,
+    near_index: Vec<u32>,
+    near: Vec<Vec3>,
 }
+
+/// Above this many feet a chunk gathers the feet near it from [`FootBins`]
+/// instead of looping over all of them.
+const BINNED_FEET: usize = 8;
 
 impl FieldBatch {
     /// Empties the batch.
@@ -97,16 +123,37 @@ impl FieldBatch {
     /// Evaluates the combined field of `feet` on every blade of the batch and
     /// hands each result, in insertion order, to `out`.
     pub(crate) fn evaluate(
-        &self,
+        &mut self,
         field: &DeformationField,
         feet: &[Vec3],
         mut out: impl FnMut(FieldMemo),
     ) {
+        let binned = feet.len() > BINNED_FEET;
+        let reach = field.radius();
+        if binned {
+            self.bins.rebuild(feet, reach);
+        }
         let mut left = self.len;
         for chunk in &self.upright {
-            let (mid, tip, size) = evaluate_chunk(field, feet, chunk);
+            let used = LANES.min(left);
+            let near = if binned {
+                let (lo, hi) = chunk.bounds(used);
+                self.near_index.clear();
+                self.bins.gather(
+                    [lo[0] - reach, lo[1] - reach],
+                    [hi[0] + reach, hi[1] + reach],
+                    &mut self.near_index,
+                );
+                self.near.clear();
+                self.near
+                    .extend(self.near_index.iter().map(|&k| feet[k as usize]));
+                &self.near[..]
+            } else {
+                feet
+            };
+            let (mid, tip, size) = evaluate_chunk(field, near, chunk);
             let (mid, tip, size) = (mid.lanes(), tip.lanes(), size.to_array());
-            for l in 0..LANES.min(left) {
+            for l in 0..used {
                 let bend = Bend {
                     mid: mid[l],
                     tip: tip[l],

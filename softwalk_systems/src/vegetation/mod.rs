@@ -17,6 +17,7 @@ mod error;
 mod field;
 mod field_batch;
 mod field_memo;
+mod foot_bins;
 mod foot_motion;
 mod friction;
 mod grid;

@@ -92,6 +92,8 @@ struct StepScratch {
     markers: Vec<Marker>,
     /// Grid ranges near each marker, with the marker's index.
     marker_ranges: Vec<(usize, Range<usize>)>,
+    /// `(merged range, marker)` pairs whose ranges meet, sorted.
+    range_markers: Vec<(usize, usize)>,
     /// The markers that can reach the blades of one range.
     relevant: Vec<Marker>,
     /// Merged grid ranges near the feet.
@@ -358,6 +360,7 @@ impl GrassPatch {
         let StepScratch {
             markers,
             marker_ranges,
+            range_markers,
             relevant,
             ranges,
             reached,
@@ -397,16 +400,23 @@ impl GrassPatch {
         merge_ranges(ranges);
         reached.clear();
         fresh.clear();
-        for range in ranges.iter() {
-            // Only the markers whose own ranges meet this one can reach its blades.
+        // Only the markers whose own ranges meet a merged range can reach its
+        // blades: pair each marker range with the merged ranges it meets (they
+        // are sorted and disjoint), then read the pairs range by range, the
+        // markers in index order.
+        range_markers.clear();
+        for (k, r) in marker_ranges.iter() {
+            let first = ranges.partition_point(|m| m.end <= r.start);
+            let meeting = ranges[first..].iter().take_while(|m| m.start < r.end);
+            range_markers.extend((first..).zip(meeting).map(|(q, _)| (q, *k)));
+        }
+        range_markers.sort_unstable();
+        range_markers.dedup();
+        let mut pairs = range_markers.iter().peekable();
+        for (q, range) in ranges.iter().enumerate() {
             relevant.clear();
-            for (k, m) in markers.iter().enumerate() {
-                let meets = |(j, r): &(usize, Range<usize>)| {
-                    *j == k && r.start < range.end && range.start < r.end
-                };
-                if marker_ranges.iter().any(meets) {
-                    relevant.push(*m);
-                }
+            while let Some(&(_, k)) = pairs.next_if(|(rq, _)| *rq == q) {
+                relevant.push(markers[k]);
             }
             self.columns
                 .collect_reached(range.clone(), relevant, radius, reached, fresh);

@@ -176,7 +176,7 @@ impl VirtualPlatform {
         let max_height = (vegetation_height * settings.height_fraction).max(0.0);
         let rise_rate = max_height / settings.rise_time;
         let sole_bottom = foot.sole.heel.y.min(foot.sole.toe.y);
-        let reached = foot.contact
+        let reached = foot.pressing
             || foot.phase == FootPhase::Stance
             || sole_bottom <= ground_y + self.height + settings.contact_tolerance;
         let next = match self.phase {
@@ -253,6 +253,7 @@ mod tests {
             velocity: Vec3::ZERO,
             phase,
             contact: phase == FootPhase::Stance,
+            pressing: phase == FootPhase::Stance,
         }
     }
 

@@ -1,7 +1,7 @@
 //! [`WorldView`]: draws a world into frames.
 
 use engine::ecs::{Entity, World};
-use engine::geom::{GridRect, TriMesh};
+use engine::geom::TriMesh;
 use engine::render::{
     Camera, CameraFollow, FrameScene, GrassBlade, MeshInstance, RenderError, Renderer,
     SampleColors, TerrainRenderer,
@@ -15,7 +15,7 @@ use super::overlays::draw_overlays;
 use super::palette::TerrainPaint;
 use super::settings::ViewSettings;
 use crate::character::{Balance, CharacterBody, Pose, character_mesh};
-use crate::sim::{Props, TerrainDirty, WalkerMetrics};
+use crate::sim::{GroundState, Props, WalkerMetrics};
 use crate::terrain::Heightfield;
 use crate::vegetation::GrassPatch;
 
@@ -72,8 +72,10 @@ impl WorldView {
         settings: &ViewSettings,
     ) -> Result<WorldView, ViewError> {
         let (terrain, paint) = {
-            let mut terrains = world.query::<&Heightfield>();
-            let hf = terrains.iter().next().ok_or(ViewError::NoTerrain)?;
+            let ground = world
+                .get_resource::<GroundState>()
+                .ok_or(ViewError::NoTerrain)?;
+            let hf = ground.terrain();
             let paint = TerrainPaint::of(hf);
             let mut terrain = TerrainRenderer::new(hf.grid(), settings.terrain)?;
             terrain.update(hf.grid(), &colors(&paint, hf), &settings.lighting)?;
@@ -161,12 +163,14 @@ impl WorldView {
     /// Re-meshes and re-lights only the terrain patches the simulation
     /// changed since the last frame.
     fn update_terrain(&mut self, world: &World) -> Result<(), ViewError> {
-        let changed = take_changed_terrain(world);
+        let Some(mut ground) = world.get_resource_mut::<GroundState>() else {
+            return Err(ViewError::NoTerrain);
+        };
+        let changed = ground.take_unseen();
         if changed.is_empty() {
             return Ok(());
         }
-        let mut terrains = world.query::<&Heightfield>();
-        let hf = terrains.iter().next().ok_or(ViewError::NoTerrain)?;
+        let hf = ground.terrain();
         for &rect in &changed {
             self.paint.refresh(hf, rect);
             self.terrain.mark_dirty(rect);
@@ -190,20 +194,6 @@ impl WorldView {
                     color: Vec3::from(b.colour),
                 }));
         }
-    }
-}
-
-/// The terrain rectangles the simulation changed since the last call (the
-/// one place the view reads the simulation's dirty-region bookkeeping).
-fn take_changed_terrain(world: &World) -> Vec<GridRect> {
-    let rect = world
-        .get_resource_mut::<TerrainDirty>()
-        .map(|mut d| d.take())
-        .unwrap_or_default();
-    if rect.is_empty() {
-        Vec::new()
-    } else {
-        vec![rect]
     }
 }
 

@@ -8,7 +8,7 @@ use image::RgbaImage;
 
 use super::OutputError;
 use super::frame_size::FrameSize;
-use super::temp_file::TempFile;
+use crate::io::AtomicFile;
 
 /// How a GIF frame's colours are reduced to 256.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -117,7 +117,7 @@ enum Quantizer {
 pub struct GifWriter {
     // Declared before `temp` so that it is dropped (and stops writing) first.
     encoder: Option<gif::Encoder<BufWriter<File>>>,
-    temp: TempFile,
+    temp: AtomicFile,
     delay_cs: u16,
     quantizer: Quantizer,
     size: FrameSize,
@@ -164,7 +164,7 @@ impl GifWriter {
         };
         Ok(Self {
             encoder: None,
-            temp: TempFile::create(path)?,
+            temp: AtomicFile::create(path)?,
             delay_cs: ((delay_ms + 5) / 10) as u16,
             quantizer,
             size: FrameSize::default(),
@@ -197,8 +197,9 @@ impl GifWriter {
                 Quantizer::Fixed(tables) => &tables.palette[..],
                 Quantizer::Adaptive { .. } => &[][..],
             };
-            let mut encoder = gif::Encoder::new(self.temp.buffered_clone()?, w16, h16, global)
-                .map_err(|e| self.encode_error(e))?;
+            let writer = BufWriter::with_capacity(1 << 16, self.temp.try_clone_file()?);
+            let mut encoder =
+                gif::Encoder::new(writer, w16, h16, global).map_err(|e| self.encode_error(e))?;
             encoder
                 .set_repeat(gif::Repeat::Infinite)
                 .map_err(|e| self.encode_error(e))?;
@@ -225,7 +226,7 @@ impl GifWriter {
             .and_then(|mut file| file.flush())
             .map_err(|e| self.temp.io_error(e))?;
         let Self { temp, .. } = self;
-        temp.commit()
+        Ok(temp.commit()?)
     }
 
     /// Checks a frame's size against the first frame and the format's limits.
@@ -244,7 +245,7 @@ impl GifWriter {
 
     fn encode_error(&self, e: gif::EncodingError) -> OutputError {
         match e {
-            gif::EncodingError::Io(source) => self.temp.io_error(source),
+            gif::EncodingError::Io(source) => self.temp.io_error(source).into(),
             other => OutputError::Encode {
                 path: self.temp.target().to_path_buf(),
                 message: other.to_string(),

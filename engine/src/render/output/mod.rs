@@ -3,8 +3,8 @@
 //!
 //! Every file is written whole or not at all: single images go through
 //! [`crate::io::write_atomic`]; the streaming animation writers write into a
-//! temporary file beside the target and rename it in `finish()`. A writer
-//! dropped without `finish()` leaves no file behind.
+//! [`crate::io::AtomicFile`] (`.NAME.partial` beside the target) and rename it
+//! in `finish()`. A writer dropped without `finish()` leaves no file behind.
 
 mod apng;
 mod contact_sheet;
@@ -12,7 +12,6 @@ mod error;
 mod frame_size;
 mod gif;
 mod png;
-mod temp_file;
 
 pub use apng::ApngWriter;
 pub use contact_sheet::contact_sheet;
