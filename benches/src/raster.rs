@@ -214,9 +214,11 @@ pub fn run() -> Vec<Row> {
     let mut instance = MeshInstance::new(&mesh, Mat4::IDENTITY, SAND);
     instance.cull = CullMode::None;
     let lit_meshes = [instance];
+    // euc casts no shadows: neither does ours here.
     let lit_scene = FrameScene {
         meshes: &lit_meshes,
         lighting,
+        shadows: false,
         ..FrameScene::new()
     };
     let [ours_lit, ours_lit_2, euc_lit_ns] = time_interleaved_ns(
@@ -242,6 +244,7 @@ pub fn run() -> Vec<Row> {
     let prelit = FrameScene {
         meshes: &baked_meshes,
         lighting: unfogged,
+        shadows: false,
         ..FrameScene::new()
     };
     let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).expect("style");

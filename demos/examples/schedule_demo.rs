@@ -3,7 +3,7 @@
 //! Builds a world by hand with `SimBuilder` (a sand-and-snow terrain, a patch
 //! of grass, one walker), prints the resolved system order, adds a user system
 //! that logs the centre of mass once per simulated second right after the foot
-//! IK, runs the steps and renders the last frame with the engine's renderer.
+//! IK, runs the steps and renders the last frame with `WorldView`.
 //!
 //! ```text
 //! cargo run --release -p demos --example schedule_demo [OUT_DIR] [STEPS]
@@ -17,19 +17,15 @@ use std::error::Error;
 
 use engine::ecs::World;
 use engine::geom::GridRect;
-use engine::render::{
-    Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors,
-    TerrainRenderer, TerrainStyle, save_png,
-};
+use engine::render::save_png;
 use engine::schedule::{App, Time};
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 use image::RgbaImage;
-use softwalk_systems::character::{CharacterBody, CharacterDesc, Pose, WalkPath, character_mesh};
-use softwalk_systems::sim::{
-    CharacterName, GroundState, SimBuilder, WalkerMetrics, labels, run_steps,
-};
+use softwalk_systems::character::{CharacterBody, CharacterDesc, Pose, WalkPath};
+use softwalk_systems::sim::{CharacterName, SimBuilder, WalkerMetrics, labels, run_steps};
 use softwalk_systems::terrain::{Heightfield, MaterialTable, generate};
-use softwalk_systems::vegetation::{GrassPatch, GrassSettings, XzRect};
+use softwalk_systems::vegetation::{GrassSettings, XzRect};
+use softwalk_systems::view::{CameraRig, ViewSettings, WorldView};
 
 /// Fixed step: 60 Hz.
 const DT: f32 = 1.0 / 60.0;
@@ -118,66 +114,22 @@ fn log_com_each_second(world: &mut World) {
     }
 }
 
-/// Draws the world with the engine's renderer: terrain coloured by material
-/// and darkened where trodden, the walkers' capsule meshes, the grass blades.
-/// The camera looks down and back along the trail from ahead of the first walker.
+/// Draws the world with [`WorldView`]: the camera looks down and back along
+/// the trail from ahead of the first walker.
 fn render_final_frame(world: &World) -> Result<RgbaImage, Box<dyn Error>> {
-    let ground = world
-        .get_resource::<GroundState>()
-        .ok_or("the world has no terrain")?;
-    let hf = ground.terrain();
-    let paint = demos::view::TerrainPaint::of(hf);
-    let colors = SampleColors {
-        nx: hf.grid().nx(),
-        albedo: &paint.albedo,
-        disturbed: &paint.disturbed,
-    };
-    let lighting = Lighting::default();
-    let mut terrain = TerrainRenderer::new(hf.grid(), TerrainStyle::default())?;
-    terrain.update(hf.grid(), &colors, &lighting)?;
-
-    // One capsule mesh per walker, its parts placed by the pose.
-    let walkers: Vec<_> = world
-        .query::<(&CharacterBody, &Pose, &WalkerMetrics)>()
+    let com = world
+        .query::<&WalkerMetrics>()
         .iter()
-        .map(|(body, pose, m)| {
-            (
-                character_mesh(body),
-                pose.part_transforms(),
-                m.character.com,
-            )
-        })
-        .collect();
-    let meshes: Vec<MeshInstance<'_>> = walkers
-        .iter()
-        .map(|(mesh, parts, _)| {
-            MeshInstance::new(mesh, Mat4::IDENTITY, Vec3::new(0.16, 0.30, 0.75)).with_parts(parts)
-        })
-        .collect();
-    let blades: Vec<GrassBlade> = world
-        .query::<&GrassPatch>()
-        .iter()
-        .flat_map(|patch| patch.blade_polylines().collect::<Vec<_>>())
-        .map(|b| GrassBlade {
-            root: b.points[0],
-            mid: b.points[1],
-            tip: b.points[2],
-            width: b.width,
-            color: Vec3::from(b.colour),
-        })
-        .collect();
-
-    let com = walkers.first().map_or(Vec3::new(4.0, 1.0, 2.0), |w| w.2);
-    let camera = Camera::perspective(50f32.to_radians(), FRAME.0, FRAME.1, 0.05, 100.0)?.look_at(
+        .next()
+        .map_or(Vec3::new(4.0, 1.0, 2.0), |m| m.character.com);
+    let rig = CameraRig::fixed(
         com + Vec3::new(1.2, 2.0, 2.4),
         com + Vec3::new(-1.6, -1.2, 0.0),
-        Vec3::Y,
     );
-    let scene = FrameScene {
-        terrain: Some(&terrain),
-        meshes: &meshes,
-        blades: &blades,
-        lighting,
+    let settings = ViewSettings {
+        width: FRAME.0,
+        height: FRAME.1,
+        ..ViewSettings::default()
     };
-    Ok(Renderer::new(FRAME.0, FRAME.1)?.render(&scene, &camera))
+    Ok(WorldView::new(world, rig, &settings)?.render(world, 0.0)?)
 }

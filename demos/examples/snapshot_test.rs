@@ -24,7 +24,7 @@ use std::error::Error;
 use std::path::Path;
 
 use demos::scene::Scene;
-use demos::view::SceneView;
+use demos::view::scene_view;
 use engine::snapshot::{Outcome, Tolerance};
 use softwalk_systems::sim::run_steps;
 
@@ -77,7 +77,7 @@ fn run() -> Result<(), Box<dyn Error>> {
 
     // Rendering reads the world and never changes it. One thread or many
     // give the same pixels.
-    let mut view = SceneView::new(
+    let mut view = scene_view(
         &scene,
         &app.world,
         &walkers,

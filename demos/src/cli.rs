@@ -8,8 +8,8 @@ use thiserror::Error;
 
 use crate::commands;
 use crate::out_dir::OutputDirError;
+use crate::runner::SimError;
 use crate::scene::{MAX_FRAME_SIDE, SceneError};
-use crate::sim::SimError;
 
 /// Walk characters over loose ground (sand, soil, mud, snow, grass) and record what happens.
 #[derive(Debug, Parser)]
@@ -282,7 +282,7 @@ pub enum CliError {
     Stdout(#[source] std::io::Error),
     /// An animation, contact sheet or plot could not be written.
     #[error("writing the outputs failed")]
-    Output(#[source] crate::sim::ObserverError),
+    Output(#[source] crate::runner::ObserverError),
     /// Frames differ from their goldens beyond the tolerance.
     #[error("{failed} of {total} frame(s) differ from their goldens (reports above)")]
     Snapshot {

@@ -1,7 +1,9 @@
 //! The `softwalk` program's library: scenes, the command line and outputs.
 //!
 //! - [`scene`]: scene files (TOML), validation and the built-in scenes;
-//! - [`sim`]: the interface between the command line and the simulation;
+//! - [`runner`]: runs a scene's simulation for the command line, drawing
+//!   frames with a [`softwalk_systems::view::WorldView`];
+//! - [`view`]: the camera and settings a scene chooses for its view;
 //! - [`output`]: `metrics.csv`, `summary.json`, frames and the printed summary;
 //! - [`paper`]: the paper's claims measured on reproduction scenes (`softwalk paper`);
 //! - [`memory_estimate`]: the memory a run needs, checked against a budget before it starts;
@@ -17,7 +19,7 @@ pub mod out_files;
 pub mod output;
 pub mod paper;
 pub mod progress;
+pub mod runner;
 pub mod scene;
 pub mod scene_source;
-pub mod sim;
 pub mod view;

@@ -11,8 +11,8 @@ use std::fmt;
 
 use thiserror::Error;
 
+use crate::runner::RunOptions;
 use crate::scene::{MAX_STEPS, Scene, png_size};
-use crate::sim::RunOptions;
 
 /// The default memory budget, bytes (8 GiB); `--max-memory` changes it.
 pub const DEFAULT_MAX_MEMORY: u64 = 8 << 30;

@@ -4,7 +4,7 @@ use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressDrawTarget};
 
-use crate::sim::{ObserverError, RunObserver};
+use crate::runner::{ObserverError, RunObserver};
 
 /// Advances a progress bar at the end of every step.
 pub struct Progress {

@@ -107,6 +107,7 @@ fn bench(c: &mut Criterion) {
         meshes: &meshes,
         blades: &blades,
         lighting,
+        shadows: true,
     };
     let camera = bench_camera();
     let renderer = Renderer::new(1280, 720).expect("size");

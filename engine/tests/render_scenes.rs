@@ -223,6 +223,7 @@ fn mesh_parts_and_blades_draw_where_expected() {
         meshes: &meshes,
         blades: &blades,
         lighting,
+        shadows: true,
     };
     let (image, stats) = renderer.render_with_stats(&scene, &cam);
     preview("mesh_and_grass", &image);
@@ -258,6 +259,7 @@ fn frames_are_identical_on_one_and_two_threads() {
         meshes: &meshes,
         blades: &blades,
         lighting,
+        shadows: true,
     };
     let cam = camera(200, 120);
     let one = Renderer::new(200, 120)

@@ -7,8 +7,8 @@ use std::path::Path;
 
 use demos::cli::error_line;
 use demos::memory_estimate::MemoryEstimate;
+use demos::runner::RunOptions;
 use demos::scene::Scene;
-use demos::sim::RunOptions;
 use engine::geom::{MeshBvh, Ray};
 use engine::glam::Vec3;
 
@@ -135,7 +135,7 @@ fn check_scene(text: &str, dir: &Path) -> Outcome {
         return Outcome::OverBudget;
     }
     coarsen(&mut scene);
-    match demos::sim::run(&scene, &options, &mut ()) {
+    match demos::runner::run(&scene, &options, &mut ()) {
         Ok(_) => Outcome::Accepted,
         Err(e) => Outcome::FailedMidRun(error_line(&e)),
     }

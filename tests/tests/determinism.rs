@@ -1,8 +1,8 @@
 //! Same scene, same inputs: the same world, bit for bit, with or without
 //! rendering and on any thread count (checked through the world hash).
 
+use demos::runner::{RunOptions, run};
 use demos::scene::Scene;
-use demos::sim::{RunOptions, run};
 
 const STEPS: u64 = 90;
 

@@ -4,8 +4,8 @@
 
 use demos::cli::{Cli, CliError, error_line, execute};
 use demos::memory_estimate::{BudgetError, DEFAULT_MAX_MEMORY, MemoryEstimate};
+use demos::runner::RunOptions;
 use demos::scene::{MAX_STEPS, Scene};
-use demos::sim::RunOptions;
 
 fn run(args: &[&str]) -> Result<(), CliError> {
     let mut all = vec!["softwalk"];

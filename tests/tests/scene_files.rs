@@ -169,7 +169,10 @@ fn builtin_scenes_cover_the_papers_settings() {
 #[test]
 fn missing_field_is_named_with_its_line() {
     let e = error_with("size_x = 10.0\n", "");
-    assert!(e.starts_with("terrain.size_x: missing field `size_x`"), "{e}");
+    assert!(
+        e.starts_with("terrain.size_x: missing field `size_x`"),
+        "{e}"
+    );
     assert!(e.contains("line "), "{e}");
 }
 

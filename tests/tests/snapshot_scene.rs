@@ -1,7 +1,7 @@
 //! Snapshot tests on rendered frames (goldens in `tests/snapshots/`).
 //!
 //! - the built-in `default` scene's first second, through the real run
-//!   (`demos::sim::run`: scene -> pipeline -> `SceneView` with overlays);
+//!   (`demos::runner::run`: scene -> pipeline -> `SceneView` with overlays);
 //! - a lit bumpy height grid with a real footprint, a mesh and grass blades,
 //!   through the engine's renderer alone.
 //!
@@ -11,8 +11,8 @@
 use std::f32::consts::PI;
 
 use demos::output::LastFrame;
+use demos::runner::{RunOptions, run};
 use demos::scene::Scene;
-use demos::sim::{RunOptions, run};
 use engine::geom::HeightGrid;
 use engine::render::{
     Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors, Sun,
@@ -148,6 +148,7 @@ fn lit_bumpy_ground_with_print_mesh_and_blades_matches_its_golden() {
         meshes: &meshes,
         blades: &blades,
         lighting,
+        shadows: true,
     };
     let camera = Camera::perspective(0.8, 192, 144, 0.05, 50.0)
         .expect("camera")

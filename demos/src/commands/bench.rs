@@ -5,8 +5,8 @@ use std::io::Write;
 
 use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{BenchArgs, CliError, CrowdArgs};
+use crate::runner::{self, RunOptions, RunSummary};
 use crate::scene::{CrowdLayout, CrowdSpec, Scene};
-use crate::sim::{self, RunOptions, RunSummary};
 
 /// Runs the scene headless `args.repeats` times and prints the set-up time,
 /// the wall time per step after set-up and each system's cost per step: the
@@ -23,7 +23,7 @@ pub fn bench(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let pool = thread_pool(options.threads)?;
     let mut runs: Vec<RunSummary> = Vec::with_capacity(args.repeats as usize);
     for _ in 0..args.repeats {
-        runs.push(pool.install(|| sim::run(&scene, &options, &mut ()))?);
+        runs.push(pool.install(|| runner::run(&scene, &options, &mut ()))?);
     }
     let first = &runs[0];
     let same_world = runs.iter().all(|s| s.world_hash == first.world_hash);

@@ -12,9 +12,9 @@ use rayon::ThreadPool;
 
 use crate::cli::{CliError, SceneArgs};
 use crate::memory_estimate::{MemoryEstimate, check_steps};
+use crate::runner::RunOptions;
 use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
-use crate::sim::RunOptions;
 
 /// The scene and the run options the shared arguments ask for (rendering on,
 /// no hash); a thread count above the machine's cores is clamped with a warning.

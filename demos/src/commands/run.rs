@@ -9,11 +9,27 @@ use crate::cli::{CliError, RunArgs};
 use crate::out_dir::{prepare_output_dir, remove_partial_files};
 use crate::out_files::check_output_files;
 use crate::output::{
-    AnimationWriter, ContactSheet, FrameWriter, HeightmapReport, HeightmapWriter, MetricsCsv,
-    PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
+    AnimationWriter, ContactSheet, FrameThread, FrameWriter, HeightmapReport, HeightmapWriter,
+    MetricsCsv, PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
 };
 use crate::progress::Progress;
-use crate::sim::{self, Observers};
+use crate::runner::{self, Frame, ObserverError, Observers, RunObserver};
+
+/// What a run writes of its frames: the PNG files, the animation and the
+/// contact sheet's thumbnails.
+struct FrameOutputs {
+    files: FrameWriter,
+    animation: AnimationWriter,
+    sheet: ContactSheet,
+}
+
+impl RunObserver for FrameOutputs {
+    fn on_frame(&mut self, frame: &Frame<'_>) -> Result<(), ObserverError> {
+        self.files.on_frame(frame)?;
+        self.animation.on_frame(frame)?;
+        self.sheet.on_frame(frame)
+    }
+}
 
 /// Resolves the scene, checks the output folder and every output file's path
 /// (before any work, removing partial files a killed run left), runs the
@@ -61,16 +77,21 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let names = scene.characters.iter().map(|c| c.name.clone()).collect();
     let mut metrics = MetricsCsv::create(&dir.join("metrics.csv"), names)?;
     let mut stats = StatsCollector::new(scene.characters.len());
-    let mut frames = FrameWriter::new(&frames_dir);
     let mut plots = PlotCollector::new(scene.characters.iter().map(|c| c.name.clone()).collect());
     let mut heightmaps = HeightmapWriter::new(&dir);
     let frame_ms = (options.dt * f64::from(options.render_every) * 1000.0).round() as u32;
-    let mut animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms)
+    let animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms)
         .map_err(CliError::Output)?;
     let expected_frames = options
         .steps
         .div_ceil(u64::from(options.render_every.max(1)));
-    let mut sheet = ContactSheet::new(expected_frames, 12, render.contact_sheet_columns);
+    let sheet = ContactSheet::new(expected_frames, 12, render.contact_sheet_columns);
+    // Frames are encoded on their own thread while the next ones are drawn.
+    let mut frame_outputs = FrameThread::spawn(FrameOutputs {
+        files: FrameWriter::new(&frames_dir),
+        animation,
+        sheet,
+    });
     let mut progress = Progress::new(options.steps);
 
     let start = Instant::now();
@@ -83,22 +104,22 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
             &mut progress,
         ]);
         if options.render {
-            observers.0.extend([
-                &mut frames as &mut dyn sim::RunObserver,
-                &mut animation,
-                &mut sheet,
-            ]);
+            observers.0.push(&mut frame_outputs);
         }
-        pool.install(|| sim::run(&scene, &options, &mut observers))
+        pool.install(|| runner::run(&scene, &options, &mut observers))
     };
     progress.finish();
+    let written = frame_outputs.finish().map_err(CliError::Output);
     let summary = summary?;
+    let FrameOutputs {
+        animation, sheet, ..
+    } = written?;
     metrics.finish()?;
-    let wall = start.elapsed().as_secs_f64();
     if options.render {
         animation.finish().map_err(CliError::Output)?;
         sheet.save(&sheet_path).map_err(CliError::Output)?;
     }
+    let wall = start.elapsed().as_secs_f64();
     for warning in plots.save(&plots_dir).skipped {
         eprintln!("warning: {warning}");
     }

@@ -15,7 +15,7 @@ use engine::snapshot::{Outcome, Snapshot, SnapshotEnv, SnapshotError, Tolerance}
 
 use super::{scene_and_options, thread_pool};
 use crate::cli::{CliError, SnapshotArgs};
-use crate::sim::{self, Frame, ObserverError, RunObserver};
+use crate::runner::{self, Frame, ObserverError, RunObserver};
 
 /// How the frames of one run compared with their goldens.
 #[derive(Debug, Default)]
@@ -96,7 +96,7 @@ pub fn snapshot(args: &SnapshotArgs, out: &mut dyn Write) -> Result<(), CliError
         },
         tally: SnapshotTally::default(),
     };
-    pool.install(|| sim::run(&scene, &options, &mut golden))?;
+    pool.install(|| runner::run(&scene, &options, &mut golden))?;
     let tally = golden.tally;
     print_tally(out, &tally, &args.golden).map_err(CliError::Stdout)?;
     if tally.failed.is_empty() {

@@ -5,7 +5,7 @@ use std::path::Path;
 use engine::render::{ApngWriter, GifWriter, contact_sheet, save_png};
 use image::{Rgba, RgbaImage, imageops};
 
-use crate::sim::{Frame, ObserverError, RunObserver};
+use crate::runner::{Frame, ObserverError, RunObserver};
 
 /// Largest side of an animation frame; larger frames are halved (GIFs of full
 /// 960x540 frames would be large and slow to encode).

@@ -3,7 +3,7 @@
 use glam::Vec3;
 use serde::Serialize;
 
-use crate::sim::{ObserverError, RunObserver, StepRecord};
+use crate::runner::{ObserverError, RunObserver, StepRecord};
 
 /// Figures for one character over a run.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
@@ -103,7 +103,7 @@ mod tests {
     use softwalk_systems::sim::WalkerMetrics;
 
     use super::*;
-    use crate::sim::test_records;
+    use crate::runner::test_records;
 
     #[test]
     fn figures_match_hand_computation() {

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use engine::render::save_png;
 
-use crate::sim::{Frame, ObserverError, RunObserver};
+use crate::runner::{Frame, ObserverError, RunObserver};
 
 /// Writes every frame to `DIR/frame_NNNNNN.png` (NNNNNN = step), each file whole or not at all.
 #[derive(Debug, Clone)]

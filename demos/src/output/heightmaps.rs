@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use engine::asset::{HeightmapInfo, save_heightmap_png16};
 use engine::geom::HeightGrid;
 
-use crate::sim::{ObserverError, RunObserver, TerrainMoment};
+use crate::runner::{ObserverError, RunObserver, TerrainMoment};
 
 /// Writes `terrain_initial.png` and `terrain_final.png` (16-bit grayscale,
 /// normalised to each grid's min..max) and keeps what is needed to read heights back.

@@ -2,14 +2,14 @@
 
 use image::RgbaImage;
 
-use crate::sim::{Frame, ObserverError, RunObserver};
+use crate::runner::{Frame, ObserverError, RunObserver};
 
 /// Keeps the last frame a run renders (for a gallery image or a snapshot test).
 ///
 /// ```no_run
 /// use demos::output::LastFrame;
 /// use demos::scene::Scene;
-/// use demos::sim::{RunOptions, run};
+/// use demos::runner::{RunOptions, run};
 ///
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let scene = Scene::builtin("default")?;

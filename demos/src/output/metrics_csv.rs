@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use engine::io::{AtomicFile, WriteError};
 
 use super::metrics_row::{MetricsRow, metrics_columns};
-use crate::sim::{ObserverError, RunObserver, StepRecord};
+use crate::runner::{ObserverError, RunObserver, StepRecord};
 
 /// Streams metric rows; [`MetricsCsv::finish`] makes the file appear.
 /// Dropped without `finish`, it removes its partial file and the target is untouched.
@@ -105,7 +105,7 @@ mod tests {
 
     use super::*;
     use crate::output::metrics_header;
-    use crate::sim::test_records;
+    use crate::runner::test_records;
 
     fn record(step: u64, character: usize) -> StepRecord {
         let standing = test_records::standing();

@@ -7,7 +7,7 @@ use std::sync::OnceLock;
 
 use serde::{Serialize, Serializer};
 
-use crate::sim::StepRecord;
+use crate::runner::StepRecord;
 
 /// A number written as Rust's `Display` writes it (`0`, `0.95`, `-0.001998402`,
 /// `NaN`): the shortest text that reads back to the same value, never in

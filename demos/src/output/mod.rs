@@ -6,6 +6,7 @@
 mod animation;
 mod character_stats;
 mod decimated_series;
+mod frame_thread;
 mod frames;
 mod heightmaps;
 mod last_frame;
@@ -17,6 +18,7 @@ mod text_summary;
 
 pub use animation::{AnimationWriter, ContactSheet};
 pub use character_stats::{CharacterStats, StatsCollector};
+pub use frame_thread::FrameThread;
 pub use frames::FrameWriter;
 pub use heightmaps::HeightmapWriter;
 pub use last_frame::LastFrame;

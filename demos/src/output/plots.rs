@@ -8,7 +8,7 @@ use engine::render::{LinePlot, Series, save_png};
 use image::Rgba;
 
 use super::decimated_series::DecimatedSeries;
-use crate::sim::{ObserverError, RunObserver, StepRecord};
+use crate::runner::{ObserverError, RunObserver, StepRecord};
 
 /// Colours of successive series.
 const COLORS: [Rgba<u8>; 6] = [
@@ -175,7 +175,7 @@ impl RunObserver for PlotCollector {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::test_records;
+    use crate::runner::test_records;
 
     fn record(step: u64, torque: f32, pelvis_y: f32) -> StepRecord {
         let mut walker = test_records::standing();

@@ -6,8 +6,8 @@ use engine::io::{WriteError, write_atomic};
 use serde::Serialize;
 
 use super::CharacterStats;
+use crate::runner::{DepthStats, RunOptions, RunSummary, SystemTiming};
 use crate::scene::{Scene, TerrainShape};
-use crate::sim::{DepthStats, RunOptions, RunSummary, SystemTiming};
 
 /// The heightmap grid of the run.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -7,7 +7,7 @@ use std::fmt;
 use softwalk_systems::sim::WalkerMetrics;
 
 use super::walking_samples::walking_mask;
-use crate::sim::DepthStats;
+use crate::runner::DepthStats;
 
 /// Largest relative difference of the mean print depth from the reference.
 pub const DEPTH_TOLERANCE: f32 = 0.10;
@@ -124,7 +124,7 @@ impl fmt::Display for GaitFigures {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::test_records;
+    use crate::runner::test_records;
 
     #[test]
     fn swing_peaks_count_only_whole_swings_after_the_first_second() {

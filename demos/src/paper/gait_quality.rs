@@ -243,7 +243,7 @@ mod tests {
     use softwalk_systems::sim::SoleGround;
 
     use super::*;
-    use crate::sim::test_records;
+    use crate::runner::test_records;
 
     const DT: f32 = 0.25;
 

@@ -10,8 +10,8 @@ use super::report::GalleryImage;
 use super::variants::builtin;
 use super::{PaperError, PaperOptions};
 use crate::output::LastFrame;
+use crate::runner::{self, RunOptions};
 use crate::scene::Scene;
-use crate::sim::{self, RunOptions};
 
 /// Frame size of the gallery, pixels.
 pub const GALLERY_SIZE: (u32, u32) = (480, 270);
@@ -57,7 +57,7 @@ pub fn render_at(
     options.width = width;
     options.height = height;
     let mut last = LastFrame::default();
-    sim::run(scene, &options, &mut last).map_err(|source| PaperError::Run {
+    runner::run(scene, &options, &mut last).map_err(|source| PaperError::Run {
         scene: scene.name.clone(),
         source,
     })?;

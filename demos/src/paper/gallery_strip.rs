@@ -9,8 +9,8 @@ use super::recorded_run::record_run;
 use super::report::GalleryImage;
 use super::variants::builtin;
 use super::{PaperError, PaperOptions};
+use crate::runner::{self, Frame, ObserverError, RunObserver, RunOptions};
 use crate::scene::{CameraMode, Scene};
-use crate::sim::{self, Frame, ObserverError, RunObserver, RunOptions};
 
 /// The strip's scene.
 pub const STRIP_SCENE: &str = "snow-flat";
@@ -71,7 +71,7 @@ pub fn render_strip(
         count: frames,
         frames: Vec::with_capacity(frames),
     };
-    sim::run(&close, &options, &mut strip).map_err(run_error)?;
+    runner::run(&close, &options, &mut strip).map_err(run_error)?;
     Ok(side_by_side(&strip.frames, width, height))
 }
 

@@ -89,7 +89,7 @@ pub enum PaperError {
         scene: String,
         /// Why.
         #[source]
-        source: crate::sim::SimError,
+        source: crate::runner::SimError,
     },
     /// The output folder cannot be created.
     #[error("cannot create {path}")]

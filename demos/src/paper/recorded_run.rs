@@ -1,12 +1,14 @@
-//! A headless run of a scene through [`crate::sim::run`] (the same path as
+//! A headless run of a scene through [`crate::runner::run`] (the same path as
 //! `softwalk run --no-render`) that keeps every character's metrics per step.
 
 use softwalk_systems::sim::WalkerMetrics;
 
 use super::gait_figures::GaitFigures;
 use super::gait_quality::GaitQuality;
+use crate::runner::{
+    self, ObserverError, RunObserver, RunOptions, RunSummary, SimError, StepRecord,
+};
 use crate::scene::Scene;
-use crate::sim::{self, ObserverError, RunObserver, RunOptions, RunSummary, SimError, StepRecord};
 
 /// What a headless run recorded.
 #[derive(Debug, Clone)]
@@ -52,7 +54,7 @@ pub fn record_run(scene: &Scene, steps: u64) -> Result<RecordedRun, SimError> {
     options.steps = steps;
     options.render = false;
     let mut series = SeriesCollector::default();
-    let summary = sim::run(scene, &options, &mut series)?;
+    let summary = runner::run(scene, &options, &mut series)?;
     let mut walkers = series.0;
     walkers.resize(scene.characters.len(), Vec::new());
     Ok(RecordedRun {

@@ -74,7 +74,7 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
-    use crate::sim::test_records;
+    use crate::runner::test_records;
 
     #[test]
     fn travel_and_distance_over_the_last_window_only() {

@@ -57,15 +57,15 @@ pub fn trace(
     };
     let (mut app, entities) = scene
         .build_sim()
-        .map_err(|e| run_error(crate::sim::SimError::Setup(e)))?;
-    let initial = crate::sim::terrain_grid(&app.world);
+        .map_err(|e| run_error(crate::runner::SimError::Setup(e)))?;
+    let initial = crate::runner::terrain_grid(&app.world);
     let start_volume = app.world.resource::<GroundState>().volume();
     app.world.resource_mut::<GroundState>().clear_unseen();
     let mut walkers = vec![Vec::with_capacity(steps); entities.len()];
     let mut max_dirty_cells = 0;
     for _ in 0..steps {
         softwalk_systems::sim::step(&mut app)
-            .map_err(|e| run_error(crate::sim::SimError::Step(e)))?;
+            .map_err(|e| run_error(crate::runner::SimError::Step(e)))?;
         for (series, &entity) in walkers.iter_mut().zip(&entities) {
             if let Ok(m) = app.world.get::<WalkerMetrics>(entity) {
                 series.push(*m);
@@ -77,7 +77,7 @@ pub fn trace(
         each_step(&mut app.world);
     }
     let end_volume = app.world.resource::<GroundState>().volume();
-    let last = crate::sim::terrain_grid(&app.world);
+    let last = crate::runner::terrain_grid(&app.world);
     Ok(Trace {
         app,
         walkers,

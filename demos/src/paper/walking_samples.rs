@@ -33,7 +33,7 @@ pub fn first_settled_step(dt: f32) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::test_records;
+    use crate::runner::test_records;
 
     #[test]
     fn skips_the_first_second_and_everything_after_the_path_end() {

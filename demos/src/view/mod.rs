@@ -1,9 +1,6 @@
-//! Drawing a simulated world: terrain, characters, grass and debug overlays,
-//! through the engine's software renderer. Reads the world, never changes it.
+//! How a scene file's camera and settings become a
+//! [`softwalk_systems::view::WorldView`].
 
-mod overlays;
-mod palette;
 mod scene_view;
 
-pub use palette::{TerrainPaint, material_albedo};
-pub use scene_view::{SceneView, ViewError};
+pub use scene_view::scene_view;

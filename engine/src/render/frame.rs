@@ -4,19 +4,17 @@ use std::sync::{Arc, Mutex};
 
 use glam::Vec3;
 use image::RgbaImage;
-use multiversion::multiversion;
 use rayon::prelude::*;
 
-use super::Camera;
-use super::batch::{BAND_ROWS, ScreenBatch, Viewport};
-use super::batch_pool::BatchPool;
+use super::camera::Camera;
 use super::error::RenderError;
-use super::grass::{GrassBlade, GrassLayer};
-use super::kernels::{Kernels, run_baseline};
+use super::frame_view::FrameView;
+use super::grass::GrassLayer;
+use super::grass_blade::GrassBlade;
 use super::mesh::MeshInstance;
-use super::raster::{Band, to_u8};
-use super::scene_geometry::{FrameView, SceneGeometry};
+use super::raster::{BAND_ROWS, Band, TriangleBatch, Viewport, to_u8};
 use super::shading::Lighting;
+use super::shadow_map::ShadowMap;
 use super::terrain::TerrainRenderer;
 
 /// Everything drawn in one frame.
@@ -30,16 +28,20 @@ pub struct FrameScene<'a> {
     pub blades: &'a [GrassBlade],
     /// Sun, sky and fog.
     pub lighting: Lighting,
+    /// Whether meshes and blades cast sun shadows (on the ground, on each
+    /// other and on themselves).
+    pub shadows: bool,
 }
 
 impl<'a> FrameScene<'a> {
-    /// An empty scene (sky only) with default lighting.
+    /// An empty scene (sky only) with default lighting and shadows on.
     pub fn new() -> FrameScene<'a> {
         FrameScene {
             terrain: None,
             meshes: &[],
             blades: &[],
             lighting: Lighting::default(),
+            shadows: true,
         }
     }
 }
@@ -53,27 +55,22 @@ impl Default for FrameScene<'_> {
 /// What one frame sent to the rasterizer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FrameStats {
-    /// Screen batches (visible terrain patches, mesh parts; grass is one layer
-    /// beside them).
+    /// Triangle batches (visible terrain patches, mesh parts; grass is one
+    /// layer beside them).
     pub batches: usize,
-    /// Triangles set up after culling and clipping: those covering at least one
-    /// pixel centre (grass: blade pieces, a quad or a tip each).
+    /// Triangles set up after culling and clipping: those covering at least
+    /// one pixel centre's box (grass: blade pieces, a quad or a tip each).
     pub triangles: usize,
 }
 
 /// Draws [`FrameScene`]s into `width` x `height` RGBA images.
 ///
-/// Geometry is projected per batch (terrain patch, mesh part, group of blades)
-/// in parallel; then the screen is cut into fixed bands of rows, rasterized in
-/// parallel, each band drawing the batches in scene order. On a one-thread
-/// pool, terrain and mesh triangles are instead drawn as they are set up,
-/// with nothing kept to draw later. The image is bit-identical whatever the
-/// number of threads.
-///
-/// A renderer keeps its per-frame buffers (the depth buffer and the screen
-/// batches, with their projected vertices, set-up triangles and band lists)
-/// from frame to frame: render many frames with one renderer. Clones share
-/// them.
+/// First the sun's shadow map of the meshes and blades; then geometry is
+/// projected and set up per batch (terrain patch, mesh part, the grass
+/// layer) in parallel; then the screen is cut into fixed bands of rows,
+/// filled in parallel, each band drawing the batches in scene order. The
+/// image is byte-identical whatever the number of threads (see
+/// [`super::raster`]).
 #[derive(Debug, Clone)]
 pub struct Renderer {
     width: u32,
@@ -82,10 +79,6 @@ pub struct Renderer {
     /// The depth buffer kept between frames (saves allocating and faulting in
     /// a fresh one per frame); a frame that finds it busy allocates its own.
     depth: Arc<Mutex<Vec<f32>>>,
-    /// The screen batches kept between frames, for the same reason.
-    batches: Arc<BatchPool>,
-    /// The machine code of the hot kernels.
-    kernels: Kernels,
 }
 
 impl Renderer {
@@ -103,8 +96,6 @@ impl Renderer {
             height,
             pool: None,
             depth: Arc::default(),
-            batches: Arc::default(),
-            kernels: Kernels::default(),
         })
     }
 
@@ -125,13 +116,6 @@ impl Renderer {
             })?;
         self.pool = Some(Arc::new(pool));
         Ok(self)
-    }
-
-    /// The same renderer running its hot kernels with `kernels`.
-    #[cfg(test)]
-    pub(crate) fn with_kernels(mut self, kernels: Kernels) -> Renderer {
-        self.kernels = kernels;
-        self
     }
 
     /// Image width in pixels.
@@ -160,7 +144,6 @@ impl Renderer {
         let stats = self.draw(scene, camera, &mut image);
         (image, stats)
     }
-
     /// Renders one frame into `image`, which must have the renderer's size,
     /// overwriting every pixel: a loop drawing frame after frame into one
     /// image allocates no image per frame. Says how much geometry reached
@@ -222,101 +205,53 @@ impl Renderer {
             width: self.width as i32,
             height: self.height as i32,
         };
-        let view = FrameView::new(camera, &scene.lighting, vp, self.kernels);
-        if rayon::current_num_threads() == 1 {
-            return self.render_at_once(&view, scene, image);
-        }
-        // Terrain and meshes project while the grass layer builds (its blade
-        // sort and binning are serial), and the sky rows beside them: one
-        // barrier instead of three before the bands.
+        let shadows = scene
+            .shadows
+            .then(|| {
+                let casters: Vec<[Vec3; 3]> = scene
+                    .meshes
+                    .iter()
+                    .flat_map(|m| m.world_triangles())
+                    .collect();
+                ShadowMap::build(&casters, scene.blades, scene.lighting.sun.direction, camera)
+            })
+            .flatten();
+        let view = FrameView::new(camera, &scene.lighting, shadows.as_ref(), vp);
         let ((batches, sky_rows), grass) = rayon::join(
-            || rayon::join(|| self.project(&view, scene), || sky_rows(&view)),
-            // Grass: its own pass per band, after terrain and meshes.
-            || grass_layer(&view, scene),
+            || rayon::join(|| project(&view, scene), || sky_rows(&view)),
+            || GrassLayer::build(scene.blades, &view),
         );
         let stats = FrameStats {
             batches: batches.len(),
-            triangles: batches.iter().map(ScreenBatch::len).sum::<usize>() + grass.len(),
+            triangles: batches.iter().map(TriangleBatch::len).sum::<usize>() + grass.len(),
         };
         let w = self.width as usize;
         let band_rows = BAND_ROWS as usize;
         self.with_depth(|depth| {
-            // Every band clears its own rows (colour and depth), while they
-            // are in cache.
             image
                 .par_chunks_mut(w * 4 * band_rows)
                 .zip(depth.par_chunks_mut(w * band_rows))
                 .enumerate()
                 // One band per job: a thread that runs out of bands steals a
-                // single band, not half of a run of them, so both finish
-                // together.
+                // single band, so all finish together.
                 .with_max_len(1)
                 .for_each(|(b, (color, depth))| {
-                    let band = BandJob {
-                        index: b as i32,
+                    let y0 = b as i32 * BAND_ROWS;
+                    clear_to_sky(color, depth, &sky_rows[y0 as usize..], w);
+                    let y1 = y0 + (depth.len() / w) as i32;
+                    let mut band = Band {
                         color,
                         depth,
-                        sky_rows: Some(&sky_rows),
+                        width: vp.width,
+                        y0,
+                        y1,
                     };
-                    self.fill_band(band, &batches, &grass, vp);
+                    for batch in &batches {
+                        batch.draw_band(b as i32, &mut band);
+                    }
+                    grass.draw_band(b as i32, &mut band);
                 });
         });
-        self.batches.give_back(batches);
-        stats
-    }
-
-    /// [`Renderer::render_here`] on one thread: the frame is cleared, then
-    /// terrain and meshes are drawn as they are set up ([`DrawnAtOnce`]),
-    /// then the grass band by band. No band would run in parallel with
-    /// another, so nothing is kept to draw later; every pixel meets the same
-    /// triangles in the same order, so the image is the same.
-    ///
-    /// [`DrawnAtOnce`]: super::at_once::DrawnAtOnce
-    fn render_at_once(
-        &self,
-        view: &FrameView<'_>,
-        scene: &FrameScene<'_>,
-        image: &mut RgbaImage,
-    ) -> FrameStats {
-        let vp = view.vp;
-        let sky_rows = sky_rows(view);
-        let grass = grass_layer(view, scene);
-        let mut scratch = self.batches.take();
-        let mut stats = FrameStats {
-            batches: 0,
-            triangles: grass.len(),
-        };
-        let w = self.width as usize;
-        self.with_depth(|depth| {
-            clear_to_sky(image, depth, &sky_rows, w);
-            let mut frame = Band {
-                color: image,
-                depth,
-                width: vp.width,
-                y0: 0,
-                y1: vp.height,
-            };
-            if let Some(terrain) = scene.terrain {
-                terrain.draw_at_once(view, &mut scratch, &mut frame, &mut stats);
-            }
-            for mesh in scene.meshes {
-                mesh.draw_at_once(view, &mut scratch, &mut frame, &mut stats);
-            }
-            let band_rows = BAND_ROWS as usize;
-            let bands = image
-                .chunks_mut(w * 4 * band_rows)
-                .zip(depth.chunks_mut(w * band_rows));
-            for (b, (color, depth)) in bands.enumerate() {
-                let band = BandJob {
-                    index: b as i32,
-                    color,
-                    depth,
-                    sky_rows: None,
-                };
-                self.fill_band(band, &[], &grass, vp);
-            }
-        });
-        self.batches.give_back(vec![scratch]);
         stats
     }
 
@@ -329,39 +264,19 @@ impl Renderer {
         depth.resize(self.width as usize * self.height as usize, 0.0);
         draw(depth)
     }
+}
 
-    /// Fills a band ([`fill_band`]) in the renderer's machine code.
-    fn fill_band(
-        &self,
-        band: BandJob<'_>,
-        batches: &[ScreenBatch],
-        grass: &GrassLayer,
-        vp: Viewport,
-    ) {
-        match self.kernels {
-            Kernels::Dispatched => fill_band_dispatched(band, batches, grass, vp),
-            Kernels::Baseline => run_baseline(|| fill_band(band, batches, grass, vp)),
-        }
-    }
-
-    /// All screen batches in drawing order: terrain, meshes (grass is drawn after them).
-    fn project(&self, view: &FrameView<'_>, scene: &FrameScene<'_>) -> Vec<ScreenBatch> {
-        let (mut batches, meshes) = rayon::join(
-            || match scene.terrain {
-                Some(t) => t.batches(view, &self.batches),
-                None => Vec::new(),
-            },
-            || -> Vec<Vec<ScreenBatch>> {
-                scene
-                    .meshes
-                    .par_iter()
-                    .map(|m| m.batches(view, &self.batches))
-                    .collect()
-            },
-        );
-        batches.extend(meshes.into_iter().flatten());
-        batches
-    }
+/// All batches in drawing order: terrain patches, then meshes (grass is
+/// drawn after them).
+fn project(view: &FrameView<'_>, scene: &FrameScene<'_>) -> Vec<TriangleBatch> {
+    let (mut batches, meshes) = rayon::join(
+        || scene.terrain.map(|t| t.batches(view)).unwrap_or_default(),
+        || -> Vec<Vec<TriangleBatch>> {
+            scene.meshes.par_iter().map(|m| m.batches(view)).collect()
+        },
+    );
+    batches.extend(meshes.into_iter().flatten());
+    batches
 }
 
 /// Sky colour per row, from the view direction through the row's centre.
@@ -378,108 +293,31 @@ fn sky_rows(view: &FrameView<'_>) -> Vec<Vec3> {
         .collect()
 }
 
-/// The scene's blades as seen by `view`, binned by bands.
-fn grass_layer(view: &FrameView<'_>, scene: &FrameScene<'_>) -> GrassLayer {
-    GrassLayer::build(
-        scene.blades,
-        view.camera,
-        view.lighting,
-        view.vp,
-        view.kernels,
-    )
-}
-
-/// One band's share of the frame buffers.
-struct BandJob<'a> {
-    /// Band index (rows `index * BAND_ROWS ..`).
-    index: i32,
-    /// The band's RGBA8 rows.
-    color: &'a mut [u8],
-    /// The band's depth rows.
-    depth: &'a mut [f32],
-    /// The sky colour of every row of the frame, to clear the band to
-    /// first; `None` when it is cleared already.
-    sky_rows: Option<&'a [Vec3]>,
-}
-
-/// [`fill_band`] in the best machine code for the CPU (see [`Kernels`]).
-#[multiversion(targets("x86_64+avx2"))]
-fn fill_band_dispatched(
-    job: BandJob<'_>,
-    batches: &[ScreenBatch],
-    grass: &GrassLayer,
-    vp: Viewport,
-) {
-    fill_band(job, batches, grass, vp);
-}
-
-/// Clears a band to the sky and empty depth (unless it is cleared already),
-/// then draws the batches and the grass touching it, in scene order.
-#[inline(always)]
-fn fill_band(job: BandJob<'_>, batches: &[ScreenBatch], grass: &GrassLayer, vp: Viewport) {
-    let BandJob {
-        index,
-        color,
-        depth,
-        sky_rows,
-    } = job;
-    let w = vp.width as usize;
-    let y0 = index * BAND_ROWS;
-    let y1 = y0 + (depth.len() / w) as i32;
-    if let Some(sky_rows) = sky_rows {
-        clear_to_sky(color, depth, &sky_rows[y0 as usize..], w);
-    }
-    let mut band = Band {
-        color,
-        depth,
-        width: vp.width,
-        y0,
-        y1,
-    };
-    for batch in batches {
-        batch.draw_band(index, &mut band);
-    }
-    grass.draw_band(index, &mut band);
-}
-
 /// Clears rows of a frame `width` pixels wide to empty depth and to the sky
 /// colour of each (`sky_rows` from the first row on).
 fn clear_to_sky(color: &mut [u8], depth: &mut [f32], sky_rows: &[Vec3], width: usize) {
     depth.fill(0.0);
     for (row, sky) in color.chunks_mut(width * 4).zip(sky_rows) {
         let px = [to_u8(sky.x), to_u8(sky.y), to_u8(sky.z), 255];
-        fill_row(row, px);
+        for p in row.chunks_exact_mut(4) {
+            p.copy_from_slice(&px);
+        }
     }
 }
-
-/// Fills an RGBA8 row with one pixel value: the first pixel, then doubling
-/// copies (a few `memcpy`s per row instead of one 4-byte store per pixel).
-fn fill_row(row: &mut [u8], px: [u8; 4]) {
-    let Some(first) = row.get_mut(..4) else {
-        return;
-    };
-    first.copy_from_slice(&px);
-    let mut filled = 4;
-    while filled < row.len() {
-        let n = filled.min(row.len() - filled);
-        row.copy_within(..n, filled);
-        filled += n;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use glam::{Mat4, Vec3};
 
     use image::{Rgba, RgbaImage};
 
-    use super::{Renderer, fill_row};
+    use super::Renderer;
     use crate::render::RenderError;
     use crate::render::test_ground::ground;
-    use crate::render::{Camera, CullMode, FrameScene, Lighting, MeshInstance};
+    use crate::render::{Camera, CullMode, FrameScene, GrassBlade, Lighting, MeshInstance};
+    use crate::rng::SplitMix64;
 
     #[test]
-    fn a_renderer_reusing_its_batches_and_images_draws_what_a_new_one_draws() {
+    fn a_renderer_reusing_its_images_draws_what_a_new_one_draws() {
         let (terrain, mesh) = ground(97);
         let lighting = Lighting::default();
         let mut instance =
@@ -528,10 +366,6 @@ mod tests {
                     assert!(into == want, "{threads} threads, into one image");
                 }
             }
-            // One thread draws at once with one scratch batch; more keep a
-            // batch per patch and per mesh run.
-            let kept = reused.batches.len();
-            assert!(if threads == 1 { kept == 1 } else { kept > 1 }, "{kept}");
             let (scene, camera) = &frames[0];
             let mut wrong = RgbaImage::new(90, 160);
             assert!(matches!(
@@ -542,14 +376,59 @@ mod tests {
     }
 
     #[test]
-    fn fill_row_writes_every_pixel() {
-        for pixels in [0usize, 1, 2, 3, 5, 8, 13, 1280] {
-            let mut row = vec![0u8; 4 * pixels];
-            fill_row(&mut row, [1, 2, 3, 255]);
-            assert!(
-                row.chunks_exact(4).all(|p| p == [1, 2, 3, 255]),
-                "{pixels} pixels"
-            );
-        }
+    fn one_and_two_threads_draw_the_same_bytes() {
+        let (terrain, mesh) = ground(129);
+        let lighting = Lighting::default();
+        // The dense mesh above the terrain, both sides drawn, lit each frame
+        // (fog included); a pre-lit copy of it lower down.
+        let mut lit = MeshInstance::new(
+            &mesh,
+            Mat4::from_translation(Vec3::Y * 0.3),
+            Vec3::new(0.5, 0.6, 0.4),
+        );
+        lit.cull = CullMode::None;
+        let baked: Vec<Vec3> = (0..mesh.positions.len())
+            .map(|k| Vec3::new((k % 7) as f32 / 7.0, 0.5, (k % 5) as f32 / 5.0))
+            .collect();
+        let pre_lit = MeshInstance::new(&mesh, Mat4::from_translation(-Vec3::Y * 0.1), Vec3::ONE)
+            .with_vertex_colors(&baked);
+        let mut rng = SplitMix64::new(11);
+        let blades: Vec<GrassBlade> = (0..3000)
+            .map(|_| {
+                let root = Vec3::new(rng.next_f32() * 4.0 - 2.0, 0.3, rng.next_f32() * 4.0 - 2.0);
+                GrassBlade {
+                    root,
+                    mid: root + Vec3::new(0.01, 0.05, 0.0),
+                    tip: root + Vec3::new(0.03, 0.1, 0.01),
+                    width: 0.01,
+                    color: Vec3::new(0.3, 0.6, 0.2),
+                }
+            })
+            .collect();
+        let meshes = [lit, pre_lit];
+        let scene = FrameScene {
+            terrain: Some(&terrain),
+            meshes: &meshes,
+            blades: &blades,
+            lighting,
+            shadows: true,
+        };
+        // Close enough that the near plane cuts the ground and blades.
+        let camera = Camera::perspective(1.0, 320, 180, 0.05, 50.0)
+            .unwrap()
+            .look_at(Vec3::new(0.0, 0.5, -2.1), Vec3::new(0.0, 0.0, 1.0), Vec3::Y);
+        let render = |threads: usize| {
+            Renderer::new(320, 180)
+                .and_then(|r| r.with_threads(threads))
+                .unwrap()
+                .render_with_stats(&scene, &camera)
+        };
+        let (one, stats) = render(1);
+        assert!(stats.triangles > 20_000, "{stats:?}");
+        let sky = *one.get_pixel(160, 0);
+        assert!(one.pixels().filter(|&&p| p != sky).count() > 30_000);
+        let (two, two_stats) = render(2);
+        assert!(two == one);
+        assert_eq!(two_stats, stats);
     }
 }

@@ -4,12 +4,14 @@
 use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::Camera;
-use super::batch::{BandEntries, CullMode, ScreenBatch, TriangleGroup, Viewport, to_clip};
 use super::blade_span::{BladePiece, NotMonotone, SpanVertex};
-use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, outcode};
-use super::kernels::Kernels;
-use super::raster::Band;
+use super::camera::Camera;
+use super::frame_view::FrameView;
+use super::grass_blade::GrassBlade;
+use super::raster::{
+    Band, BandBins, ClipVertex, CullMode, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, TriangleBatch,
+    TriangleGroup, outcode,
+};
 use super::shading::{Lighting, encode_display};
 use crate::rng::SplitMix64;
 
@@ -18,22 +20,6 @@ const BLADES_PER_BATCH: usize = 1024;
 /// Bits of a binned piece index that number the piece within its group (at
 /// most two pieces per blade).
 const GROUP_BITS: u32 = (2 * BLADES_PER_BATCH).next_power_of_two().trailing_zeros();
-
-/// One grass blade: a curve through three points, tapering from `width` at the
-/// root to a point at the tip.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GrassBlade {
-    /// Where the blade leaves the ground.
-    pub root: Vec3,
-    /// A point halfway along the blade (bent blades move it).
-    pub mid: Vec3,
-    /// The blade's tip.
-    pub tip: Vec3,
-    /// Width at the root, in metres.
-    pub width: f32,
-    /// Linear RGB albedo.
-    pub color: Vec3,
-}
 
 /// Triangles of one blade's five vertices: two for the lower half, one for the tip.
 const BLADE_TRIANGLES: [[u32; 3]; 3] = [[0, 1, 3], [0, 3, 2], [2, 3, 4]];
@@ -126,14 +112,14 @@ fn sort_by_distance(keys: &mut Vec<(u64, f32)>) {
 #[derive(Debug, Default)]
 pub(crate) struct GrassLayer {
     /// Clipped blades, through the triangle pipeline.
-    clipped: ScreenBatch,
+    clipped: TriangleBatch,
     /// Each blade's lower quad then its tip, nearest blade first, as set up
     /// by each group of blades (kept apart: concatenating them would copy
     /// megabytes per frame).
     pieces: Vec<Vec<BladePiece>>,
     /// Piece ids of each band, in drawing order: group index above
     /// [`GROUP_BITS`] bits, index within the group below.
-    bins: BandEntries,
+    bins: BandBins,
 }
 
 /// What one group of blades turns into.
@@ -147,14 +133,8 @@ struct BladeGroup {
 impl GrassLayer {
     /// Projects the drawn blades (in parallel groups of [`BLADES_PER_BATCH`]),
     /// sets up their pieces and bins them by bands.
-    pub fn build(
-        blades: &[GrassBlade],
-        camera: &Camera,
-        lighting: &Lighting,
-        vp: Viewport,
-        kernels: Kernels,
-    ) -> GrassLayer {
-        let view_proj = camera.view_proj();
+    pub fn build(blades: &[GrassBlade], view: &FrameView<'_>) -> GrassLayer {
+        let (camera, vp) = (view.camera, view.vp);
         let groups: Vec<BladeGroup> = drawn_blades(blades, camera)
             .par_chunks(BLADES_PER_BATCH)
             .map(|chunk| {
@@ -164,7 +144,7 @@ impl GrassLayer {
                 };
                 for drawn in chunk {
                     let blade = &blades[drawn.index as usize];
-                    group.add(blade, drawn, camera, &view_proj, lighting, vp);
+                    group.add(blade, drawn, view);
                 }
                 group
             })
@@ -178,7 +158,7 @@ impl GrassLayer {
             clipped_verts.extend(group.clipped_verts);
             clipped_tris.extend(group.clipped_tris.iter().map(|t| t.map(|v| v + base)));
         }
-        layer.clipped = ScreenBatch::build(
+        layer.clipped = TriangleBatch::build(
             &clipped_verts,
             &[TriangleGroup {
                 triangles: &clipped_tris,
@@ -186,7 +166,6 @@ impl GrassLayer {
                 first_vertex: 0,
             }],
             vp,
-            kernels,
         );
         layer.bin(vp.height);
         layer
@@ -194,7 +173,7 @@ impl GrassLayer {
 
     /// Sorts the pieces into per-band lists (order kept).
     fn bin(&mut self, height: i32) {
-        self.bins = BandEntries::new(height);
+        self.bins = BandBins::new(height);
         for (g, group) in self.pieces.iter().enumerate() {
             for (k, piece) in group.iter().enumerate() {
                 // A piece's rows lie on the screen (its runs are clamped to it).
@@ -231,16 +210,9 @@ impl BladeGroup {
     /// plane, clipped as triangles when crossing the near plane or the guard
     /// band, otherwise set up as one piece (its outline, when no row meets it
     /// twice) or two (its lower quad and its tip).
-    fn add(
-        &mut self,
-        blade: &GrassBlade,
-        drawn: &DrawnBlade,
-        camera: &Camera,
-        view_proj: &Mat4,
-        lighting: &Lighting,
-        vp: Viewport,
-    ) {
-        let pos = blade_clip_positions(blade, drawn.width, camera, view_proj);
+    fn add(&mut self, blade: &GrassBlade, drawn: &DrawnBlade, view: &FrameView<'_>) {
+        let vp = view.vp;
+        let pos = blade_clip_positions(blade, drawn.width, view.camera, &view.view_proj);
         let (mut all, mut any) = (OUT_FRUSTUM, 0);
         for p in pos {
             let code = outcode(p);
@@ -250,7 +222,8 @@ impl BladeGroup {
         if all != 0 {
             return;
         }
-        let colors = blade_colors(blade, drawn.distance, lighting);
+        let sun = [blade.root, blade.tip].map(|p| view.sun_past_casters(p));
+        let colors = blade_colors(blade, drawn.distance, view.lighting, sun);
         if any & (OUT_NEAR | OUT_GUARD) != 0 {
             let base = self.clipped_verts.len() as u32;
             self.clipped_verts
@@ -300,35 +273,39 @@ fn blade_clip_positions(
         .unwrap_or(Vec3::X)
         * (0.5 * width);
     let side = *view_proj * side.extend(0.0);
-    let (root, mid) = (
-        to_clip(view_proj, blade.root),
-        to_clip(view_proj, blade.mid),
-    );
+    let to_clip = |p: Vec3| *view_proj * p.extend(1.0);
+    let (root, mid) = (to_clip(blade.root), to_clip(blade.mid));
     [
         root - side,
         root + side,
         mid - side * 0.6,
         mid + side * 0.6,
-        to_clip(view_proj, blade.tip),
+        to_clip(blade.tip),
     ]
 }
 
 /// The colours of a blade's five vertices: darker at the root (self-shadowing
-/// in the sward), lit at the tip, fogged once at the root's `distance` (a
-/// blade is short against the fog's scale).
-fn blade_colors(blade: &GrassBlade, distance: f32, lighting: &Lighting) -> [Vec3; 5] {
+/// in the sward), lit at the tip, each end dimmed by the sun reaching it
+/// past the shadow casters (`sun`: root, tip), fogged once at the root's
+/// `distance` (a blade is short against the fog's scale).
+fn blade_colors(
+    blade: &GrassBlade,
+    distance: f32,
+    lighting: &Lighting,
+    [sun_root, sun_tip]: [f32; 2],
+) -> [Vec3; 5] {
     let fog = |c: Vec3| lighting.apply_fog(c, distance);
     let low = fog(encode_display(lighting.radiance(
         blade.color,
         Vec3::Y,
         0.45,
-        0.35,
+        0.35 * sun_root,
     )));
     let high = fog(encode_display(lighting.radiance(
         blade.color,
         Vec3::Y,
         1.0,
-        0.9,
+        0.9 * sun_tip,
     )));
     let mid = low.lerp(high, 0.6);
     [low, low, mid, mid, high]
@@ -337,6 +314,7 @@ fn blade_colors(blade: &GrassBlade, distance: f32, lighting: &Lighting) -> [Vec3
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::raster::Viewport;
 
     fn row_of_blades(count: usize) -> Vec<GrassBlade> {
         (0..count)
@@ -431,13 +409,9 @@ mod tests {
             width: 160,
             height: 100,
         };
-        let layer = GrassLayer::build(
-            &blades,
-            &camera,
-            &Lighting::default(),
-            vp,
-            Kernels::Baseline,
-        );
+        let lighting = Lighting::default();
+        let view = FrameView::new(&camera, &lighting, None, vp);
+        let layer = GrassLayer::build(&blades, &view);
         assert!(
             layer.clipped.len() > 0,
             "the blade around the eye is clipped"

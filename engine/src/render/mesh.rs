@@ -1,16 +1,15 @@
 //! Triangle-mesh instances: one transform for the whole mesh, optionally one
 //! more per named part (rigid-part characters: a capsule per bone).
 
-use glam::{Mat4, Vec3};
-use multiversion::multiversion;
+use glam::{Mat3, Mat4, Vec3};
+use rayon::prelude::*;
 
-use super::batch::{BatchTarget, CullMode, TriangleGroup};
-use super::mesh_shader::MeshShader;
-use super::project::TransformedPoints;
-use super::scene_geometry::{FrameView, SceneGeometry};
+use super::frame_view::FrameView;
+use super::raster::{ClipVertex, CullMode, TriangleBatch, TriangleGroup};
+use super::shading::encode_display;
 use crate::geom::TriMesh;
 
-/// Triangles per screen batch: the unit of parallel vertex work for big meshes.
+/// Triangles per batch: the unit of parallel vertex work for big meshes.
 const TRIANGLES_PER_BATCH: usize = 16_384;
 
 /// A mesh placed in the frame.
@@ -59,8 +58,8 @@ impl<'a> MeshInstance<'a> {
         self
     }
 
-    /// The triangle ranges to draw with their own transforms.
-    fn parts(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {
+    /// The triangle ranges of its parts with the transforms placing them.
+    pub(crate) fn placed_parts(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {
         if self.mesh.parts.is_empty() {
             return vec![(0..self.mesh.triangles.len(), self.transform)];
         }
@@ -79,10 +78,23 @@ impl<'a> MeshInstance<'a> {
             .collect()
     }
 
+    /// Its triangles in world space, each part placed by its transform.
+    pub(crate) fn world_triangles(&self) -> impl Iterator<Item = [Vec3; 3]> + '_ {
+        let positions = &self.mesh.positions;
+        self.placed_parts()
+            .into_iter()
+            .flat_map(move |(range, model)| {
+                self.mesh.triangles[range]
+                    .iter()
+                    .filter(|t| t.iter().all(|&k| (k as usize) < positions.len()))
+                    .map(move |t| t.map(|k| model.transform_point3(positions[k as usize])))
+            })
+    }
+
     /// Runs of at most [`TRIANGLES_PER_BATCH`] triangles of each part, in
     /// part order, with the part's transform: a batch each.
     fn runs(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {
-        self.parts()
+        self.placed_parts()
             .into_iter()
             .flat_map(|(range, model)| {
                 range
@@ -93,80 +105,57 @@ impl<'a> MeshInstance<'a> {
             .collect()
     }
 
-    /// What a run's batch is built from: its vertices placed and lit, and
-    /// its triangles; `None` when it has no triangles or indexes past the
-    /// mesh's vertices.
-    fn run_sources(
+    /// The instance's batches as `view` sees them, one per run, in order.
+    pub(crate) fn batches(&self, view: &FrameView<'_>) -> Vec<TriangleBatch> {
+        self.runs()
+            .par_iter()
+            .filter_map(|run| self.batch(run, view))
+            .collect()
+    }
+
+    /// A run's batch: its vertices placed, lit (or baked) and fogged, and its
+    /// triangles; `None` when it has no triangles or indexes past the mesh's
+    /// vertices.
+    fn batch(
         &self,
         (range, model): &(std::ops::Range<usize>, Mat4),
         view: &FrameView<'_>,
-    ) -> Option<(TransformedPoints<'a>, MeshShader<'a>, TriangleGroup<'a>)> {
+    ) -> Option<TriangleBatch> {
         let mesh = self.mesh;
         let tris = mesh.triangles.get(range.clone())?;
-        let (first, last) = index_range(tris)?;
-        let (first, last) = (first as usize, last as usize);
+        let indices = tris.as_flattened();
+        let first = *indices.iter().min()?;
+        let last = *indices.iter().max()? as usize;
         if last >= mesh.positions.len() {
             return None;
         }
-        // The batch's run of a per-vertex slice (shorter when the slice ends
-        // inside the run).
-        let run = |s: &'a [Vec3]| &s[first.min(s.len())..(last + 1).min(s.len())];
-        let positions =
-            TransformedPoints::new(&mesh.positions[first..=last], *model, view.view_proj);
-        let shader = MeshShader::new(
-            positions,
-            run(&mesh.normals),
-            self.vertex_colors.map(run),
-            self.color,
-            *view.lighting,
-            view.camera.eye,
-        );
+        let normal_matrix = Mat3::from_mat4(*model).inverse().transpose();
+        let eye = view.camera.eye;
+        let lighting = view.lighting;
+        let verts: Vec<ClipVertex> = (first as usize..=last)
+            .map(|k| {
+                let world = model.transform_point3(mesh.positions[k]);
+                let baked = self.vertex_colors.and_then(|c| c.get(k)).copied();
+                let color = baked.unwrap_or_else(|| {
+                    let normal = mesh.normals.get(k).copied().unwrap_or(Vec3::Y);
+                    let n = (normal_matrix * normal).normalize_or(Vec3::Y);
+                    let sky = 0.65 + 0.35 * n.y;
+                    let sun = view.sun_past_casters(world);
+                    encode_display(lighting.radiance(self.color, n, sky, sun))
+                });
+                ClipVertex {
+                    pos: view.view_proj * world.extend(1.0),
+                    color: lighting.apply_fog(color, (world - eye).length()),
+                }
+            })
+            .collect();
         let group = TriangleGroup {
             triangles: tris,
             cull: self.cull,
-            first_vertex: first as u32,
+            first_vertex: first,
         };
-        Some((positions, shader, group))
+        Some(TriangleBatch::build(&verts, &[group], view.vp))
     }
-}
-
-/// A piece per run of at most [`TRIANGLES_PER_BATCH`] triangles of each
-/// part, in part order.
-impl SceneGeometry for MeshInstance<'_> {
-    type Piece = (std::ops::Range<usize>, Mat4);
-
-    fn pieces(&self, _view: &FrameView<'_>) -> Vec<Self::Piece> {
-        self.runs()
-    }
-
-    fn build(
-        &self,
-        run: &Self::Piece,
-        view: &FrameView<'_>,
-        target: BatchTarget<'_, '_>,
-    ) -> Option<usize> {
-        let (positions, shader, group) = self.run_sources(run, view)?;
-        Some(target.build_shaded(positions, shader, &[group], view.vp, view.kernels))
-    }
-}
-
-/// The smallest and largest vertex index of `triangles` (`None` when empty).
-///
-/// Compiled for AVX2 too (picked at run time), whose `u32` minimum and
-/// maximum take eight indices per instruction; baseline SSE2 has none.
-#[multiversion(targets("x86_64+avx2"))]
-fn index_range(triangles: &[[u32; 3]]) -> Option<(u32, u32)> {
-    let indices = triangles.as_flattened();
-    let first = *indices.first()?;
-    // A plain loop, which the compiler turns into vector minima and maxima
-    // (an iterator adapter such as `fold` would stay out of line, in
-    // baseline code).
-    let (mut min, mut max) = (first, first);
-    for &index in indices {
-        min = min.min(index);
-        max = max.max(index);
-    }
-    Some((min, max))
 }
 
 #[cfg(test)]
@@ -205,38 +194,6 @@ mod tests {
     }
 
     #[test]
-    fn index_range_is_the_smallest_and_largest_index() {
-        use super::index_range;
-        use crate::rng::SplitMix64;
-        assert_eq!(index_range(&[]), None);
-        let mut rng = SplitMix64::new(7);
-        for len in [1usize, 2, 3, 5, 8, 9, 40] {
-            for spread in [10u32, 1 << 20, u32::MAX] {
-                let tris: Vec<[u32; 3]> = (0..len)
-                    .map(|_| [(); 3].map(|_| (rng.next_u64() as u32) % spread.max(1)))
-                    .collect();
-                let flat = tris.iter().flatten().copied();
-                let expected = (flat.clone().min().unwrap(), flat.max().unwrap());
-                assert_eq!(index_range(&tris), Some(expected), "{tris:?}");
-            }
-        }
-        assert_eq!(
-            index_range(&[[u32::MAX, 0, 1 << 31], [(1 << 31) - 1, 5, 6]]),
-            Some((0, u32::MAX))
-        );
-        // Around the largest index exact as `f32`, and past it.
-        let edge = 1u32 << 24;
-        for (tris, expected) in [
-            ([[edge - 1, edge - 2, 7]], (7, edge - 1)),
-            ([[edge + 1, edge, 7]], (7, edge + 1)),
-            ([[edge + 3, edge + 1, edge + 2]], (edge + 1, edge + 3)),
-            ([[1 << 31, 3, 2]], (2, 1 << 31)),
-        ] {
-            assert_eq!(index_range(&tris), Some(expected));
-        }
-    }
-
-    #[test]
     fn baked_colours_equal_to_the_lighting_draw_the_same_image() {
         let (mesh, camera) = sheet();
         let lighting = Lighting::default();
@@ -259,6 +216,8 @@ mod tests {
                 &FrameScene {
                     meshes,
                     lighting,
+                    // The bumpy sheet would shade itself where baked colours cannot.
+                    shadows: false,
                     ..FrameScene::new()
                 },
                 &camera,

@@ -1,7 +1,8 @@
 //! Software rendering: a z-buffered triangle rasterizer with perspective-correct
 //! colours, a camera, height-grid terrain drawn by patches with level of detail,
 //! mesh instances, grass blades and terrain shading that makes footprints readable
-//! (Lambert, sky-view ambient occlusion, soft sun shadows, fog).
+//! (Lambert, sky-view ambient occlusion, soft terrain shadows, sun shadows of
+//! meshes and grass, fog). [`raster`] explains how triangles become pixels.
 //! It also writes frames out (PNG, GIF, APNG, contact sheets), and draws 2D
 //! overlays, text and plots on opaque [`image::RgbaImage`] frames through tiny-skia.
 //!
@@ -23,40 +24,31 @@
 //! let image = Renderer::new(64, 48).unwrap().render(&scene, &camera);
 //! assert_eq!(image.dimensions(), (64, 48));
 //! ```
-mod at_once;
-mod batch;
-mod batch_pool;
 mod blade_span;
 mod camera;
-mod centre_box;
-mod clip;
 mod error;
 mod follow;
-mod four_small_triangles;
 mod frame;
+mod frame_view;
 mod grass;
-mod kernels;
+mod grass_blade;
 mod mesh;
-mod mesh_shader;
-mod project;
-mod raster;
-mod scene_geometry;
-mod set_up;
+pub(crate) mod raster;
 mod shading;
-mod small_triangle;
+mod shadow_map;
 mod terrain;
 mod terrain_colors;
 mod terrain_light;
 #[cfg(test)]
 mod test_ground;
 
-pub use batch::CullMode;
 pub use camera::Camera;
 pub use error::RenderError;
 pub use follow::CameraFollow;
 pub use frame::{FrameScene, FrameStats, Renderer};
-pub use grass::GrassBlade;
+pub use grass_blade::GrassBlade;
 pub use mesh::MeshInstance;
+pub use raster::CullMode;
 pub use shading::{Lighting, Sun, encode_display};
 pub use terrain::{TerrainRenderer, TerrainStyle};
 pub use terrain_colors::{SampleColors, TerrainColors, UniformColor};

@@ -9,12 +9,11 @@ use std::collections::BTreeMap;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::Camera;
-use super::batch::{BatchTarget, CullMode, TriangleGroup, to_clip};
-use super::clip::ClipVertex;
+use super::camera::Camera;
 use super::error::{RenderError, positive};
-use super::scene_geometry::{FrameView, SceneGeometry};
-use super::shading::{Lighting, encode_display};
+use super::frame_view::FrameView;
+use super::raster::{ClipVertex, CullMode, TriangleBatch, TriangleGroup};
+use super::shading::{Lighting, Sun, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
 use crate::geom::{GridRect, HeightGrid};
@@ -82,6 +81,9 @@ struct PatchLevel {
     heights: Vec<f32>,
     /// Display colours of the level's vertices.
     colors: Vec<Vec3>,
+    /// Display colours of the level's vertices with the sun hidden (by a
+    /// shadow caster).
+    shaded: Vec<Vec3>,
     /// Largest height difference between the level and the full-resolution samples.
     error: f32,
 }
@@ -115,7 +117,7 @@ pub struct TerrainRenderer {
     /// Triangles of a `cols` x `rows` vertex grid, shared by all patches.
     indices: BTreeMap<(usize, usize), Vec<[u32; 3]>>,
     light: TerrainLight,
-    lit_with: Option<super::Sun>,
+    lit_with: Option<Sun>,
     pending: Vec<GridRect>,
     needs_remesh: Vec<bool>,
     remeshed_last: usize,
@@ -243,9 +245,9 @@ impl TerrainRenderer {
         let sun_dir = lighting.sun.direction;
         for rect in std::mem::take(&mut self.pending) {
             self.light.note_heights(grid, &rect);
-            let window = self.light.affected(grid, &rect, sun_dir, reach);
-            self.light.recompute(grid, &window, sun_dir, reach);
-            self.flag_patches(&window);
+            for window in self.light.relight(grid, &rect, sun_dir, reach) {
+                self.flag_patches(&window);
+            }
         }
         let style = self.style;
         let light = &self.light;
@@ -343,21 +345,19 @@ impl TerrainRenderer {
     }
 }
 
-/// A piece per visible patch, in patch order, at the level it is drawn
-/// with, with skirts where a neighbour is drawn coarser.
-impl SceneGeometry for TerrainRenderer {
-    type Piece = DrawnPatch;
-
-    fn pieces(&self, view: &FrameView<'_>) -> Vec<DrawnPatch> {
+impl TerrainRenderer {
+    /// The visible patches' batches as `view` sees them, in patch order, at
+    /// the level each is drawn with, with skirts where a neighbour is drawn
+    /// coarser.
+    pub(crate) fn batches(&self, view: &FrameView<'_>) -> Vec<TriangleBatch> {
         self.visible_patches(view.camera)
+            .par_iter()
+            .map(|drawn| self.batch(drawn, view))
+            .collect()
     }
 
-    fn build(
-        &self,
-        drawn: &DrawnPatch,
-        view: &FrameView<'_>,
-        target: BatchTarget<'_, '_>,
-    ) -> Option<usize> {
+    /// One visible patch's batch.
+    fn batch(&self, drawn: &DrawnPatch, view: &FrameView<'_>) -> TriangleBatch {
         let DrawnPatch {
             index: k,
             level,
@@ -376,13 +376,20 @@ impl SceneGeometry for TerrainRenderer {
         };
         let eye = view.camera.eye;
         let vertex = |p: Vec3, color: Vec3| ClipVertex {
-            pos: to_clip(&view.view_proj, p),
+            pos: view.view_proj * p.extend(1.0),
             color: view.lighting.apply_fog(color, (p - eye).length()),
         };
         for r in 0..n {
             for c in 0..m {
                 let v = r * m + c;
-                verts.push(vertex(world(c, r, lod.heights[v]), lod.colors[v]));
+                let p = world(c, r, lod.heights[v]);
+                let sun = view.sun_past_casters(p);
+                let color = if sun < 1.0 {
+                    lod.shaded[v].lerp(lod.colors[v], sun)
+                } else {
+                    lod.colors[v]
+                };
+                verts.push(vertex(p, color));
             }
         }
         let mut skirt_tris = Vec::new();
@@ -411,7 +418,7 @@ impl SceneGeometry for TerrainRenderer {
             }
         }
         let surface = &self.indices[&(m, n)];
-        Some(target.build(
+        TriangleBatch::build(
             &verts,
             &[
                 TriangleGroup {
@@ -426,8 +433,7 @@ impl SceneGeometry for TerrainRenderer {
                 },
             ],
             view.vp,
-            view.kernels,
-        ))
+        )
     }
 }
 
@@ -481,6 +487,7 @@ impl Patch {
                 let mut level = PatchLevel {
                     heights: Vec::with_capacity(cols.len() * rows.len()),
                     colors: Vec::with_capacity(cols.len() * rows.len()),
+                    shaded: Vec::with_capacity(cols.len() * rows.len()),
                     ..Default::default()
                 };
                 for &r in &rows {
@@ -491,14 +498,13 @@ impl Patch {
                             * (1.0
                                 - style.disturbed_darkening
                                     * colors.disturbance(i, j).clamp(0.0, 1.0));
-                        let radiance = lighting.radiance(
-                            albedo,
-                            grid.sample_normal(i, j),
-                            light.sky_view[k],
-                            light.sun_visible[k],
-                        );
+                        let normal = grid.sample_normal(i, j);
+                        let sky = light.sky_view[k];
+                        let radiance = lighting.radiance(albedo, normal, sky, light.sun_visible[k]);
+                        let shaded = lighting.radiance(albedo, normal, sky, 0.0);
                         level.heights.push(grid.height(i, j));
                         level.colors.push(encode_display(radiance));
+                        level.shaded.push(encode_display(shaded));
                     }
                 }
                 level.cols = cols;

@@ -19,6 +19,8 @@ const SKY_DIRS: [(isize, isize); 8] = [
     (0, -1),
     (1, -1),
 ];
+/// Samples of travel away from the sun per strip re-lit after a change.
+const SHADOW_STRIP: usize = 4;
 /// Half-width of the shadow penumbra, as the tangent of an angle (about 3 degrees).
 const PENUMBRA: f32 = 0.05;
 
@@ -68,45 +70,86 @@ impl TerrainLight {
         self.max_height = self.max_height.max(hi);
     }
 
-    /// The samples whose light may change when heights in `rect` change:
-    /// the sky radius around it and, away from the sun, the longest shadow the
-    /// known height range can cast (at most `reach.shadow`). Call
-    /// [`TerrainLight::note_heights`] for `rect` first.
-    pub fn affected(
-        &self,
+    /// Re-lights what a change of heights in `rect` can reach: both terms
+    /// within the sky radius of it, then, away from the sun, the sun
+    /// visibility strip by strip ([`SHADOW_STRIP`] samples of travel each)
+    /// until a strip outside that radius keeps every value, or the longest
+    /// shadow is reached. Returns the windows re-lit.
+    pub fn relight(
+        &mut self,
         grid: &HeightGrid,
         rect: &GridRect,
         sun_dir: Vec3,
         reach: LightReach,
-    ) -> GridRect {
-        let r = rect.expand(reach.sky + 1, grid.nx(), grid.nz());
-        let h = Vec3::new(sun_dir.x, 0.0, sun_dir.z).normalize_or_zero();
-        let horizontal = Vec3::new(sun_dir.x, 0.0, sun_dir.z).length();
-        let shadow = if sun_dir.y > 0.0 && horizontal > 1e-6 {
-            // An occluder still dims a sample while its margin is below the
-            // penumbra, so shadows reach as far as the ray's rise beyond it allows.
-            let rise = (sun_dir.y / horizontal - PENUMBRA) * grid.cell_size();
-            if rise > 0.0 {
-                let longest = ((self.max_height - self.min_height) / rise).ceil() as usize + 1;
-                longest.min(reach.shadow)
-            } else {
-                reach.shadow
-            }
-        } else {
-            0
+    ) -> Vec<GridRect> {
+        let (nx, nz) = (grid.nx(), grid.nz());
+        let near = rect.expand(reach.sky + 1, nx, nz);
+        self.recompute(grid, &near, sun_dir, reach);
+        let mut windows = vec![near];
+        if near.area() == nx * nz {
+            return windows;
+        }
+        let away = Vec3::new(-sun_dir.x, 0.0, -sun_dir.z).normalize_or_zero();
+        if sun_dir.y <= 0.0 || away == Vec3::ZERO {
+            return windows;
+        }
+        let shifted = |d: usize| {
+            let (di, dj) = (
+                (away.x * d as f32).round() as isize,
+                (away.z * d as f32).round() as isize,
+            );
+            let at =
+                |v: usize, by: isize, n: usize| (v as isize + by).clamp(0, n as isize) as usize;
+            GridRect::new(
+                at(rect.i0, di, nx),
+                at(rect.j0, dj, nz),
+                at(rect.i1, di, nx),
+                at(rect.j1, dj, nz),
+            )
         };
-        let reach = LightReach { shadow, ..reach };
-        // A sample is shadowed by occluders towards the sun, so changes reach
-        // samples on the far side from the sun.
-        let back_x = (-h.x * reach.shadow as f32).ceil() as isize;
-        let back_z = (-h.z * reach.shadow as f32).ceil() as isize;
-        let shifted = GridRect::new(
-            (rect.i0 as isize + back_x.min(0)).max(0) as usize,
-            (rect.j0 as isize + back_z.min(0)).max(0) as usize,
-            ((rect.i1 as isize + back_x.max(0)).max(0) as usize).min(grid.nx()),
-            ((rect.j1 as isize + back_z.max(0)).max(0) as usize).min(grid.nz()),
-        );
-        r.union(&shifted.expand(1, grid.nx(), grid.nz()))
+        let mut travelled = 0;
+        while travelled < reach.shadow {
+            let next = (travelled + SHADOW_STRIP).min(reach.shadow);
+            let strip = shifted(travelled).union(&shifted(next)).expand(1, nx, nz);
+            if strip.is_empty() {
+                break;
+            }
+            let changed = self.recompute_sun(grid, &strip, &near, sun_dir, reach);
+            windows.push(strip);
+            if changed == 0 && travelled > 0 {
+                break;
+            }
+            travelled = next;
+        }
+        windows
+    }
+
+    /// Recomputes the sun visibility of the samples of `rect`; returns how
+    /// many outside `skip` changed.
+    fn recompute_sun(
+        &mut self,
+        grid: &HeightGrid,
+        rect: &GridRect,
+        skip: &GridRect,
+        sun_dir: Vec3,
+        reach: LightReach,
+    ) -> usize {
+        let nx = grid.nx();
+        let max_height = self.max_height;
+        self.sun_visible
+            .par_chunks_mut(nx)
+            .enumerate()
+            .filter(|(j, _)| *j >= rect.j0 && *j < rect.j1)
+            .map(|(j, row)| {
+                let mut changed = 0;
+                for (i, old) in row.iter_mut().enumerate().take(rect.i1).skip(rect.i0) {
+                    let new = sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow);
+                    changed += usize::from(new != *old && !skip.contains(i, j));
+                    *old = new;
+                }
+                changed
+            })
+            .sum()
     }
 
     /// Recomputes both terms for the samples of `rect`.

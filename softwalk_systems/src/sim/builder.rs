@@ -5,7 +5,7 @@ use engine::geom::TriMesh;
 use engine::schedule::App;
 
 use super::components::{
-    BaseGains, CharacterName, Feet, FootPrints, Platforms, SystemFault, WalkerMetrics,
+    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, WalkerMetrics,
 };
 use super::error::SimError;
 use super::ground_state::GroundState;
@@ -30,6 +30,7 @@ impl SimBuilder {
         let mut app = App::new(dt)?;
         let world = &mut app.world;
         world.insert_resource(SystemFault::default());
+        world.insert_resource(Props::default());
         world.insert_resource(SystemTimings::default());
         world.insert_resource(crate::terrain::SmoothScratch::default());
         world.insert_resource(crate::terrain::SettleScratch::default());
@@ -52,12 +53,12 @@ impl SimBuilder {
 
     /// Adds a static mesh (rocks, steps) the feet can stand on; after the terrain.
     pub fn mesh(&mut self, mesh: TriMesh) -> Result<(), SimError> {
-        let mut ground = self
-            .app
+        self.app
             .world
             .get_resource_mut::<GroundState>()
-            .ok_or(SimError::NoTerrain)?;
-        ground.add_mesh(mesh)?;
+            .ok_or(SimError::NoTerrain)?
+            .add_mesh(mesh.clone())?;
+        self.app.world.resource_mut::<Props>().0.push(mesh);
         Ok(())
     }
 

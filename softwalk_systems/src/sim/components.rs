@@ -67,3 +67,8 @@ impl SystemFault {
         }
     }
 }
+
+/// Resource: the static meshes (rocks, steps) the feet can stand on, as
+/// given to [`super::SimBuilder::mesh`], for drawing.
+#[derive(Debug, Clone, Default)]
+pub struct Props(pub Vec<engine::geom::TriMesh>);

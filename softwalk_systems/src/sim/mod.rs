@@ -56,7 +56,7 @@ mod world_hash;
 
 pub use builder::SimBuilder;
 pub use components::{
-    BaseGains, CharacterName, Feet, FootPrints, Platforms, SystemFault, WalkerMetrics,
+    BaseGains, CharacterName, Feet, FootPrints, Platforms, Props, SystemFault, WalkerMetrics,
 };
 pub use error::SimError;
 pub use ground_state::GroundState;

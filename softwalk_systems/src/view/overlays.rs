@@ -1,12 +1,12 @@
 //! Debug overlays drawn over a frame: centre of mass, support segment, torque,
 //! foot rays, IK targets and virtual platforms (paper Fig. 2 and 3).
 
+use crate::character::{FootIK, FootRays, Gait, RigidProxy};
+use crate::sim::{Platforms, WalkerMetrics};
 use engine::ecs::World;
 use engine::render::{Camera, Overlay};
 use glam::Vec3;
 use image::{Rgba, RgbaImage};
-use softwalk_systems::character::{FootIK, FootRays, Gait, RigidProxy};
-use softwalk_systems::sim::{Platforms, WalkerMetrics};
 
 const COM: Rgba<u8> = Rgba([255, 60, 40, 255]);
 const SUPPORT: Rgba<u8> = Rgba([40, 220, 90, 255]);

@@ -1,7 +1,7 @@
 //! Display colours of the ground materials (linear RGB).
 
+use crate::terrain::Heightfield;
 use glam::Vec3;
-use softwalk_systems::terrain::Heightfield;
 
 /// Albedo of a material by name: the paper's four grounds have fixed colours;
 /// any other (user) material gets a stable colour derived from its name.

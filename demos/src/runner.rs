@@ -6,7 +6,8 @@
 //! [`run`] returns a [`RunSummary`].
 //!
 //! [`run`] builds the world from the scene (`Scene::build_sim`), steps the
-//! pipeline of `softwalk_systems::sim`, and draws frames with a [`SceneView`].
+//! pipeline of `softwalk_systems::sim`, and draws frames with a
+//! [`softwalk_systems::view::WorldView`].
 
 use engine::ecs::World;
 use engine::geom::HeightGrid;
@@ -20,7 +21,9 @@ use thiserror::Error;
 
 use crate::paper::measure::{LiftOffs, print_depth};
 use crate::scene::{Scene, SceneError};
-use crate::view::{SceneView, ViewError};
+use softwalk_systems::view::ViewError;
+
+use crate::view::scene_view;
 
 /// An error raised by an observer (an output writer); it stops the run.
 pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
@@ -243,7 +246,7 @@ pub fn run(
     .map_err(SimError::Observer)?;
     let mut view = match options.render {
         true => Some(
-            SceneView::new(
+            scene_view(
                 scene,
                 &app.world,
                 &walkers,

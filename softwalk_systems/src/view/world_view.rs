@@ -1,0 +1,233 @@
+//! [`WorldView`]: draws a world into frames.
+
+use engine::ecs::{Entity, World};
+use engine::geom::TriMesh;
+use engine::render::{
+    Camera, CameraFollow, FrameScene, GrassBlade, MeshInstance, RenderError, Renderer,
+    SampleColors, TerrainRenderer,
+};
+use glam::{Mat4, Vec3};
+use image::RgbaImage;
+use thiserror::Error;
+
+use super::camera_rig::CameraRig;
+use super::overlays::draw_overlays;
+use super::palette::TerrainPaint;
+use super::settings::ViewSettings;
+use crate::character::{Balance, CharacterBody, Pose, character_mesh};
+use crate::sim::{GroundState, Props, WalkerMetrics};
+use crate::terrain::Heightfield;
+use crate::vegetation::GrassPatch;
+
+/// Blue for a character with the balance controller, red without (the paper's Fig. 2).
+const WITH_CONTROLLER: Vec3 = Vec3::new(0.16, 0.30, 0.75);
+/// See [`WITH_CONTROLLER`].
+const WITHOUT_CONTROLLER: Vec3 = Vec3::new(0.75, 0.16, 0.12);
+/// Albedo of props (rocks, steps).
+const PROP: Vec3 = Vec3::new(0.5, 0.48, 0.45);
+/// Near and far planes of the camera, metres.
+const NEAR_FAR: (f32, f32) = (0.05, 200.0);
+/// Smoothing of the follow camera.
+const FOLLOW_SMOOTHING: f32 = 0.4;
+
+/// A frame could not be set up or drawn.
+#[derive(Debug, Error)]
+pub enum ViewError {
+    /// The renderer refused a setting.
+    #[error("renderer: {0}")]
+    Render(#[from] RenderError),
+    /// The world has no terrain to draw.
+    #[error("the world has no terrain")]
+    NoTerrain,
+}
+
+/// One character as drawn: its capsule mesh and colour.
+struct Figure {
+    entity: Entity,
+    mesh: TriMesh,
+    color: Vec3,
+}
+
+/// Draws a world as a [`CameraRig`] sees it: shaded terrain (re-meshed and
+/// re-lit only where the ground changed), characters, props, grass, their
+/// sun shadows, and optional overlays.
+pub struct WorldView {
+    renderer: Renderer,
+    camera: Camera,
+    follow: Option<(CameraFollow, Entity)>,
+    terrain: TerrainRenderer,
+    paint: TerrainPaint,
+    figures: Vec<Figure>,
+    props: Vec<TriMesh>,
+    blades: Vec<GrassBlade>,
+    settings: ViewSettings,
+}
+
+impl WorldView {
+    /// A view of `world` (its terrain, every character, prop and grass
+    /// patch) through `rig`, drawing frames as `settings` say.
+    pub fn new(
+        world: &World,
+        rig: CameraRig,
+        settings: &ViewSettings,
+    ) -> Result<WorldView, ViewError> {
+        let (terrain, paint) = {
+            let ground = world
+                .get_resource::<GroundState>()
+                .ok_or(ViewError::NoTerrain)?;
+            let hf = ground.terrain();
+            let paint = TerrainPaint::of(hf);
+            let mut terrain = TerrainRenderer::new(hf.grid(), settings.terrain)?;
+            terrain.update(hf.grid(), &colors(&paint, hf), &settings.lighting)?;
+            (terrain, paint)
+        };
+        let camera = Camera::perspective(
+            settings.fov_deg.to_radians(),
+            settings.width,
+            settings.height,
+            NEAR_FAR.0,
+            NEAR_FAR.1,
+        )?;
+        let (camera, follow) = match rig {
+            CameraRig::Fixed { eye, target } => (camera.look_at(eye, target, Vec3::Y), None),
+            CameraRig::Follow { character, offset } => {
+                let follow = CameraFollow {
+                    offset,
+                    smoothing: FOLLOW_SMOOTHING,
+                };
+                (camera, Some((follow, character)))
+            }
+        };
+        let mut view = WorldView {
+            renderer: Renderer::new(settings.width, settings.height)?
+                .with_threads(settings.threads)?,
+            camera,
+            follow,
+            terrain,
+            paint,
+            figures: figures(world),
+            props: world
+                .get_resource::<Props>()
+                .map(|p| p.0.clone())
+                .unwrap_or_default(),
+            blades: Vec::new(),
+            settings: *settings,
+        };
+        if let Some((follow, entity)) = view.follow
+            && let Some(target) = followed_point(world, entity)
+        {
+            follow.snap(&mut view.camera, target);
+        }
+        Ok(view)
+    }
+
+    /// Draws the world now; `dt` is the simulated time since the last frame
+    /// (for the follow camera).
+    pub fn render(&mut self, world: &World, dt: f32) -> Result<RgbaImage, ViewError> {
+        if let Some((follow, entity)) = self.follow
+            && let Some(target) = followed_point(world, entity)
+        {
+            follow.update(&mut self.camera, target, dt);
+        }
+        self.update_terrain(world)?;
+        self.collect_blades(world);
+        let poses: Vec<(&Figure, Vec<Mat4>)> = self
+            .figures
+            .iter()
+            .filter_map(|f| Some((f, world.get::<Pose>(f.entity).ok()?.part_transforms())))
+            .collect();
+        let figures = poses.iter().map(|(f, parts)| {
+            MeshInstance::new(&f.mesh, Mat4::IDENTITY, f.color).with_parts(parts)
+        });
+        let props = (self.props.iter()).map(|m| MeshInstance::new(m, Mat4::IDENTITY, PROP));
+        let meshes: Vec<MeshInstance<'_>> = figures.chain(props).collect();
+        let scene = FrameScene {
+            terrain: Some(&self.terrain),
+            meshes: &meshes,
+            blades: &self.blades,
+            lighting: self.settings.lighting,
+            shadows: self.settings.shadows,
+        };
+        let mut image = self.renderer.render(&scene, &self.camera);
+        if self.settings.overlays {
+            draw_overlays(world, &self.camera, &mut image);
+        }
+        Ok(image)
+    }
+
+    /// The camera of the last frame.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// Re-meshes and re-lights only the terrain patches the simulation
+    /// changed since the last frame.
+    fn update_terrain(&mut self, world: &World) -> Result<(), ViewError> {
+        let Some(mut ground) = world.get_resource_mut::<GroundState>() else {
+            return Err(ViewError::NoTerrain);
+        };
+        let changed = ground.take_unseen();
+        if changed.is_empty() {
+            return Ok(());
+        }
+        let hf = ground.terrain();
+        for &rect in &changed {
+            self.paint.refresh(hf, rect);
+            self.terrain.mark_dirty(rect);
+        }
+        let colors = colors(&self.paint, hf);
+        self.terrain
+            .update(hf.grid(), &colors, &self.settings.lighting)?;
+        Ok(())
+    }
+
+    /// The blades of every grass patch, as they are bent now.
+    fn collect_blades(&mut self, world: &World) {
+        self.blades.clear();
+        for patch in world.query::<&GrassPatch>().iter() {
+            self.blades
+                .extend(patch.blade_polylines().map(|b| GrassBlade {
+                    root: b.points[0],
+                    mid: b.points[1],
+                    tip: b.points[2],
+                    width: b.width,
+                    color: Vec3::from(b.colour),
+                }));
+        }
+    }
+}
+
+/// The colour source of the terrain renderer: the paint over `hf`'s samples.
+fn colors<'a>(paint: &'a TerrainPaint, hf: &Heightfield) -> SampleColors<'a> {
+    SampleColors {
+        nx: hf.grid().nx(),
+        albedo: &paint.albedo,
+        disturbed: &paint.disturbed,
+    }
+}
+
+/// Every character of the world, in entity order, with its mesh and colour.
+fn figures(world: &World) -> Vec<Figure> {
+    let mut figures: Vec<Figure> = world
+        .query::<(Entity, &CharacterBody, Option<&Balance>)>()
+        .iter()
+        .map(|(entity, body, balance)| Figure {
+            entity,
+            mesh: character_mesh(body),
+            color: match balance.is_none_or(|b| b.enabled) {
+                true => WITH_CONTROLLER,
+                false => WITHOUT_CONTROLLER,
+            },
+        })
+        .collect();
+    figures.sort_by_key(|f| f.entity);
+    figures
+}
+
+/// The point a follow camera aims at: the character's centre of mass.
+fn followed_point(world: &World, entity: Entity) -> Option<Vec3> {
+    world
+        .get::<WalkerMetrics>(entity)
+        .ok()
+        .map(|m| m.character.com)
+}
