@@ -17,7 +17,7 @@ use std::error::Error;
 
 use engine::ecs::World;
 use engine::geom::GridRect;
-use engine::render::save_png;
+use engine::output::save_png;
 use engine::schedule::{App, Time};
 use glam::{Vec2, Vec3};
 use image::RgbaImage;

@@ -38,7 +38,7 @@ const FRAME_BYTES_PER_PIXEL: u64 = 16;
 const HEIGHTMAP_BYTES_PER_PIXEL: u64 = 12;
 /// Width of a contact-sheet thumbnail, pixels (`output::ContactSheet`).
 const THUMB_WIDTH: u64 = 320;
-/// Gap between contact-sheet thumbnails, pixels (`engine::render::contact_sheet`).
+/// Gap between contact-sheet thumbnails, pixels (`engine::output::contact_sheet`).
 const SHEET_GAP: u64 = 4;
 /// Thumbnails a contact sheet keeps, about (`output::ContactSheet`).
 const SHEET_THUMBS: u64 = 12;

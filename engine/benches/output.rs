@@ -4,7 +4,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use engine::render::{GifPalette, GifWriter, encode_png};
+use engine::output::{GifPalette, GifWriter, encode_png};
 use image::{Rgba, RgbaImage};
 
 /// A frame that looks rendered: sky gradient above, shaded noisy ground below,

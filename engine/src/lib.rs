@@ -14,9 +14,11 @@
 
 pub mod anim;
 pub mod asset;
+pub mod canvas;
 pub mod ecs;
 pub mod geom;
 pub mod io;
+pub mod output;
 pub mod render;
 pub mod rng;
 pub mod schedule;

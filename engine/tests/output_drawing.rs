@@ -1,7 +1,7 @@
 //! Overlays, text and plots land on the expected pixels and keep frames opaque.
 
+use engine::canvas::{LinePlot, Overlay, PixelRect, Series, draw_text, text_width};
 use engine::glam::{Vec2, Vec3};
-use engine::render::{LinePlot, Overlay, PixelRect, Series, draw_text, text_width};
 use image::{Rgba, RgbaImage};
 
 const WHITE: Rgba<u8> = Rgba([255, 255, 255, 255]);

@@ -4,7 +4,7 @@ use std::fs;
 use std::io::BufReader;
 use std::path::Path;
 
-use engine::render::{
+use engine::output::{
     ApngWriter, GifPalette, GifWriter, OutputError, contact_sheet, save_png, save_png_gray16,
 };
 use image::codecs::gif::GifDecoder;

@@ -1,8 +1,8 @@
 //! Golden-image checks: exact and tolerant matches, failure artifacts, the
 //! update and CI settings, and an overlay golden under `tests/snapshots/`.
 
+use engine::canvas::{LinePlot, Overlay, Series};
 use engine::glam::{Vec2, Vec3};
-use engine::render::{LinePlot, Overlay, Series};
 use engine::snapshot::{Outcome, Snapshot, SnapshotEnv, SnapshotError, Tolerance};
 use image::{Rgba, RgbaImage};
 

@@ -115,10 +115,10 @@ fn the_gif_delay_range_is_the_writers() {
     let path = dir.path().join("a.gif");
     let [lo, hi] = GIF_DELAY_MS;
     for ok in [lo, hi] {
-        engine::render::GifWriter::create(&path, ok).expect("in range");
+        engine::output::GifWriter::create(&path, ok).expect("in range");
     }
     for bad in [lo - 1, hi + 1] {
-        assert!(engine::render::GifWriter::create(&path, bad).is_err());
+        assert!(engine::output::GifWriter::create(&path, bad).is_err());
     }
 }
 

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use engine::render::{ApngWriter, GifWriter, contact_sheet, save_png};
+use engine::output::{ApngWriter, GifWriter, contact_sheet, save_png};
 use image::{Rgba, RgbaImage, imageops};
 
 use crate::runner::{Frame, ObserverError, RunObserver};

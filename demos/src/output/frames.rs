@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use engine::render::save_png;
+use engine::output::save_png;
 
 use crate::runner::{Frame, ObserverError, RunObserver};
 

@@ -4,7 +4,8 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
-use engine::render::{LinePlot, Series, save_png};
+use engine::canvas::{LinePlot, Series};
+use engine::output::save_png;
 use image::Rgba;
 
 use super::decimated_series::DecimatedSeries;

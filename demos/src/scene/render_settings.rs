@@ -7,10 +7,10 @@ use super::check::count_in_range;
 
 /// Largest accepted frame side, pixels.
 pub const MAX_FRAME_SIDE: u32 = 8192;
-/// Frame delays a GIF can store, milliseconds (`engine::render::GifWriter`
+/// Frame delays a GIF can store, milliseconds (`engine::output::GifWriter`
 /// stores hundredths of a second in 16 bits).
 pub const GIF_DELAY_MS: [u32; 2] = [10, 655_350];
-/// Frame delays an APNG can store, milliseconds (`engine::render::ApngWriter`).
+/// Frame delays an APNG can store, milliseconds (`engine::output::ApngWriter`).
 pub const APNG_DELAY_MS: [u32; 2] = [0, 65_535];
 
 /// Time between two rendered frames, milliseconds, as the animation writers get it.

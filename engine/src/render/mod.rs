@@ -3,8 +3,8 @@
 //! mesh instances, grass blades and terrain shading that makes footprints readable
 //! (Lambert, sky-view ambient occlusion, soft terrain shadows, sun shadows of
 //! meshes and grass, fog). [`raster`] explains how triangles become pixels.
-//! It also writes frames out (PNG, GIF, APNG, contact sheets), and draws 2D
-//! overlays, text and plots on opaque [`image::RgbaImage`] frames through tiny-skia.
+//! Frames go out through [`crate::output`]; overlays, text and plots are
+//! drawn on them by [`crate::canvas`].
 //!
 //! ```
 //! use engine::glam::{Vec2, Vec3};
@@ -52,16 +52,3 @@ pub use raster::CullMode;
 pub use shading::{Lighting, Sun, encode_display};
 pub use terrain::{TerrainRenderer, TerrainStyle};
 pub use terrain_colors::{SampleColors, TerrainColors, UniformColor};
-
-pub mod output;
-pub mod overlay;
-pub mod plot;
-pub mod text;
-
-pub use output::{
-    ApngWriter, GifPalette, GifWriter, OutputError, contact_sheet, encode_png, save_png,
-    save_png_gray16,
-};
-pub use overlay::Overlay;
-pub use plot::{LinePlot, PixelRect, Series};
-pub use text::{draw_text, text_width};

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-use crate::render::OutputError;
+use crate::output::OutputError;
 
 /// A snapshot check failed or could not run.
 #[derive(Debug, Error)]

@@ -33,7 +33,7 @@ use image::RgbaImage;
 
 pub use error::{Mismatch, SnapshotError};
 
-use crate::render::save_png;
+use crate::output::save_png;
 
 /// How different an image may be from its golden and still pass.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -355,7 +355,7 @@ impl Snapshot {
 /// Saves a PNG, creating its directory first.
 fn save_png_creating_dir(path: &Path, image: &RgbaImage) -> Result<(), SnapshotError> {
     if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir).map_err(|source| crate::render::OutputError::Io {
+        std::fs::create_dir_all(dir).map_err(|source| crate::output::OutputError::Io {
             path: path.to_path_buf(),
             source,
         })?;

@@ -3,8 +3,9 @@
 
 use crate::character::{FootIK, FootRays, Gait, RigidProxy};
 use crate::sim::{Platforms, WalkerMetrics};
+use engine::canvas::Overlay;
 use engine::ecs::World;
-use engine::render::{Camera, Overlay};
+use engine::render::Camera;
 use glam::Vec3;
 use image::{Rgba, RgbaImage};
 

@@ -11,7 +11,7 @@ use image::{Rgba, RgbaImage};
 /// thumbnail width give a 1x1 image of `background`.
 ///
 /// ```
-/// use engine::render::contact_sheet;
+/// use engine::output::contact_sheet;
 /// use image::{Rgba, RgbaImage};
 /// let frames = vec![RgbaImage::new(40, 20); 5];
 /// let sheet = contact_sheet(&frames, 3, 20, Rgba([0, 0, 0, 255]));

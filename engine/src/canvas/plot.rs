@@ -34,7 +34,7 @@ pub struct Series {
 /// A line plot with axes, ticks, grid and legend.
 ///
 /// ```
-/// use engine::render::{LinePlot, Series};
+/// use engine::canvas::{LinePlot, Series};
 /// use image::Rgba;
 /// let plot = LinePlot {
 ///     title: "pelvis height".into(),

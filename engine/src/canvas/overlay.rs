@@ -23,7 +23,7 @@ use super::text;
 ///
 /// ```
 /// use engine::glam::Vec2;
-/// use engine::render::Overlay;
+/// use engine::canvas::Overlay;
 /// use image::{Rgba, RgbaImage};
 /// let mut frame = RgbaImage::from_pixel(32, 32, Rgba([255, 255, 255, 255]));
 /// {
@@ -207,7 +207,7 @@ impl<'a> Overlay<'a> {
     }
 
     /// Text with its top-left corner at `top_left`, `size_px` high (see
-    /// [`text::draw_text`]). Returns the width of the widest line in pixels.
+    /// [`draw_text`]). Returns the width of the widest line in pixels.
     pub fn text(&mut self, top_left: Vec2, size_px: f32, color: Rgba<u8>, text: &str) -> f32 {
         let (glyphs, width) = text::layout(size_px, text);
         let Some(pixmap) = self.pixmap.as_mut() else {
@@ -369,4 +369,26 @@ impl Drop for Overlay<'_> {
             }
         }
     }
+}
+
+/// Draws `text` with its top-left corner at (`x`, `y`) pixels, `size_px` high,
+/// blending `color` by glyph coverage. Lines are split at `\n`. Returns the
+/// width of the widest line in pixels.
+///
+/// ```
+/// use image::{Rgba, RgbaImage};
+/// let mut img = RgbaImage::from_pixel(80, 20, Rgba([255, 255, 255, 255]));
+/// let width = engine::canvas::draw_text(&mut img, 2.0, 2.0, 12.0, Rgba([0, 0, 0, 255]), "step 42");
+/// assert!(width > 30.0 && width < 60.0);
+/// assert!(img.pixels().any(|p| p[0] < 128));
+/// ```
+pub fn draw_text(
+    image: &mut RgbaImage,
+    x: f32,
+    y: f32,
+    size_px: f32,
+    color: Rgba<u8>,
+    text: &str,
+) -> f32 {
+    Overlay::new(image).text(Vec2::new(x, y), size_px, color, text)
 }

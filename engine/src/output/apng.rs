@@ -25,11 +25,11 @@ const SIGNATURE_LEN: u64 = 8;
 /// nothing behind.
 ///
 /// ```no_run
-/// use engine::render::ApngWriter;
+/// use engine::output::ApngWriter;
 /// let mut apng = ApngWriter::create(std::path::Path::new("walk.png"), 40)?;
 /// apng.push(&image::RgbaImage::new(64, 48))?;
 /// apng.finish()?;
-/// # Ok::<(), engine::render::OutputError>(())
+/// # Ok::<(), engine::output::OutputError>(())
 /// ```
 pub struct ApngWriter {
     // Declared before `temp` so that it is dropped (and stops writing) first.

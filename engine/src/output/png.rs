@@ -51,8 +51,8 @@ pub fn encode_png(image: &RgbaImage) -> Vec<u8> {
 ///
 /// ```no_run
 /// let frame = image::RgbaImage::new(64, 32);
-/// engine::render::save_png(std::path::Path::new("frame.png"), &frame)?;
-/// # Ok::<(), engine::render::OutputError>(())
+/// engine::output::save_png(std::path::Path::new("frame.png"), &frame)?;
+/// # Ok::<(), engine::output::OutputError>(())
 /// ```
 pub fn save_png(path: &Path, image: &RgbaImage) -> Result<(), OutputError> {
     check_size(path, image.width(), image.height())?;

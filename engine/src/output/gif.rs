@@ -106,13 +106,13 @@ enum Quantizer {
 /// before that leaves nothing behind.
 ///
 /// ```no_run
-/// use engine::render::GifWriter;
+/// use engine::output::GifWriter;
 /// let mut gif = GifWriter::create(std::path::Path::new("walk.gif"), 40)?;
 /// for _ in 0..3 {
 ///     gif.push(&image::RgbaImage::new(64, 48))?;
 /// }
 /// gif.finish()?;
-/// # Ok::<(), engine::render::OutputError>(())
+/// # Ok::<(), engine::output::OutputError>(())
 /// ```
 pub struct GifWriter {
     // Declared before `temp` so that it is dropped (and stops writing) first.

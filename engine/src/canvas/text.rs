@@ -5,11 +5,6 @@
 
 use std::sync::OnceLock;
 
-use glam::Vec2;
-use image::{Rgba, RgbaImage};
-
-use super::overlay::Overlay;
-
 /// DejaVu Sans (Bitstream Vera license, see `assets/fonts/LICENSE-DejaVu.txt`).
 static FONT_BYTES: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
@@ -96,26 +91,4 @@ pub(crate) fn layout(size_px: f32, text: &str) -> (Vec<PlacedGlyph>, f32) {
         });
     });
     (glyphs, width)
-}
-
-/// Draws `text` with its top-left corner at (`x`, `y`) pixels, `size_px` high,
-/// blending `color` by glyph coverage. Lines are split at `\n`. Returns the
-/// width of the widest line in pixels.
-///
-/// ```
-/// use image::{Rgba, RgbaImage};
-/// let mut img = RgbaImage::from_pixel(80, 20, Rgba([255, 255, 255, 255]));
-/// let width = engine::render::draw_text(&mut img, 2.0, 2.0, 12.0, Rgba([0, 0, 0, 255]), "step 42");
-/// assert!(width > 30.0 && width < 60.0);
-/// assert!(img.pixels().any(|p| p[0] < 128));
-/// ```
-pub fn draw_text(
-    image: &mut RgbaImage,
-    x: f32,
-    y: f32,
-    size_px: f32,
-    color: Rgba<u8>,
-    text: &str,
-) -> f32 {
-    Overlay::new(image).text(Vec2::new(x, y), size_px, color, text)
 }
