@@ -13,6 +13,8 @@
 //! assert_eq!(x, b.range(2.0, 3.0));
 //! ```
 
+#![forbid(unsafe_code)]
+
 /// The golden-ratio increment SplitMix64 adds to its state per draw.
 pub const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
 

@@ -6,6 +6,7 @@
 //! - [`view`]: drawing a world into frames ([`view::WorldView`]);
 //! - [`foot`] and [`ground`]: the per-foot state and ground queries they share.
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod character;
 pub mod foot;

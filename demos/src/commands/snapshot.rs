@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use engine::snapshot::{Outcome, Snapshot, SnapshotEnv, SnapshotError, Tolerance};
 
-use super::{scene_and_options, thread_pool};
+use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{CliError, SnapshotArgs};
 use crate::runner::{self, Frame, ObserverError, RunObserver};
 
@@ -82,6 +82,7 @@ pub fn snapshot(args: &SnapshotArgs, out: &mut dyn Write) -> Result<(), CliError
     options.render = true;
     options.width = args.width.unwrap_or(options.width);
     options.height = args.height.unwrap_or(options.height);
+    check_memory(&scene, &options, &args.scene)?;
     let pool = thread_pool(options.threads)?;
     let mut golden = GoldenFrames {
         golden_dir: args.golden.clone(),

@@ -4,6 +4,8 @@
 //! panics; every writer goes through [`crate::io::write_atomic`], so an output
 //! file is written whole or not at all.
 
+#![forbid(unsafe_code)]
+
 mod error;
 mod heightmap;
 mod obj;

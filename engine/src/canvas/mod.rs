@@ -3,6 +3,8 @@
 //! line plots ([`LinePlot`]), robust to any series. Nothing here knows about
 //! the 3D renderer: a caller projects world points itself.
 
+#![forbid(unsafe_code)]
+
 pub mod overlay;
 pub mod plot;
 pub mod text;

@@ -6,6 +6,8 @@
 //! [`crate::io::AtomicFile`] (`.NAME.partial` beside the target) and rename it
 //! in `finish()`. A writer dropped without `finish()` leaves no file behind.
 
+#![forbid(unsafe_code)]
+
 mod apng;
 mod contact_sheet;
 mod error;

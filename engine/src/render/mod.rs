@@ -24,6 +24,8 @@
 //! let image = Renderer::new(64, 48).unwrap().render(&scene, &camera);
 //! assert_eq!(image.dimensions(), (64, 48));
 //! ```
+
+#![forbid(unsafe_code)]
 mod blade_span;
 mod camera;
 mod error;

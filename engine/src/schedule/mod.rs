@@ -8,6 +8,8 @@
 //!
 //! [`World`]: crate::ecs::World
 
+#![forbid(unsafe_code)]
+
 mod app;
 mod error;
 mod graph;

@@ -24,6 +24,8 @@
 //!     .assert_matches(&frame);
 //! ```
 
+#![forbid(unsafe_code)]
+
 mod error;
 mod pixelmatch;
 
