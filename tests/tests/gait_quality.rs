@@ -50,14 +50,7 @@ fn assert_none(what: &str, failures: &[String]) {
 
 #[test]
 fn every_builtin_scene_meets_the_gait_goals_at_60_hz() {
-    // The crowd is left out: its walkers cross each other's fresh prints,
-    // where a few miss the single-walker goals (stance knee up to 34°,
-    // soles up to 2.2 cm under the ground).
-    let names: Vec<String> = builtin_scenes()
-        .into_iter()
-        .map(|b| b.name)
-        .filter(|name| name != "crowd")
-        .collect();
+    let names: Vec<String> = builtin_scenes().into_iter().map(|b| b.name).collect();
     let measured: Vec<(String, Vec<(String, _)>)> = names
         .par_iter()
         .map(|name| {

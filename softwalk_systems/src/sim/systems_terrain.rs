@@ -9,14 +9,15 @@ use super::ground_state::GroundState;
 use super::labels;
 use super::systems_character::step_dt;
 use crate::terrain::{
-    SettleScratch, SmoothScratch, carve, settle_pending_with, settle_step_with, smooth_with,
-    stage_window,
+    Pressed, SettleScratch, SmoothScratch, deposit_rim, press, settle_pending_with,
+    settle_step_with, smooth_with, stage_window,
 };
 
 /// System `carve`: every stance foot in contact presses its sole into the
 /// ground, character by character in query order and left foot first (a
 /// fixed order, whatever the thread count); c_t of the displaced volume is
-/// compacted, the rest goes to the rim. Starts the step's change log.
+/// compacted. Once every foot has pressed, the rest goes to each print's rim,
+/// around every sole held this step. Starts the step's change log.
 pub fn carve_system(world: &mut World) {
     let dt = step_dt(world);
     let Some(mut ground) = world.get_resource_mut::<GroundState>() else {
@@ -24,13 +25,25 @@ pub fn carve_system(world: &mut World) {
     };
     let hf = ground.terrain_mut();
     hf.begin_step();
-    for (feet, prints) in world.query::<(&Feet, &mut FootPrints)>().iter() {
+    let mut query = world.query::<(&Feet, &mut FootPrints)>();
+    let mut pressed = Vec::new();
+    for (feet, prints) in query.iter() {
         for (foot, print) in feet.0.iter().zip(prints.0.iter_mut()) {
-            if let Err(e) = carve(hf, print, &foot.sole, foot.pressing, dt) {
-                world
-                    .resource_mut::<SystemFault>()
-                    .report(labels::CARVE, e.to_string());
+            match press(hf, print, &foot.sole, foot.pressing, dt) {
+                Ok(p) => pressed.push(p),
+                Err(e) => {
+                    pressed.push(Pressed::default());
+                    world
+                        .resource_mut::<SystemFault>()
+                        .report(labels::CARVE, e.to_string());
+                }
             }
+        }
+    }
+    let mut pressed = pressed.into_iter();
+    for (_, prints) in query.iter() {
+        for (print, p) in prints.0.iter_mut().zip(pressed.by_ref()) {
+            deposit_rim(hf, print, p);
         }
     }
     let changes = hf.changes();

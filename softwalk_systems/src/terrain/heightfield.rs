@@ -7,7 +7,7 @@ use glam::Vec2;
 
 use super::dirty_rects::DirtyRects;
 use super::error::TerrainError;
-use super::held::HeldSamples;
+use super::held::{HeldMask, HeldSamples};
 use super::material::TerrainMaterial;
 use super::material_table::{MaterialId, MaterialTable};
 use super::settle::PendingSettle;
@@ -74,6 +74,7 @@ pub struct Heightfield {
     table: MaterialTable,
     material: Vec<u8>,
     disturbed: Vec<u8>,
+    held_mask: HeldMask,
     changes: StepChanges,
     pending_settle: Vec<PendingSettle>,
 }
@@ -93,6 +94,7 @@ impl Heightfield {
             table,
             material: vec![fill.0; n],
             disturbed: vec![0; n],
+            held_mask: HeldMask::new(n),
             changes: StepChanges::default(),
             pending_settle: Vec::new(),
         })
@@ -123,13 +125,22 @@ impl Heightfield {
     }
 
     /// How far a planted sole can still press the surface at world `(x, z)`,
-    /// metres: the material's print depth, or less where the loose layer left
-    /// above the firm floor is thinner (never below 0), at the nearest sample;
-    /// `None` off the grid.
+    /// metres: [`Heightfield::give_below`] the surface there; `None` off the grid.
     pub fn give_at(&self, x: f32, z: f32) -> Option<f32> {
+        self.give_below(x, z, self.grid.height_at(x, z)?)
+    }
+
+    /// How far a sole standing at height `surface` over world `(x, z)` can
+    /// press the ground, metres: the material's print depth (nearest sample),
+    /// or less where the loose layer between `surface` and the firm floor
+    /// (interpolated like the surface) is thinner; never below 0. `None` off
+    /// the grid. Measured from the surface a ray found, so surface minus give
+    /// is never below the firm floor, even on a print's wall.
+    pub fn give_below(&self, x: f32, z: f32, surface: f32) -> Option<f32> {
         let k = self.nearest_index(x, z)?;
-        let above_floor = self.grid.heights()[k] - self.firm_floor(k);
-        Some(self.material_of(k).print_depth().min(above_floor).max(0.0))
+        let material = self.material_of(k);
+        let firm_floor = self.initial.height_at(x, z)? - material.layer;
+        Some(material.print_depth().min(surface - firm_floor).max(0.0))
     }
 
     /// Index of the sample nearest to world `(x, z)`, or `None` off the grid.
@@ -256,6 +267,7 @@ impl Heightfield {
     /// start of every fixed step, before carving (the held samples of the last
     /// step are released).
     pub fn begin_step(&mut self) -> StepChanges {
+        self.held_mask.clear(self.changes.held.all());
         std::mem::take(&mut self.changes)
     }
 
@@ -280,6 +292,7 @@ impl Heightfield {
             table: &self.table,
             material: &self.material,
             disturbed: &mut self.disturbed,
+            held_mask: &mut self.held_mask,
             changes: &mut self.changes,
         }
     }
@@ -294,6 +307,8 @@ pub(crate) struct TerrainParts<'a> {
     pub table: &'a MaterialTable,
     pub material: &'a [u8],
     pub disturbed: &'a mut [u8],
+    /// The samples held by soles this step, one bit each.
+    pub held_mask: &'a mut HeldMask,
     pub changes: &'a mut StepChanges,
 }
 

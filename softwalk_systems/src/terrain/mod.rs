@@ -51,7 +51,8 @@ mod step;
 mod units;
 
 pub use carve::{
-    CONTACT_TOLERANCE, FootPrint, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, rim_width,
+    CONTACT_TOLERANCE, FootPrint, Pressed, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, deposit_rim,
+    press, rim_width,
 };
 pub use dirty_rects::DirtyRects;
 pub use error::TerrainError;
