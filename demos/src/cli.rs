@@ -124,6 +124,9 @@ pub struct RunArgs {
     /// Frame height in pixels (overrides the scene).
     #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
     pub height: Option<u32>,
+    /// Replay recorded inputs (TOML: step numbers and events) steering a character.
+    #[arg(long, value_name = "FILE")]
+    pub inputs: Option<PathBuf>,
 }
 
 /// Arguments of `softwalk scenes`.
@@ -308,6 +311,9 @@ pub enum CliError {
         /// The file.
         path: PathBuf,
     },
+    /// An input file could not be read or checked.
+    #[error(transparent)]
+    Inputs(#[from] crate::inputs::InputError),
     /// Repeated runs of one scene ended in different worlds.
     #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]
     Nondeterministic {

@@ -45,7 +45,7 @@ impl Steered {
         (0..steps)
             .map(|_| {
                 let c = &mut self.character;
-                let scale = steer_stage(&mut self.steering, &c.gait, &c.body, &mut self.path);
+                let scale = steer_stage(&mut self.steering, &c.gait, &c.body, &mut self.path, DT);
                 c.modifiers.speed_scale = scale;
                 step_character(c, &self.path, &self.ground, DT);
                 let m = &c.metrics;

@@ -19,7 +19,7 @@ use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
 use super::error::CharacterError;
-use super::gait::{Gait, GaitModifiers, GaitParams};
+use super::gait::{Gait, GaitModifiers, GaitParams, clamp_dt};
 use super::path::{PathSegment, WalkPath};
 
 /// How a [`Steering`] shapes the paths it generates.
@@ -47,6 +47,9 @@ pub struct SteeringSettings {
     pub stop_ahead: f32,
     /// Desired speeds below this stop the walk, m/s.
     pub stop_speed: f32,
+    /// How fast the speed scale follows the wish, per second (a sudden
+    /// change of speed would jump the pelvis bob, which scales with speed).
+    pub speed_change_rate: f32,
 }
 
 impl Default for SteeringSettings {
@@ -61,6 +64,7 @@ impl Default for SteeringSettings {
             lookahead: 5.0,
             stop_ahead: 0.2,
             stop_speed: 0.05,
+            speed_change_rate: 1.0,
         }
     }
 }
@@ -71,6 +75,7 @@ pub struct Steering {
     desired: Vec2,
     pivoting: bool,
     stopping: bool,
+    speed_scale: f32,
     /// How the paths are shaped.
     pub settings: SteeringSettings,
 }
@@ -81,6 +86,7 @@ impl Default for Steering {
             desired: Vec2::ZERO,
             pivoting: false,
             stopping: false,
+            speed_scale: 1.0,
             settings: SteeringSettings::default(),
         }
     }
@@ -129,9 +135,25 @@ pub fn curve_radius(settings: &SteeringSettings, speed: f32) -> f32 {
 }
 
 /// Updates `path` from `steering` for a walker in state `gait`, and returns
-/// the factor the walking speed must be scaled by this step (multiply it
-/// into [`GaitModifiers::speed_scale`]).
+/// the factor the walking speed must be scaled by this step of `dt` seconds
+/// (multiply it into [`GaitModifiers::speed_scale`]); the factor follows the
+/// wish at [`SteeringSettings::speed_change_rate`].
 pub fn steer_stage(
+    steering: &mut Steering,
+    gait: &Gait,
+    body: &CharacterBody,
+    path: &mut WalkPath,
+    dt: f32,
+) -> f32 {
+    let target = plan_path(steering, gait, body, path);
+    let most = steering.settings.speed_change_rate.max(0.0) * clamp_dt(dt);
+    let scale = &mut steering.speed_scale;
+    *scale += (target - *scale).clamp(-most, most);
+    *scale
+}
+
+/// Updates `path` from `steering` and returns the speed scale it wishes for.
+fn plan_path(
     steering: &mut Steering,
     gait: &Gait,
     body: &CharacterBody,
@@ -145,7 +167,7 @@ pub fn steer_stage(
             steering.stopping = true;
             hold_stop(path, gait, s.stop_ahead);
         }
-        return 1.0;
+        return steering.speed_scale;
     }
     steering.stopping = false;
     let natural = GaitParams::new(body, &GaitModifiers::default()).speed;
@@ -217,6 +239,8 @@ mod tests {
     use super::*;
     use crate::character::CharacterDesc;
 
+    const DT: f32 = 1.0 / 60.0;
+
     fn standing() -> (CharacterBody, Gait, WalkPath) {
         let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
         let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 1.0).unwrap();
@@ -244,15 +268,15 @@ mod tests {
         let (body, gait, mut path) = standing();
         let mut steering = Steering::new();
         steering.set_desired_velocity(Vec2::new(1.2, 0.0)).unwrap();
-        let scale = steer_stage(&mut steering, &gait, &body, &mut path);
+        let scale = steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(!steering.is_pivoting());
-        assert!(scale > 0.5 && scale < 1.5, "{scale}");
+        assert!((scale - 1.0).abs() <= DT + 1e-6, "eases from 1: {scale}");
         let far = path.point_at(path.end_distance());
         assert!((far.heading - Vec2::X).length() < 1e-4);
         assert!(far.position.x > 4.0, "{far:?}");
 
         steering.set_desired_velocity(Vec2::new(0.0, -1.0)).unwrap();
-        steer_stage(&mut steering, &gait, &body, &mut path);
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(steering.is_pivoting());
         let mid = path.point_at(path.origin() + 0.5);
         assert_eq!(mid.position, gait.pelvis.position);
@@ -262,19 +286,19 @@ mod tests {
     fn zero_velocity_places_one_stop_and_bad_input_is_refused() {
         let (body, mut gait, mut path) = standing();
         let mut steering = Steering::new();
-        steer_stage(&mut steering, &gait, &body, &mut path);
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(
             path.is_finished(gait.distance),
             "at rest: stop where it stands"
         );
         steering.set_desired_velocity(Vec2::Y).unwrap();
-        steer_stage(&mut steering, &gait, &body, &mut path);
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
         steering.set_desired_velocity(Vec2::ZERO).unwrap();
         gait.velocity = Vec2::Y;
-        steer_stage(&mut steering, &gait, &body, &mut path);
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
         let stop = path.clone();
         assert!((stop.end_distance() - gait.distance - 0.2).abs() < 1e-6);
-        steer_stage(&mut steering, &gait, &body, &mut path);
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert_eq!(path, stop, "a held stop is not moved");
         let e = steering.set_desired_velocity(Vec2::NAN).unwrap_err();
         assert!(matches!(

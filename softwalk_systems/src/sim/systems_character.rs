@@ -106,6 +106,7 @@ fn report_fault(fault: &std::sync::Mutex<Option<String>>, message: String) {
 /// System `steer`: each character with a [`Steering`] gets its path from
 /// its desired velocity, and its walking speed scaled to match.
 pub fn steer_system(world: &mut World) {
+    let dt = step_dt(world);
     world
         .query_mut::<(
             &mut Steering,
@@ -117,7 +118,7 @@ pub fn steer_system(world: &mut World) {
         .par_for_each(
             CHARACTER_BATCH,
             |(steering, gait, body, path, modifiers)| {
-                modifiers.speed_scale *= steer_stage(steering, gait, body, path);
+                modifiers.speed_scale *= steer_stage(steering, gait, body, path, dt);
             },
         );
 }
