@@ -74,18 +74,35 @@ impl<'a> InputSession<'a> {
     ) -> Result<bool, SessionError> {
         let mut reset = false;
         for event in self.script.at(step) {
-            if event.action == InputAction::Reset {
-                let (fresh, entities) = scene.build_sim().map_err(SessionError::Reset)?;
-                *app = fresh;
-                *walkers = entities;
-                steer_character(&mut app.world, walkers[self.walker])?;
-                self.state = InputState::default();
-                reset = true;
-            } else {
-                self.state
-                    .apply(&event.action, &mut app.world, walkers[self.walker])?;
-            }
+            reset |= self.apply(&event.action, scene, app, walkers)?;
         }
         Ok(reset)
+    }
+
+    /// Applies one `action` now (a live input); returns true for a reset,
+    /// which rebuilds `app` and `walkers` as [`InputSession::before_step`] does.
+    pub fn apply(
+        &mut self,
+        action: &InputAction,
+        scene: &Scene,
+        app: &mut App,
+        walkers: &mut Vec<Entity>,
+    ) -> Result<bool, SessionError> {
+        if *action != InputAction::Reset {
+            self.state
+                .apply(action, &mut app.world, walkers[self.walker])?;
+            return Ok(false);
+        }
+        let (fresh, entities) = scene.build_sim().map_err(SessionError::Reset)?;
+        *app = fresh;
+        *walkers = entities;
+        steer_character(&mut app.world, walkers[self.walker])?;
+        self.state = InputState::default();
+        Ok(true)
+    }
+
+    /// What the inputs so far ask.
+    pub fn state(&self) -> InputState {
+        self.state
     }
 }
