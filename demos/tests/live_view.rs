@@ -54,7 +54,15 @@ fn view_under_xvfb_matches_its_golden() {
     let out = Command::new(xvfb)
         .args(["-a", "-s", "-screen 0 640x480x24"])
         .arg(env!("CARGO_BIN_EXE_softwalk"))
-        .args(["view", "--width", "240", "--height", "136", "--threads", "1"])
+        .args([
+            "view",
+            "--width",
+            "240",
+            "--height",
+            "136",
+            "--threads",
+            "1",
+        ])
         .arg("--inputs")
         .arg(script())
         .args(["--screenshot-after", SCREENSHOT_AFTER])

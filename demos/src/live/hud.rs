@@ -59,6 +59,16 @@ impl Hud {
         }
     }
 
+    /// Mean drawing time of a frame, ms.
+    pub fn draw_ms(&self) -> f64 {
+        self.draw_ms
+    }
+
+    /// Mean time of a simulation step, ms.
+    pub fn step_ms(&self) -> f64 {
+        self.step_ms
+    }
+
     /// The line: fps, ms per step and per frame, then `figures`.
     pub fn line(&self, figures: &HudFigures) -> String {
         let mut line = format!(
