@@ -229,7 +229,7 @@ pub enum SimError {
     View(#[source] ViewError),
     /// The recorded inputs could not be applied.
     #[error("replaying the inputs failed")]
-    Inputs(#[source] SessionError),
+    Inputs(#[source] Box<SessionError>),
 }
 
 /// Runs `scene` for `options.steps` fixed steps, reporting to `observer`:
@@ -259,7 +259,7 @@ pub fn run_with_inputs(
     let mut session = match inputs {
         Some(script) => Some(
             InputSession::start(script, scene, &mut app, &walkers)
-                .map_err(|e| SimError::Inputs(e.into()))?,
+                .map_err(|e| SimError::Inputs(Box::new(e.into())))?,
         ),
         None => None,
     };
@@ -289,7 +289,7 @@ pub fn run_with_inputs(
         if let Some(session) = session.as_mut()
             && session
                 .before_step(step, scene, &mut app, &mut walkers)
-                .map_err(SimError::Inputs)?
+                .map_err(|e| SimError::Inputs(Box::new(e)))?
             && let Some(view) = view.as_mut()
         {
             *view = scene_view(

@@ -230,7 +230,7 @@ impl<'a> Live<'a> {
             let reset = self
                 .session
                 .before_step(self.step, self.scene, &mut self.app, &mut self.walkers)
-                .map_err(|e| sim_error(SimError::Inputs(e)))?;
+                .map_err(|e| sim_error(SimError::Inputs(Box::new(e))))?;
             if reset {
                 self.rebuild_view()?;
             }
@@ -273,7 +273,7 @@ impl<'a> Live<'a> {
         let reset = self
             .session
             .apply(&action, self.scene, &mut self.app, &mut self.walkers)
-            .map_err(|e| sim_error(SimError::Inputs(e)))?;
+            .map_err(|e| sim_error(SimError::Inputs(Box::new(e))))?;
         if reset {
             self.velocity = Vec2::ZERO;
             self.running = false;
