@@ -9,8 +9,9 @@
 //! pipeline of `softwalk_systems::sim`, and draws frames with a
 //! [`softwalk_systems::view::WorldView`].
 
-use engine::ecs::World;
+use engine::ecs::{Entity, World};
 use engine::geom::HeightGrid;
+use engine::schedule::App;
 use glam::Vec3Swizzles;
 use image::RgbaImage;
 use serde::Serialize;
@@ -267,18 +268,19 @@ pub fn run_with_inputs(
         observer.on_terrain(TerrainMoment::Initial, t.initial())
     })
     .map_err(SimError::Observer)?;
+    let new_view = |app: &App, walkers: &[Entity]| {
+        scene_view(
+            scene,
+            &app.world,
+            walkers,
+            options.width,
+            options.height,
+            options.threads,
+        )
+        .map_err(SimError::View)
+    };
     let mut view = match options.render {
-        true => Some(
-            scene_view(
-                scene,
-                &app.world,
-                &walkers,
-                options.width,
-                options.height,
-                options.threads,
-            )
-            .map_err(SimError::View)?,
-        ),
+        true => Some(new_view(&app, &walkers)?),
         false => None,
     };
     let mut prints = PrintTracker::new(walkers.len());
@@ -292,15 +294,7 @@ pub fn run_with_inputs(
                 .map_err(|e| SimError::Inputs(Box::new(e)))?
             && let Some(view) = view.as_mut()
         {
-            *view = scene_view(
-                scene,
-                &app.world,
-                &walkers,
-                options.width,
-                options.height,
-                options.threads,
-            )
-            .map_err(SimError::View)?;
+            *view = new_view(&app, &walkers)?;
         }
         softwalk_systems::sim::step(&mut app).map_err(SimError::Step)?;
         let t = options.time_after(step);
