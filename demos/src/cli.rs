@@ -42,7 +42,7 @@ pub enum Command {
 /// Arguments of `softwalk view`.
 #[derive(Debug, Clone, Args)]
 pub struct ViewArgs {
-    /// Scene, step limit (`--steps`: close after so many steps) and threads.
+    /// Scene, step limit (`--steps` or `--seconds`: close after so many) and threads.
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Window width in pixels.

@@ -42,7 +42,11 @@ pub fn view(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
         None => InputScript::default(),
     };
     let mut window = open_window(args)?;
-    let limit = args.scene.steps.or(args.screenshot_after);
+    let asked = args.scene.steps.is_some() || args.scene.seconds.is_some();
+    let limit = [asked.then_some(options.steps), args.screenshot_after]
+        .into_iter()
+        .flatten()
+        .min();
     let mut live = Live::start(&scene, &script, args, options.threads)?;
     let started = Instant::now();
     while window.is_open() && !window.is_key_down(Key::Escape) {
