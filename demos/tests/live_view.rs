@@ -1,7 +1,8 @@
 //! `softwalk view`: without a display it fails in one line; under Xvfb
 //! (`xvfb-run`), a short input script and `--screenshot-after` give a
-//! screenshot matching its golden. Where `xvfb-run` is missing, the window
-//! test says it was skipped.
+//! screenshot matching its golden, and the session's recording replays
+//! headless (`run --inputs`) to the live world hash. Where `xvfb-run` is
+//! missing, the window test says it was skipped.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -82,4 +83,28 @@ fn view_under_xvfb_matches_its_golden() {
         .assert_matches(&image);
     let recorded = std::fs::read_to_string(&record).unwrap();
     assert!(recorded.contains("velocity = [0.85, -0.85]"), "{recorded}");
+    let live_hash = hash_line(&out.stdout);
+    let replay = Command::new(env!("CARGO_BIN_EXE_softwalk"))
+        .args(["run", "--no-render", "--hash", "--steps", SCREENSHOT_AFTER])
+        .arg("--out")
+        .arg(dir.path().join("replay"))
+        .arg("--inputs")
+        .arg(&record)
+        .output()
+        .expect("the softwalk binary runs");
+    assert!(replay.status.success());
+    assert_eq!(
+        hash_line(&replay.stdout),
+        live_hash,
+        "replay differs from live"
+    );
+}
+
+/// The `world hash: ...` line of a command's output.
+fn hash_line(stdout: &[u8]) -> String {
+    let text = String::from_utf8_lossy(stdout);
+    text.lines()
+        .find(|l| l.starts_with("world hash: "))
+        .unwrap_or_else(|| panic!("no world hash in:\n{text}"))
+        .to_string()
 }

@@ -68,13 +68,14 @@ pub fn view(args: &ViewArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     let seconds = started.elapsed().as_secs_f64();
     let line = format!(
-        "viewer: {} frames in {seconds:.1} s ({:.1} fps; drawing {:.1} ms a frame), {} steps ({:.3} ms each), {} steps dropped behind real time\n",
+        "viewer: {} frames in {seconds:.1} s ({:.1} fps; drawing {:.1} ms a frame), {} steps ({:.3} ms each), {} steps dropped behind real time\nworld hash: {:016x}\n",
         live.frames,
         live.frames as f64 / seconds.max(1.0e-9),
         live.hud.draw_ms(),
         live.step,
         live.hud.step_ms(),
-        live.clock.dropped
+        live.clock.dropped,
+        softwalk_systems::sim::world_hash(&live.app.world)
     );
     out.write_all(line.as_bytes()).map_err(CliError::Stdout)
 }
