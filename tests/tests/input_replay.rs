@@ -75,3 +75,26 @@ fn replaying_with_frames_ends_in_the_same_world() {
     assert_eq!(frames.0, 42);
     assert_eq!(drawn.world_hash, headless.world_hash);
 }
+
+#[test]
+fn unknown_brushes_and_characters_are_refused_before_the_first_step() {
+    let scene = scene();
+    let mut options = RunOptions::from_scene(&scene);
+    options.render = false;
+    for (text, expected) in [
+        (
+            "[[event]]\nstep = 40\nbrush = \"lava\"\n",
+            "input brush \"lava\" at step 40: unknown material `lava`",
+        ),
+        (
+            "character = \"bob\"\n",
+            "input character: the scene has no character \"bob\"",
+        ),
+    ] {
+        let inputs = InputScript::parse(text, Path::new("bad.toml")).unwrap();
+        let mut frames = Frames(0);
+        let e = runner::run_with_inputs(&scene, &options, Some(&inputs), &mut frames).unwrap_err();
+        let line = demos::cli::error_line(&e);
+        assert!(line.contains(expected), "{line}");
+    }
+}

@@ -3,6 +3,7 @@
 
 use engine::ecs::Entity;
 use engine::schedule::App;
+use softwalk_systems::sim::GroundState;
 
 use super::apply::{InputState, steer_character};
 use super::script::{InputAction, InputError, InputScript};
@@ -29,8 +30,8 @@ pub struct InputSession<'a> {
 
 impl<'a> InputSession<'a> {
     /// Starts `script` on a world built from `scene`: the named character (or
-    /// the first) becomes steered. Fails for an unknown name or a scene
-    /// without characters.
+    /// the first) becomes steered. Fails for an unknown name, a scene
+    /// without characters or a brush of a material the terrain lacks.
     pub fn start(
         script: &'a InputScript,
         scene: &Scene,
@@ -49,6 +50,7 @@ impl<'a> InputSession<'a> {
                 None => "the scene has no character to steer".into(),
             },
         })?;
+        check_brushes(script, app)?;
         steer_character(&mut app.world, walkers[walker])?;
         Ok(InputSession {
             script,
@@ -105,4 +107,22 @@ impl<'a> InputSession<'a> {
     pub fn state(&self) -> InputState {
         self.state
     }
+}
+
+/// Refuses a script whose brush names a material the terrain does not have,
+/// before the first step.
+fn check_brushes(script: &InputScript, app: &App) -> Result<(), InputError> {
+    let ground = app.world.get_resource::<GroundState>();
+    let Some(table) = ground.as_deref().map(|g| g.terrain().table()) else {
+        return Ok(());
+    };
+    for event in &script.events {
+        if let InputAction::Brush(name) = &event.action {
+            table.id(name).map_err(|e| InputError::Apply {
+                what: format!("brush {name:?} at step {}", event.step),
+                reason: e.to_string(),
+            })?;
+        }
+    }
+    Ok(())
 }
