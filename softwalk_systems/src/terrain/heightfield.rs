@@ -204,6 +204,34 @@ impl Heightfield {
         Ok(())
     }
 
+    /// Sets every sample within `radius` metres of `centre` (x, z) to
+    /// material `id`; returns the grid rectangle it covered (`None` when the
+    /// disc misses the grid or `radius` is not a positive number).
+    pub fn paint_disc(
+        &mut self,
+        centre: Vec2,
+        radius: f32,
+        id: MaterialId,
+    ) -> Result<Option<GridRect>, TerrainError> {
+        self.table.get(id)?;
+        if !(radius > 0.0 && radius.is_finite() && centre.is_finite()) {
+            return Ok(None);
+        }
+        let reach = Vec2::splat(radius);
+        let rect = self.grid.rect_covering(centre - reach, centre + reach);
+        if rect.is_empty() {
+            return Ok(None);
+        }
+        let nx = self.grid.nx();
+        for (i, j) in rect.iter() {
+            let p = self.grid.sample_position(i, j);
+            if Vec2::new(p.x, p.z).distance(centre) <= radius {
+                self.material[j * nx + i] = id.0;
+            }
+        }
+        Ok(Some(rect))
+    }
+
     /// Sets each sample's material to `f(x, z)` (world position); the map is
     /// left unchanged if `f` returns an id not in the table.
     pub fn paint_fn(

@@ -160,6 +160,20 @@ impl WorldView {
         &self.camera
     }
 
+    /// Places the camera at `eye` looking at `target` from the next frame
+    /// on (a following rig stops following): for cameras driven from outside,
+    /// such as the live viewer's orbit.
+    pub fn look_at(&mut self, eye: Vec3, target: Vec3) {
+        self.follow = None;
+        self.camera = self.camera.look_at(eye, target, Vec3::Y);
+    }
+
+    /// Turns the overlays (proxy, centre of mass, support, IK keys,
+    /// platforms) on or off from the next frame on.
+    pub fn set_overlays(&mut self, on: bool) {
+        self.settings.overlays = on;
+    }
+
     /// Re-meshes and re-lights only the terrain patches the simulation
     /// changed since the last frame.
     fn update_terrain(&mut self, world: &World) -> Result<(), ViewError> {
