@@ -155,11 +155,13 @@ impl PropSpec {
             }
             (None, Some(name)) => {
                 let text = builtin_obj(name).ok_or_else(|| {
-                    SceneError::invalid(format!("{field}.builtin"), format!("unknown prop \"{name}\""))
+                    SceneError::invalid(
+                        format!("{field}.builtin"),
+                        format!("unknown prop \"{name}\""),
+                    )
                 })?;
-                load_obj_from_str(text).map_err(|e| {
-                    obj_error(format!("{field}.builtin"), Path::new(name), e)
-                })
+                load_obj_from_str(text)
+                    .map_err(|e| obj_error(format!("{field}.builtin"), Path::new(name), e))
             }
             (None, None) => Err(SceneError::invalid(field, "no mesh given")),
         }?;
@@ -217,10 +219,16 @@ mod tests {
         // 12 cm high, scaled by 2, from 5 cm under the ground at 1 m.
         assert!((top - (1.0 - 0.05 + 0.24)).abs() < 1e-4, "{top}");
         // Turned 90 degrees: the long axis (0.9 m along X, scaled) lies along Z.
-        let (lo, hi) = mesh.positions.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
-            (lo.min(p.z), hi.max(p.z))
-        });
-        assert!(hi - lo > 1.6 && (0.5 * (hi + lo) - 3.0).abs() < 0.1, "{lo}..{hi}");
+        let (lo, hi) = mesh
+            .positions
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+                (lo.min(p.z), hi.max(p.z))
+            });
+        assert!(
+            hi - lo > 1.6 && (0.5 * (hi + lo) - 3.0).abs() < 0.1,
+            "{lo}..{hi}"
+        );
     }
 
     #[test]
@@ -228,7 +236,10 @@ mod tests {
         let mut p = rock();
         p.builtin = Some("boulder".into());
         let e = p.validate("props[1]", [10.0, 10.0]).unwrap_err();
-        assert!(e.to_string().starts_with("props[1].builtin: unknown prop"), "{e}");
+        assert!(
+            e.to_string().starts_with("props[1].builtin: unknown prop"),
+            "{e}"
+        );
         let mut p = rock();
         p.mesh = Some("rock.obj".into());
         assert!(p.validate("props[0]", [10.0, 10.0]).is_err());
