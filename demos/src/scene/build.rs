@@ -2,6 +2,7 @@
 //! `softwalk_systems::sim::SimBuilder`.
 
 use engine::ecs::Entity;
+use engine::geom::TriMesh;
 use engine::schedule::App;
 use softwalk_systems::character::Balance;
 use softwalk_systems::sim::{SimBuilder, SimError};
@@ -29,6 +30,20 @@ impl Scene {
             .build_heightfield(&self.base_dir, self.material_table()?)
     }
 
+    /// The `[[props]]` meshes in world space, each on the ground of `terrain`
+    /// under its `at` (errors name the entry and the file).
+    pub fn prop_meshes(&self, terrain: &Heightfield) -> Result<Vec<TriMesh>, SceneError> {
+        let grid = terrain.grid();
+        let (lo, hi) = (grid.origin(), grid.origin() + grid.extent());
+        (self.props.iter().enumerate())
+            .map(|(k, p)| {
+                let at = glam::Vec2::from(p.at).clamp(lo, hi);
+                let ground_y = grid.height_at(at.x, at.y).unwrap_or(0.0);
+                p.world_mesh(&format!("props[{k}]"), &self.base_dir, ground_y)
+            })
+            .collect()
+    }
+
     /// The scene as a simulation: terrain, grass patches and characters in a
     /// built [`App`] stepped at `sim.dt`, and the characters' entities in scene
     /// order. Each character's `controller` switch is set on its `Balance`.
@@ -44,9 +59,12 @@ impl Scene {
     /// ```
     pub fn build_sim(&self) -> Result<(App, Vec<Entity>), SceneError> {
         let mut builder = SimBuilder::new(self.sim.dt).map_err(setup("sim.dt"))?;
-        builder
-            .terrain(self.build_heightfield()?)
-            .map_err(setup("terrain"))?;
+        let heightfield = self.build_heightfield()?;
+        let props = self.prop_meshes(&heightfield)?;
+        builder.terrain(heightfield).map_err(setup("terrain"))?;
+        for (k, mesh) in props.into_iter().enumerate() {
+            builder.mesh(mesh).map_err(setup(format!("props[{k}]")))?;
+        }
         for (k, patch) in self.grass.iter().enumerate() {
             builder
                 .grass(patch.area(), patch.settings())

@@ -29,6 +29,7 @@ mod grass;
 mod ignored_keys;
 mod material;
 mod png_header;
+mod prop;
 mod render_settings;
 mod sim_settings;
 mod syntax;
@@ -52,6 +53,7 @@ pub use grass::{
     MAX_GRASS_HEIGHT, MAX_RECOVERY_OMEGA, MAX_T_MAX,
 };
 pub use png_header::png_size;
+pub use prop::{MAX_PROP_FILE_BYTES, MAX_PROP_SCALE, MAX_PROP_SINK, MAX_PROPS, PropSpec};
 pub use render_settings::{
     APNG_DELAY_MS, GIF_DELAY_MS, MAX_FRAME_SIDE, RenderSettings, frame_delay_ms,
 };
@@ -95,6 +97,9 @@ pub struct Scene {
     /// Grass patches.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grass: Vec<GrassPatchSpec>,
+    /// Static meshes on the terrain (rocks, logs, bridges) the feet stand on.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub props: Vec<PropSpec>,
     /// The walkers (at least one).
     pub characters: Vec<CharacterSpec>,
     /// Folder relative paths are resolved against (the scene file's folder).
@@ -249,6 +254,12 @@ impl Scene {
                     ),
                 ));
             }
+        }
+        check::count_at_most("props", self.props.len(), MAX_PROPS)?;
+        for (k, p) in self.props.iter().enumerate() {
+            let field = format!("props[{k}]");
+            p.validate(&field, size)?;
+            p.check_file(&field, &self.base_dir)?;
         }
         crowding::check_count(&self.characters)?;
         if self.characters.is_empty() {

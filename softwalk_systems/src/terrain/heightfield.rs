@@ -54,6 +54,33 @@ pub struct StepChanges {
     pub smoothing_capped: usize,
 }
 
+impl StepChanges {
+    /// Empties the record, keeping its buffers (every field is named, so a
+    /// new one cannot be forgotten).
+    pub fn clear(&mut self) {
+        let StepChanges {
+            rects,
+            carved,
+            smoothed,
+            carved_volume,
+            compacted_volume,
+            rim_volume,
+            held,
+            released,
+            settle_transfers,
+            settle_visits,
+            smoothing_capped,
+        } = self;
+        rects.clear();
+        carved.clear();
+        smoothed.clear();
+        held.clear();
+        released.clear();
+        (*carved_volume, *compacted_volume, *rim_volume) = (0.0, 0.0, 0.0);
+        (*settle_transfers, *settle_visits, *smoothing_capped) = (0, 0, 0);
+    }
+}
+
 /// A deformable loose ground: heights, a material per sample and the trodden mask.
 ///
 /// It remembers the surface it was created with: each sample's material is a
@@ -291,12 +318,12 @@ impl Heightfield {
         &self.changes
     }
 
-    /// Starts a new step record; returns the previous one. Call it once at the
-    /// start of every fixed step, before carving (the held samples of the last
-    /// step are released).
-    pub fn begin_step(&mut self) -> StepChanges {
+    /// Starts a new step record, emptying the previous one in place (its
+    /// buffers are reused). Call it once at the start of every fixed step,
+    /// before carving (the held samples of the last step are released).
+    pub fn begin_step(&mut self) {
         self.held_mask.clear(self.changes.held.all());
-        std::mem::take(&mut self.changes)
+        self.changes.clear();
     }
 
     /// True while settling work left by [`super::settle_step`] waits for
@@ -412,7 +439,8 @@ mod tests {
             hf.dirty().rects(),
             &[GridRect::new(1, 0, 6, 3), GridRect::new(30, 30, 32, 32)]
         );
-        assert_eq!(hf.begin_step().rects.area(), 4 + 15);
+        assert_eq!(hf.changes().rects.clone().area(), 4 + 15);
+        hf.begin_step();
         assert!(hf.changes().rects.is_empty());
     }
 

@@ -40,6 +40,12 @@ impl HeldSamples {
             .flat_map(|(_, r)| self.samples[r.clone()].iter().copied())
     }
 
+    /// Removes every group, keeping the buffers.
+    pub fn clear(&mut self) {
+        self.samples.clear();
+        self.groups.clear();
+    }
+
     /// True when no sample is held.
     pub fn is_empty(&self) -> bool {
         self.samples.is_empty()
