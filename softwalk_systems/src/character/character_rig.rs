@@ -107,7 +107,7 @@ impl CharacterRig {
         let at = |j: usize| rest_positions[j];
         let hip_mid = 0.5 * (at(chains.left.hip) + at(chains.right.hip));
         let hip_height = hip_mid.y - ground;
-        if !(hip_height > 1e-3) {
+        if hip_height.is_nan() || hip_height <= 1e-3 {
             return Err(ModelError::Shape {
                 reason: format!(
                     "the hips stand {hip_height:.3} m above the lowest vertex; they must be above it"

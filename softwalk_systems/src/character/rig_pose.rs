@@ -2,7 +2,7 @@
 //! biped stays the driver (gait, balance tilt, foot keys, foot IK, platforms);
 //! each of its poses is retargeted onto the rig here.
 
-use engine::anim::BoneRole;
+use engine::anim::{BoneRole, LegChain};
 use glam::{Affine3A, Mat3, Mat4, Quat, Vec3};
 
 use super::body::CharacterBody;
@@ -26,6 +26,13 @@ pub struct RigPose {
     pub rotations: Vec<Quat>,
     /// Rest size to world size.
     pub scale: f32,
+}
+
+/// One leg of the rig with the driver's knee and the foot's index (left 0).
+struct RigLeg<'a> {
+    chain: &'a LegChain,
+    knee: Joint,
+    side: usize,
 }
 
 /// Where the rig's legs must go, computed from the driver.
@@ -63,8 +70,16 @@ impl RigPose {
         let pelvis_at =
             pose.joint(Joint::Pelvis) - pelvis_turn * ((hip_mid - rest[chains.pelvis]) * scale);
         let legs = [
-            (&chains.left, Joint::KneeLeft, 0usize),
-            (&chains.right, Joint::KneeRight, 1),
+            RigLeg {
+                chain: &chains.left,
+                knee: Joint::KneeLeft,
+                side: 0,
+            },
+            RigLeg {
+                chain: &chains.right,
+                knee: Joint::KneeRight,
+                side: 1,
+            },
         ];
         let mut leg_targets: [Option<LegTargets>; 2] = [None, None];
         let mut aims: Vec<Option<Vec3>> = vec![None; n];
@@ -103,23 +118,15 @@ impl RigPose {
             };
             out.positions[j] = parent_at + parent_turn * ((rest[j] - parent_rest) * scale);
             out.rotations[j] = parent_turn;
-            for &(leg, knee, side) in &legs {
-                if j == leg.hip {
-                    let targets = leg_targets_for(
-                        rig,
-                        body,
-                        pose,
-                        &feet[side],
-                        leg,
-                        knee,
-                        side,
-                        out.positions[j],
-                        scale,
-                    );
-                    aims[leg.hip] = Some(targets.knee - out.positions[j]);
-                    aims[leg.knee] = Some(targets.ankle - targets.knee);
+            for leg in &legs {
+                let (chain, side) = (leg.chain, leg.side);
+                if j == chain.hip {
+                    let hip_at = out.positions[j];
+                    let targets = leg_targets_for(rig, body, pose, &feet[side], leg, hip_at);
+                    aims[chain.hip] = Some(targets.knee - hip_at);
+                    aims[chain.knee] = Some(targets.ankle - targets.knee);
                     leg_targets[side] = Some(targets);
-                } else if j == leg.ankle
+                } else if j == chain.ankle
                     && let Some(targets) = &leg_targets[side]
                 {
                     out.rotations[j] = targets.foot;
@@ -193,18 +200,16 @@ fn pelvis_rotation(rig: &CharacterRig, pose: &Pose) -> Quat {
 /// One leg's targets: the foot turned with the driver's sole and its ankle
 /// where the rig's sole centre lands on the driver's, then the knee from
 /// two-bone IK from the rig's hip towards the driver's knee.
-#[allow(clippy::too_many_arguments)]
 fn leg_targets_for(
     rig: &CharacterRig,
     body: &CharacterBody,
     pose: &Pose,
     foot: &FootState,
-    leg: &engine::anim::LegChain,
-    knee: Joint,
-    side: usize,
+    rig_leg: &RigLeg<'_>,
     hip_at: Vec3,
-    scale: f32,
 ) -> LegTargets {
+    let (leg, side) = (rig_leg.chain, rig_leg.side);
+    let scale = body.hip_height / rig.hip_height();
     let rest = rig.rest_positions();
     let sole = foot.sole;
     let along = (sole.toe - sole.heel)
@@ -218,7 +223,7 @@ fn leg_targets_for(
     let ankle = sole.center() + turn * ((rest[leg.ankle] - rig.sole_centres()[side]) * scale);
     let thigh = rest[leg.hip].distance(rest[leg.knee]) * scale;
     let shin = rest[leg.knee].distance(rest[leg.ankle]) * scale;
-    let pole = pose.joint(knee) + pose.forward * body.thigh;
+    let pole = pose.joint(rig_leg.knee) + pose.forward * body.thigh;
     let solved = solve_two_bone(hip_at, ankle, pole, thigh, shin);
     LegTargets {
         knee: solved.mid,
