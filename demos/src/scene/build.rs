@@ -18,6 +18,18 @@ fn setup(part: impl Into<String>) -> impl FnOnce(SimError) -> SceneError {
     move |source| SceneError::Setup { part, source }
 }
 
+/// Wraps a refusal to set up a spawned character's component with the scene part.
+fn spawn_failed<E: std::fmt::Display>(part: String) -> impl FnOnce(E) -> SceneError {
+    move |e| SceneError::Setup {
+        part,
+        source: SimError::System {
+            system: "spawn",
+            step: 0,
+            message: e.to_string(),
+        },
+    }
+}
+
 impl Scene {
     /// The material table: the library presets (sand, soil, mud, snow), then
     /// the scene's `[[materials]]` (one named like a preset replaces it).
@@ -72,17 +84,10 @@ impl Scene {
         let mut app = builder.build().map_err(setup("sim"))?;
         self.attach_rigs(&mut app, &walkers)?;
         for (k, (c, entity)) in self.characters.iter().zip(&walkers).enumerate() {
-            let mut balance =
-                app.world
-                    .get_mut::<Balance>(*entity)
-                    .map_err(|e| SceneError::Setup {
-                        part: format!("characters[{k}].controller"),
-                        source: SimError::System {
-                            system: "spawn",
-                            step: 0,
-                            message: e.to_string(),
-                        },
-                    })?;
+            let mut balance = app
+                .world
+                .get_mut::<Balance>(*entity)
+                .map_err(spawn_failed(format!("characters[{k}].controller")))?;
             balance.enabled = c.controller;
         }
         Ok((app, walkers))
@@ -108,14 +113,7 @@ impl Scene {
             if let Some(rig) = rig {
                 app.world
                     .insert(entity, (rig,))
-                    .map_err(|e| SceneError::Setup {
-                        part: format!("{field}.model"),
-                        source: SimError::System {
-                            system: "spawn",
-                            step: 0,
-                            message: e.to_string(),
-                        },
-                    })?;
+                    .map_err(spawn_failed(format!("{field}.model")))?;
             }
         }
         Ok(())

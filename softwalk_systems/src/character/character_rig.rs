@@ -56,6 +56,7 @@ struct RigData {
     frame: Mat3,
     soles: [Vec<u32>; 2],
     sole_centres: [Vec3; 2],
+    sole_lengths: [f32; 2],
 }
 
 impl CharacterRig {
@@ -132,6 +133,7 @@ impl CharacterRig {
             }
         }
         let sole_centres = [0, 1].map(|k| sole_centre(&rest_vertices.positions, &soles[k]));
+        let sole_lengths = [0, 1].map(|k| sole_length(&rest_vertices.positions, &soles[k], frame));
         let arm = |upper, lower, hand| {
             Some(ArmChain {
                 shoulder: map.joint(upper)?,
@@ -159,6 +161,7 @@ impl CharacterRig {
                 frame,
                 soles,
                 sole_centres,
+                sole_lengths,
             }),
         })
     }
@@ -227,6 +230,11 @@ impl CharacterRig {
     pub fn sole_centres(&self) -> &[Vec3; 2] {
         &self.data.sole_centres
     }
+
+    /// The length of each sole (left first) from heel to toe, rest pose.
+    pub fn sole_lengths(&self) -> &[f32; 2] {
+        &self.data.sole_lengths
+    }
 }
 
 /// The mesh skinned by the rest pose (the bind pose when the rest pose is it).
@@ -288,6 +296,17 @@ fn sole_centre(positions: &[Vec3], sole: &[u32]) -> Vec3 {
         });
     let mid = 0.5 * (lo + hi);
     Vec3::new(mid.x, lo.y, mid.z)
+}
+
+/// A sole's extent from heel to toe along the rest frame's forward.
+fn sole_length(positions: &[Vec3], sole: &[u32], frame: Mat3) -> f32 {
+    let along = sole
+        .iter()
+        .map(|&v| positions[v as usize].dot(frame.z_axis));
+    let (lo, hi) = along.fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
+        (lo.min(x), hi.max(x))
+    });
+    hi - lo
 }
 
 /// The rotation turning `from` (orthonormal columns) onto `to`.

@@ -26,6 +26,11 @@ pub struct RigPose {
     pub rotations: Vec<Quat>,
     /// Rest size to world size.
     pub scale: f32,
+    /// Each joint's stretch in rest space, applied before its rotation: the
+    /// identity but for the feet (and what hangs from them), stretched from
+    /// heel to toe to the driver's foot length so both soles roll about the
+    /// same heel and toe.
+    pub stretch: Vec<Mat3>,
 }
 
 /// One leg of the rig with the driver's knee and the foot's index (left 0).
@@ -40,6 +45,7 @@ struct LegTargets {
     knee: Vec3,
     ankle: Vec3,
     foot: Quat,
+    stretch: Mat3,
 }
 
 impl RigPose {
@@ -47,7 +53,8 @@ impl RigPose {
     /// the driver's; the pelvis placed between the driver's hips and turned by
     /// the driver's hip axis and trunk (so the spine follows the proxy tilt);
     /// each leg solved by two-bone IK so its sole lies on the driver's sole (the
-    /// foot turned with it) with the knee towards the driver's; the arms along
+    /// foot turned with it and stretched to its length) with the knee towards
+    /// the driver's; the arms along
     /// the driver's arm segments. Every other joint keeps its rest transform
     /// relative to its parent, so bones keep their twist.
     pub fn drive(
@@ -63,6 +70,7 @@ impl RigPose {
             positions: vec![Vec3::ZERO; n],
             rotations: vec![Quat::IDENTITY; n],
             scale,
+            stretch: vec![Mat3::IDENTITY; n],
         };
         let chains = rig.chains();
         let pelvis_turn = pelvis_rotation(rig, pose);
@@ -112,12 +120,14 @@ impl RigPose {
                 continue;
             }
             let parent = skeleton[j].parent;
-            let (parent_at, parent_turn, parent_rest) = match parent {
-                Some(p) => (out.positions[p], out.rotations[p], rest[p]),
-                None => (rest[j] * scale, Quat::IDENTITY, rest[j]),
+            let (parent_at, parent_turn, parent_stretch, parent_rest) = match parent {
+                Some(p) => (out.positions[p], out.rotations[p], out.stretch[p], rest[p]),
+                None => (rest[j] * scale, Quat::IDENTITY, Mat3::IDENTITY, rest[j]),
             };
-            out.positions[j] = parent_at + parent_turn * ((rest[j] - parent_rest) * scale);
+            out.positions[j] =
+                parent_at + parent_turn * (parent_stretch * (rest[j] - parent_rest) * scale);
             out.rotations[j] = parent_turn;
+            out.stretch[j] = parent_stretch;
             for leg in &legs {
                 let (chain, side) = (leg.chain, leg.side);
                 if j == chain.hip {
@@ -130,6 +140,7 @@ impl RigPose {
                     && let Some(targets) = &leg_targets[side]
                 {
                     out.rotations[j] = targets.foot;
+                    out.stretch[j] = targets.stretch;
                 }
             }
             if let Some(aim) = aims[j] {
@@ -151,11 +162,11 @@ impl RigPose {
         out.clear();
         let rest = rig.rest_positions();
         out.extend(rig.rest_globals().iter().enumerate().map(|(j, g)| {
-            Mat4::from_scale_rotation_translation(
-                Vec3::splat(self.scale),
-                self.rotations[j],
-                self.positions[j] - self.rotations[j] * (rest[j] * self.scale),
-            ) * *g
+            Mat4::from_translation(self.positions[j])
+                * Mat4::from_quat(self.rotations[j])
+                * Mat4::from_mat3(self.stretch[j] * self.scale)
+                * Mat4::from_translation(-rest[j])
+                * *g
         }));
     }
 
@@ -197,9 +208,10 @@ fn pelvis_rotation(rig: &CharacterRig, pose: &Pose) -> Quat {
     frame_rotation(rig.rest_frame(), Mat3::from_cols(right, up, forward))
 }
 
-/// One leg's targets: the foot turned with the driver's sole and its ankle
-/// where the rig's sole centre lands on the driver's, then the knee from
-/// two-bone IK from the rig's hip towards the driver's knee.
+/// One leg's targets: the foot turned with the driver's sole and stretched
+/// to its length, its ankle where the rig's sole centre lands on the
+/// driver's, then the knee from two-bone IK from the rig's hip towards the
+/// driver's knee.
 fn leg_targets_for(
     rig: &CharacterRig,
     body: &CharacterBody,
@@ -220,7 +232,16 @@ fn leg_targets_for(
         .unwrap_or_else(|| along.any_orthonormal_vector());
     let normal = right.cross(along);
     let turn = frame_rotation(rig.rest_frame(), Mat3::from_cols(right, normal, along));
-    let ankle = sole.center() + turn * ((rest[leg.ankle] - rig.sole_centres()[side]) * scale);
+    let forward = rig.rest_frame().z_axis;
+    let length = rig.sole_lengths()[side] * scale;
+    let factor = if length > 0.0 {
+        sole.heel.distance(sole.toe) / length
+    } else {
+        1.0
+    };
+    let stretch = Mat3::IDENTITY + outer(forward, forward) * (factor - 1.0);
+    let ankle =
+        sole.center() + turn * (stretch * (rest[leg.ankle] - rig.sole_centres()[side]) * scale);
     let thigh = rest[leg.hip].distance(rest[leg.knee]) * scale;
     let shin = rest[leg.knee].distance(rest[leg.ankle]) * scale;
     let pole = pose.joint(rig_leg.knee) + pose.forward * body.thigh;
@@ -229,5 +250,11 @@ fn leg_targets_for(
         knee: solved.mid,
         ankle: solved.end,
         foot: turn,
+        stretch,
     }
+}
+
+/// The outer product `a bᵀ`.
+fn outer(a: Vec3, b: Vec3) -> Mat3 {
+    Mat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
