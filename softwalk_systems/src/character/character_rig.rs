@@ -313,3 +313,46 @@ fn sole_length(positions: &[Vec3], sole: &[u32], frame: Mat3) -> f32 {
 pub(crate) fn frame_rotation(from: Mat3, to: Mat3) -> Quat {
     Quat::from_mat3(&(to * from.transpose())).normalize()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_human_stands_facing_forward_on_two_soles() {
+        let rig = CharacterRig::human().unwrap();
+        assert!((1.5..1.9).contains(&rig.height()), "{}", rig.height());
+        assert!(rig.ground().abs() < 0.01);
+        assert!(rig.rest_frame().z_axis.z > 0.99, "faces +Z");
+        for (k, sole) in rig.sole_vertices().iter().enumerate() {
+            assert!(sole.len() > 10, "sole {k} has {} vertices", sole.len());
+            assert!((0.15..0.35).contains(&rig.sole_lengths()[k]));
+        }
+        // The left sole is on the character's left (+X when facing +Z).
+        assert!(rig.sole_centres()[0].x > rig.sole_centres()[1].x);
+        assert!(rig.arms().iter().all(Option::is_some));
+    }
+
+    #[test]
+    fn a_rig_whose_map_swaps_the_legs_is_refused() {
+        let model = CharacterRig::parse_human().unwrap();
+        let s = &model.skeleton;
+        let mut names: Vec<(BoneRole, String)> = BoneMap::detect(s)
+            .pairs()
+            .iter()
+            .map(|&(r, j)| (r, s.joints()[j].name.clone()))
+            .collect();
+        for (_, name) in &mut names {
+            *name = match name.strip_suffix("_l") {
+                Some(stem) => format!("{stem}_r"),
+                None => match name.strip_suffix("_r") {
+                    Some(stem) => format!("{stem}_l"),
+                    None => continue,
+                },
+            };
+        }
+        let map = BoneMap::from_names(s, &names);
+        let e = CharacterRig::new("swapped", model, map).unwrap_err();
+        assert!(e.to_string().contains("swaps the sides"), "{e}");
+    }
+}

@@ -5,7 +5,7 @@
 use engine::anim::{BoneRole, LegChain};
 use glam::{Affine3A, Mat3, Mat4, Quat, Vec3};
 
-use super::body::CharacterBody;
+use super::body::{CharacterBody, outer};
 use super::character_rig::{CharacterRig, frame_rotation};
 use super::ik::solve_two_bone;
 use super::pose::Pose;
@@ -252,9 +252,4 @@ fn leg_targets_for(
         foot: turn,
         stretch,
     }
-}
-
-/// The outer product `a bᵀ`.
-fn outer(a: Vec3, b: Vec3) -> Mat3 {
-    Mat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
