@@ -7,7 +7,7 @@ use glam::{Quat, Vec2, Vec3};
 use super::balance::RigidProxy;
 use super::body::CharacterBody;
 use super::gait::{FootPlan, Gait, clamp_dt, contact_offset};
-use super::ik::{flexion_at_distance, limit_flexion_change, solve_two_bone};
+use super::ik::{flexion_at_distance, lift_to_reach, limit_flexion_change, solve_two_bone};
 use super::pelvis::PelvisFollower;
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
@@ -287,7 +287,8 @@ pub fn foot_ik_stage(
     let feet = place_feet(ik, body, gait, rays, &hips, forward, dt);
     ik.pelvis_drop = follow_pelvis(ik, body, gait, rays, &hips, &feet, dt);
     pelvis.y -= ik.pelvis_drop;
-    let feet = solve_legs(ik, pose, body, &hips, &feet, forward, dt);
+    let planted = gait.feet.map(|f| f.phase == FootPhase::Stance);
+    let feet = solve_legs(ik, pose, body, &hips, &feet, planted, forward, dt);
     pose_upper_body(pose, body, gait, proxy, pelvis, forward, right);
     foot_states(ik, pose, gait, rays, &feet, dt)
 }
@@ -390,13 +391,18 @@ fn follow_pelvis(
 /// Solves both legs from the hips (lowered by `ik.pelvis_drop`) to their
 /// ankles, the knees within their range and speed, into `pose`; returns the
 /// feet as placed on the ankles the legs really reached (unrolled where a
-/// knee could not bend fast enough, see [`unroll_to_length`]).
+/// knee could not bend fast enough, see [`unroll_to_length`]). A `planted`
+/// foot the leg cannot reach is lifted straight up to the leg's reach, never
+/// pulled towards the hip: it stays where it stands, above its floor, and
+/// does not slide.
+#[allow(clippy::too_many_arguments)]
 fn solve_legs(
     ik: &mut FootIK,
     pose: &mut Pose,
     body: &CharacterBody,
     hips: &[Vec3; 2],
     feet: &[FootPlacement; 2],
+    planted: [bool; 2],
     forward: Vec3,
     dt: f32,
 ) -> [FootPlacement; 2] {
@@ -428,10 +434,13 @@ fn solve_legs(
             let step = MAX_KNEE_SPEED * dt;
             ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
         }
-        let length = ankle_target.distance(hip_at);
+        let length = ankle_target.distance(hip_at).min(l1 + l2);
         let foot = unroll_to_length(body, hip_at, &feet[k], length);
         if foot.pitch != feet[k].pitch {
             ankle_target = hip_at + (foot.ankle - hip_at).normalize_or_zero() * length;
+        }
+        if planted[k] && foot.ankle.distance(hip_at) > length {
+            ankle_target = lift_to_reach(hip_at, foot.ankle, length).unwrap_or(ankle_target);
         }
         let s = solve_two_bone(hip_at, ankle_target, pole, l1, l2);
         knees[k] = flexion_at_distance(s.end.distance(hip_at), l1, l2);

@@ -75,6 +75,17 @@ pub fn limit_flexion_change(
     root + dir * distance_at_flexion(limited, l1, l2)
 }
 
+/// The point straight above or below `ankle` at `length` from `hip` (the
+/// lower of the two, below the hip): where a planted foot out of a leg's
+/// reach goes, lifted instead of pulled towards the hip so that it does not
+/// slide. `None` when the ankle is further than `length` from the hip
+/// horizontally.
+pub fn lift_to_reach(hip: Vec3, ankle: Vec3, length: f32) -> Option<Vec3> {
+    let across = glam::Vec2::new(ankle.x - hip.x, ankle.z - hip.z).length_squared();
+    let below = length * length - across;
+    (below >= 0.0).then(|| Vec3::new(ankle.x, hip.y - below.sqrt(), ankle.z))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,5 +138,16 @@ mod tests {
         assert!(s.mid.is_finite() && s.end.is_finite());
         let s = solve_two_bone(Vec3::ZERO, Vec3::ZERO, Vec3::Z, 0.4, 0.3);
         assert!(!s.reached && s.mid.is_finite() && s.end.is_finite());
+    }
+
+    #[test]
+    fn a_foot_out_of_reach_is_lifted_straight_up_onto_the_reach() {
+        let hip = Vec3::new(0.0, 1.0, 0.0);
+        let ankle = Vec3::new(0.3, 0.0, 0.4);
+        let lifted = lift_to_reach(hip, ankle, 0.9).unwrap();
+        assert_eq!((lifted.x, lifted.z), (ankle.x, ankle.z));
+        assert!((lifted.distance(hip) - 0.9).abs() < 1e-5);
+        assert!(lifted.y > ankle.y && lifted.y < hip.y);
+        assert!(lift_to_reach(hip, Vec3::new(1.0, 0.0, 0.0), 0.9).is_none());
     }
 }

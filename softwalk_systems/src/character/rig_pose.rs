@@ -7,10 +7,10 @@ use glam::{Affine3A, Mat3, Mat4, Quat, Vec3};
 
 use super::body::{CharacterBody, outer};
 use super::character_rig::{CharacterRig, frame_rotation};
-use super::ik::solve_two_bone;
+use super::ik::{lift_to_reach, solve_two_bone};
 use super::pose::Pose;
 use super::skeleton::Joint;
-use crate::foot::FootState;
+use crate::foot::{FootPhase, FootState};
 
 /// Outward lean of the arms from the driver's, radians: the rig's arms hang
 /// clear of its hips, which are wider than the driver's capsules.
@@ -245,6 +245,13 @@ fn leg_targets_for(
     let thigh = rest[leg.hip].distance(rest[leg.knee]) * scale;
     let shin = rest[leg.knee].distance(rest[leg.ankle]) * scale;
     let pole = pose.joint(rig_leg.knee) + pose.forward * body.thigh;
+    // A planted foot out of the rig leg's reach is lifted, not dragged.
+    let ankle = match foot.phase {
+        FootPhase::Stance if ankle.distance(hip_at) > thigh + shin => {
+            lift_to_reach(hip_at, ankle, thigh + shin).unwrap_or(ankle)
+        }
+        _ => ankle,
+    };
     let solved = solve_two_bone(hip_at, ankle, pole, thigh, shin);
     LegTargets {
         knee: solved.mid,
