@@ -49,8 +49,12 @@ struct DrawnBlade {
 /// [`MIN_BLADE_PX`]: the meadow keeps its covered area while far blades cost
 /// fewer, fuller rows. Front to back, most hidden pixels fail the depth test
 /// early instead of being shaded and then overwritten.
+///
+/// Blades wholly outside one side of the view (or behind the near plane) are
+/// left out here, before any other work: set-up would cull them anyway.
 fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<DrawnBlade> {
     let focal = camera.focal_px();
+    let planes = camera.frustum_planes();
     let mut keys: Vec<(u64, f32)> = blades
         .par_iter()
         .enumerate()
@@ -64,6 +68,9 @@ fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<DrawnBlade> {
             } else {
                 return None;
             };
+            if outside_view(&planes, b, width) {
+                return None;
+            }
             // Non-negative floats order like their bit patterns; the index breaks ties.
             Some(((u64::from(distance.to_bits()) << 32) | k as u64, width))
         })
@@ -76,6 +83,19 @@ fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<DrawnBlade> {
             distance: f32::from_bits((key >> 32) as u32),
         })
         .collect()
+}
+
+/// Whether a blade drawn `width` wide lies wholly outside one of the side
+/// and near planes of the view: the ball around its root through its mid
+/// point and tip holds its five vertices. The margin keeps the test
+/// conservative against the rounding of the clip-space test in set-up.
+fn outside_view(planes: &[Vec4; 6], blade: &GrassBlade, width: f32) -> bool {
+    let radius = blade.mid.distance(blade.root) + blade.tip.distance(blade.mid) + width;
+    // The far plane is left to the depth test, as in set-up.
+    planes[..5].iter().any(|p| {
+        let normal = p.truncate();
+        normal.dot(blade.root) + p.w < -(1.001 * radius + 1e-3) * normal.length()
+    })
 }
 
 /// Sorts blade keys (root distance bits above the blade index, in index order)
