@@ -377,11 +377,11 @@ mod tests {
                 .unwrap()
                 .look_at(Vec3::new(2.0, 0.2, z), Vec3::new(2.0, 0.0, 0.0), Vec3::Y)
         };
-        // Near: every blade at its own width, nearest first.
-        let near = drawn_blades(&blades, &camera(-1.0));
+        // Near (the whole row in view): every blade at its own width, nearest first.
+        let near = drawn_blades(&blades, &camera(-3.0));
         assert_eq!(near.len(), blades.len());
         assert!(near.iter().all(|d| d.width == 0.01));
-        let distance = |k: u32| blades[k as usize].root.distance(camera(-1.0).eye);
+        let distance = |k: u32| blades[k as usize].root.distance(camera(-3.0).eye);
         assert!(near.iter().all(|d| d.distance == distance(d.index)));
         assert!(
             near.windows(2)
@@ -399,6 +399,27 @@ mod tests {
             "{total} vs {original}"
         );
         assert!(far.iter().all(|d| d.width > 0.01));
+    }
+
+    #[test]
+    fn blades_outside_the_view_are_left_out() {
+        // 1 m from the middle of a 4 m row, the view spans about 0.8 m either
+        // side (a blade reaches 0.3 m further): the ends of the row are
+        // dropped, the middle is kept.
+        let blades = row_of_blades(4000);
+        let camera = Camera::perspective(0.9, 640, 400, 0.05, 500.0)
+            .unwrap()
+            .look_at(Vec3::new(2.0, 0.2, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::Y);
+        let drawn = drawn_blades(&blades, &camera);
+        let x = |d: &DrawnBlade| blades[d.index as usize].root.x;
+        assert!(drawn.iter().all(|d| (x(d) - 2.0).abs() < 1.5));
+        let middle = blades
+            .iter()
+            .filter(|b| (b.root.x - 2.0).abs() < 0.5)
+            .count();
+        let kept_middle = drawn.iter().filter(|d| (x(d) - 2.0).abs() < 0.5).count();
+        assert_eq!(kept_middle, middle);
+        assert!(10 * drawn.len() < 7 * blades.len(), "{} drawn", drawn.len());
     }
 
     #[test]
