@@ -35,6 +35,37 @@ pub enum Command {
     Snapshot(SnapshotArgs),
     /// Print a character model's (.glb, .gltf) or mocap clip's (.bvh) rig, clips and leg chains.
     Inspect(InspectArgs),
+    /// Open a window with the live simulation: steer a character with the keyboard.
+    View(ViewArgs),
+}
+
+/// Arguments of `softwalk view`.
+#[derive(Debug, Clone, Args)]
+pub struct ViewArgs {
+    /// Scene, step limit (`--steps` or `--seconds`: close after so many) and threads.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Window width in pixels.
+    #[arg(long, default_value_t = 960, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub width: u32,
+    /// Window height in pixels.
+    #[arg(long, default_value_t = 540, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
+    pub height: u32,
+    /// Write every input, with its step number, to this TOML file on exit.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
+    /// Play recorded inputs (as `run --inputs` does); keys still act on top.
+    #[arg(long, value_name = "FILE")]
+    pub inputs: Option<PathBuf>,
+    /// Save a screenshot once this many steps have run, then close.
+    #[arg(long, value_name = "STEPS")]
+    pub screenshot_after: Option<u64>,
+    /// Where screenshots go (the P key numbers them beside it).
+    #[arg(long, value_name = "FILE", default_value = "softwalk-view.png")]
+    pub screenshot: PathBuf,
+    /// Folder the F key records frames to.
+    #[arg(long, value_name = "DIR", default_value = "softwalk-frames")]
+    pub frames: PathBuf,
 }
 
 /// Arguments of `softwalk inspect`.
@@ -124,6 +155,9 @@ pub struct RunArgs {
     /// Frame height in pixels (overrides the scene).
     #[arg(long, value_parser = clap::value_parser!(u32).range(16..=MAX_FRAME_SIDE as i64))]
     pub height: Option<u32>,
+    /// Replay recorded inputs (TOML: step numbers and events) steering a character.
+    #[arg(long, value_name = "FILE")]
+    pub inputs: Option<PathBuf>,
 }
 
 /// Arguments of `softwalk scenes`.
@@ -308,6 +342,15 @@ pub enum CliError {
         /// The file.
         path: PathBuf,
     },
+    /// An input file could not be read or checked.
+    #[error(transparent)]
+    Inputs(#[from] crate::inputs::InputError),
+    /// No window can be opened (no display, as on CI).
+    #[error("cannot open a window: {reason}")]
+    NoWindow {
+        /// Why.
+        reason: String,
+    },
     /// Repeated runs of one scene ended in different worlds.
     #[error("scene {scene}: repeated runs ended in different worlds (world hashes differ)")]
     Nondeterministic {
@@ -325,6 +368,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
         Command::Paper(args) => commands::paper::paper(&args, stdout),
         Command::Snapshot(args) => commands::snapshot::snapshot(&args, stdout),
         Command::Inspect(args) => commands::inspect::inspect(&args, stdout),
+        Command::View(args) => commands::view::view(&args, stdout),
     }
 }
 

@@ -13,6 +13,8 @@
 
 pub mod cli;
 pub mod commands;
+pub mod inputs;
+pub mod live;
 pub mod memory_estimate;
 pub mod out_dir;
 pub mod out_files;

@@ -32,6 +32,11 @@ const CHARACTER_BYTES: u64 = 1 << 20;
 /// What the plots keep per character whatever the run's length, bytes: 7
 /// curves of at most 2048 buckets (1024 after each merge) of about 64 bytes.
 const PLOT_BYTES_PER_CHARACTER: u64 = 7 * 2048 * 64;
+/// A prop mesh per byte of its OBJ file: positions, normals, triangles, its
+/// BVH and a drawing copy, bytes (an OBJ line of ~25 bytes becomes ~100).
+const PROP_BYTES_PER_OBJ_BYTE: u64 = 8;
+/// A built-in prop mesh (a few hundred triangles), bytes.
+const BUILTIN_PROP_BYTES: u64 = 256 << 10;
 /// Colour, depth and work buffers of one frame per pixel, bytes (measured ~9).
 const FRAME_BYTES_PER_PIXEL: u64 = 16;
 /// A decoded heightmap per pixel: the gray values and the heights, bytes.
@@ -191,6 +196,15 @@ impl MemoryEstimate {
             ),
             blades.saturating_mul(blade_bytes),
         );
+        let prop_bytes = (scene.props.iter())
+            .map(|p| match p.mesh_path(&scene.base_dir) {
+                Some(path) => std::fs::metadata(path)
+                    .map_or(0, |m| m.len())
+                    .saturating_mul(PROP_BYTES_PER_OBJ_BYTE),
+                None => BUILTIN_PROP_BYTES,
+            })
+            .fold(0u64, u64::saturating_add);
+        push(format!("props ({})", scene.props.len()), prop_bytes);
         let characters = scene.characters.len() as u64;
         push(
             format!("characters ({characters})"),

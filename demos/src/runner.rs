@@ -9,8 +9,9 @@
 //! pipeline of `softwalk_systems::sim`, and draws frames with a
 //! [`softwalk_systems::view::WorldView`].
 
-use engine::ecs::World;
+use engine::ecs::{Entity, World};
 use engine::geom::HeightGrid;
+use engine::schedule::App;
 use glam::Vec3Swizzles;
 use image::RgbaImage;
 use serde::Serialize;
@@ -19,6 +20,7 @@ use softwalk_systems::terrain::Heightfield;
 use std::time::Instant;
 use thiserror::Error;
 
+use crate::inputs::{InputScript, InputSession, SessionError};
 use crate::paper::measure::{LiftOffs, print_depth};
 use crate::scene::{Scene, SceneError};
 use softwalk_systems::view::ViewError;
@@ -226,6 +228,9 @@ pub enum SimError {
     /// A frame could not be drawn.
     #[error("rendering failed")]
     View(#[source] ViewError),
+    /// The recorded inputs could not be applied.
+    #[error("replaying the inputs failed")]
+    Inputs(#[source] Box<SessionError>),
 }
 
 /// Runs `scene` for `options.steps` fixed steps, reporting to `observer`:
@@ -238,24 +243,44 @@ pub fn run(
     options: &RunOptions,
     observer: &mut dyn RunObserver,
 ) -> Result<RunSummary, SimError> {
+    run_with_inputs(scene, options, None, observer)
+}
+
+/// [`run`], with `inputs` (when given) steering one character: each step's
+/// events are applied before it, so a recorded session replays to the same
+/// world and frames.
+pub fn run_with_inputs(
+    scene: &Scene,
+    options: &RunOptions,
+    inputs: Option<&InputScript>,
+    observer: &mut dyn RunObserver,
+) -> Result<RunSummary, SimError> {
     let setup = Instant::now();
-    let (mut app, walkers) = scene.build_sim().map_err(SimError::Setup)?;
+    let (mut app, mut walkers) = scene.build_sim().map_err(SimError::Setup)?;
+    let mut session = match inputs {
+        Some(script) => Some(
+            InputSession::start(script, scene, &mut app, &walkers)
+                .map_err(|e| SimError::Inputs(Box::new(e.into())))?,
+        ),
+        None => None,
+    };
     with_terrain(&app.world, |t| {
         observer.on_terrain(TerrainMoment::Initial, t.initial())
     })
     .map_err(SimError::Observer)?;
+    let new_view = |app: &App, walkers: &[Entity]| {
+        scene_view(
+            scene,
+            &app.world,
+            walkers,
+            options.width,
+            options.height,
+            options.threads,
+        )
+        .map_err(SimError::View)
+    };
     let mut view = match options.render {
-        true => Some(
-            scene_view(
-                scene,
-                &app.world,
-                &walkers,
-                options.width,
-                options.height,
-                options.threads,
-            )
-            .map_err(SimError::View)?,
-        ),
+        true => Some(new_view(&app, &walkers)?),
         false => None,
     };
     let mut prints = PrintTracker::new(walkers.len());
@@ -263,6 +288,14 @@ pub fn run(
     let setup_seconds = setup.elapsed().as_secs_f64();
     let stepping = Instant::now();
     for step in 0..options.steps {
+        if let Some(session) = session.as_mut()
+            && session
+                .before_step(step, scene, &mut app, &mut walkers)
+                .map_err(|e| SimError::Inputs(Box::new(e)))?
+            && let Some(view) = view.as_mut()
+        {
+            *view = new_view(&app, &walkers)?;
+        }
         softwalk_systems::sim::step(&mut app).map_err(SimError::Step)?;
         let t = options.time_after(step);
         let volume = app.world.resource::<GroundState>().volume();

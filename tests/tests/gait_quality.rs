@@ -9,6 +9,7 @@
 //! Run with `--nocapture` to see every measured figure.
 
 use demos::paper::gait_figures::{GaitFigures, within};
+use demos::paper::gait_quality::STEP_UP_SCENES;
 use demos::paper::gait_quality::{SOLE_BELOW_GOAL_CM, deepest_sole};
 use demos::paper::recorded_run::{RecordedRun, record_run};
 use demos::paper::stillness::Stillness;
@@ -50,13 +51,12 @@ fn assert_none(what: &str, failures: &[String]) {
 
 #[test]
 fn every_builtin_scene_meets_the_gait_goals_at_60_hz() {
-    // The crowd is left out: its walkers cross each other's fresh prints,
-    // where a few miss the single-walker goals (stance knee up to 34°,
-    // soles up to 2.2 cm under the ground).
+    // The step-up scenes are held to every goal but the level-walk stance
+    // knee mean (`scene_build.rs`).
     let names: Vec<String> = builtin_scenes()
         .into_iter()
         .map(|b| b.name)
-        .filter(|name| name != "crowd")
+        .filter(|name| !STEP_UP_SCENES.contains(&name.as_str()))
         .collect();
     let measured: Vec<(String, Vec<(String, _)>)> = names
         .par_iter()

@@ -7,6 +7,7 @@ pub mod run;
 pub mod scenes;
 pub mod snapshot;
 mod threads;
+pub mod view;
 
 use rayon::ThreadPool;
 

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use super::{check_memory, scene_and_options, thread_pool};
 use crate::cli::{CliError, RunArgs};
+use crate::inputs::InputScript;
 use crate::out_dir::{prepare_output_dir, remove_partial_files};
 use crate::out_files::check_output_files;
 use crate::output::{
@@ -39,6 +40,7 @@ impl RunObserver for FrameOutputs {
 /// written is skipped with a warning on standard error.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (scene, mut options) = scene_and_options(&args.scene)?;
+    let inputs = args.inputs.as_deref().map(InputScript::load).transpose()?;
     for warning in scene.warnings() {
         eprintln!("warning: {warning}");
     }
@@ -106,7 +108,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         if options.render {
             observers.0.push(&mut frame_outputs);
         }
-        pool.install(|| runner::run(&scene, &options, &mut observers))
+        pool.install(|| runner::run_with_inputs(&scene, &options, inputs.as_ref(), &mut observers))
     };
     progress.finish();
     let written = frame_outputs.finish().map_err(CliError::Output);

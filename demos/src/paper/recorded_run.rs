@@ -50,11 +50,22 @@ impl RunObserver for SeriesCollector {
 
 /// Runs `scene` headless (no frames, one thread) for `steps` steps at its own `dt`.
 pub fn record_run(scene: &Scene, steps: u64) -> Result<RecordedRun, SimError> {
+    record_run_with_inputs(scene, steps, None)
+}
+
+/// [`record_run`] with recorded `inputs` steering a character, and the
+/// final world hash in the summary.
+pub fn record_run_with_inputs(
+    scene: &Scene,
+    steps: u64,
+    inputs: Option<&crate::inputs::InputScript>,
+) -> Result<RecordedRun, SimError> {
     let mut options = RunOptions::from_scene(scene);
     options.steps = steps;
     options.render = false;
+    options.hash = inputs.is_some();
     let mut series = SeriesCollector::default();
-    let summary = runner::run(scene, &options, &mut series)?;
+    let summary = runner::run_with_inputs(scene, &options, inputs, &mut series)?;
     let mut walkers = series.0;
     walkers.resize(scene.characters.len(), Vec::new());
     Ok(RecordedRun {

@@ -1,9 +1,12 @@
 //! From a validated [`Scene`] to a ready-to-run simulation, through
 //! `softwalk_systems::sim::SimBuilder`.
 
+use std::collections::BTreeMap;
+
 use engine::ecs::Entity;
+use engine::geom::TriMesh;
 use engine::schedule::App;
-use softwalk_systems::character::Balance;
+use softwalk_systems::character::{Balance, CharacterRig};
 use softwalk_systems::sim::{SimBuilder, SimError};
 use softwalk_systems::terrain::{Heightfield, MaterialTable};
 
@@ -14,6 +17,18 @@ use super::{Scene, SceneError};
 fn setup(part: impl Into<String>) -> impl FnOnce(SimError) -> SceneError {
     let part = part.into();
     move |source| SceneError::Setup { part, source }
+}
+
+/// Wraps a refusal to set up a spawned character's component with the scene part.
+fn spawn_failed<E: std::fmt::Display>(part: String) -> impl FnOnce(E) -> SceneError {
+    move |e| SceneError::Setup {
+        part,
+        source: SimError::System {
+            system: "spawn",
+            step: 0,
+            message: e.to_string(),
+        },
+    }
 }
 
 impl Scene {
@@ -27,6 +42,20 @@ impl Scene {
     pub fn build_heightfield(&self) -> Result<Heightfield, SceneError> {
         self.terrain
             .build_heightfield(&self.base_dir, self.material_table()?)
+    }
+
+    /// The `[[props]]` meshes in world space, each on the ground of `terrain`
+    /// under its `at` (errors name the entry and the file).
+    pub fn prop_meshes(&self, terrain: &Heightfield) -> Result<Vec<TriMesh>, SceneError> {
+        let grid = terrain.grid();
+        let (lo, hi) = (grid.origin(), grid.origin() + grid.extent());
+        (self.props.iter().enumerate())
+            .map(|(k, p)| {
+                let at = glam::Vec2::from(p.at).clamp(lo, hi);
+                let ground_y = grid.height_at(at.x, at.y).unwrap_or(0.0);
+                p.world_mesh(&format!("props[{k}]"), &self.base_dir, ground_y)
+            })
+            .collect()
     }
 
     /// The scene as a simulation: terrain, grass patches and characters in a
@@ -44,9 +73,12 @@ impl Scene {
     /// ```
     pub fn build_sim(&self) -> Result<(App, Vec<Entity>), SceneError> {
         let mut builder = SimBuilder::new(self.sim.dt).map_err(setup("sim.dt"))?;
-        builder
-            .terrain(self.build_heightfield()?)
-            .map_err(setup("terrain"))?;
+        let heightfield = self.build_heightfield()?;
+        let props = self.prop_meshes(&heightfield)?;
+        builder.terrain(heightfield).map_err(setup("terrain"))?;
+        for (k, mesh) in props.into_iter().enumerate() {
+            builder.mesh(mesh).map_err(setup(format!("props[{k}]")))?;
+        }
         for (k, patch) in self.grass.iter().enumerate() {
             builder
                 .grass(patch.area(), patch.settings())
@@ -67,22 +99,42 @@ impl Scene {
                 .map_err(setup(part))?;
             walkers.push(entity);
         }
-        let app = builder.build().map_err(setup("sim"))?;
+        let mut app = builder.build().map_err(setup("sim"))?;
+        self.attach_rigs(&mut app, &walkers)?;
         for (k, (c, entity)) in self.characters.iter().zip(&walkers).enumerate() {
-            let mut balance =
-                app.world
-                    .get_mut::<Balance>(*entity)
-                    .map_err(|e| SceneError::Setup {
-                        part: format!("characters[{k}].controller"),
-                        source: SimError::System {
-                            system: "spawn",
-                            step: 0,
-                            message: e.to_string(),
-                        },
-                    })?;
+            let mut balance = app
+                .world
+                .get_mut::<Balance>(*entity)
+                .map_err(spawn_failed(format!("characters[{k}].controller")))?;
             balance.enabled = c.controller;
         }
         Ok((app, walkers))
+    }
+
+    /// Gives each character drawn as a model its [`CharacterRig`]; one
+    /// model and bone table are loaded once and shared.
+    fn attach_rigs(&self, app: &mut App, walkers: &[Entity]) -> Result<(), SceneError> {
+        let mut loaded: Vec<(&str, &BTreeMap<String, String>, Option<CharacterRig>)> = Vec::new();
+        for (k, (c, &entity)) in self.characters.iter().zip(walkers).enumerate() {
+            let field = format!("characters[{k}]");
+            let known = loaded
+                .iter()
+                .find(|(model, bones, _)| *model == c.model && **bones == c.bones);
+            let rig = match known {
+                Some((_, _, rig)) => rig.clone(),
+                None => {
+                    let rig = c.rig(&field, &self.base_dir)?;
+                    loaded.push((&c.model, &c.bones, rig.clone()));
+                    rig
+                }
+            };
+            if let Some(rig) = rig {
+                app.world
+                    .insert(entity, (rig,))
+                    .map_err(spawn_failed(format!("{field}.model")))?;
+            }
+        }
+        Ok(())
     }
 }
 

@@ -11,6 +11,7 @@ const GRASS: &str = include_str!("../../scenes/grass.toml");
 const MORPHOLOGY: &str = include_str!("../../scenes/morphology.toml");
 const CONTROLLER_COMPARE: &str = include_str!("../../scenes/controller-compare.toml");
 const MIXED: &str = include_str!("../../scenes/mixed.toml");
+const PROPS: &str = include_str!("../../scenes/props.toml");
 
 /// The materials that get flat, uphill and downhill scenes.
 const WALK_MATERIALS: [&str; 4] = ["sand", "soil", "mud", "snow"];
@@ -76,6 +77,7 @@ pub fn builtin_scenes() -> Vec<BuiltinScene> {
     all.push(fixed("morphology", MORPHOLOGY));
     all.push(fixed("controller-compare", CONTROLLER_COMPARE));
     all.push(fixed("mixed", MIXED));
+    all.push(fixed("props", PROPS));
     all.push(BuiltinScene {
         name: "crowd".to_owned(),
         toml: super::CrowdSpec::default().toml("crowd"),

@@ -20,6 +20,7 @@ mod build;
 mod builtin;
 mod camera;
 mod character;
+mod character_model;
 mod check;
 mod crowd;
 mod crowding;
@@ -29,6 +30,7 @@ mod grass;
 mod ignored_keys;
 mod material;
 mod png_header;
+mod prop;
 mod render_settings;
 mod sim_settings;
 mod syntax;
@@ -44,6 +46,7 @@ use softwalk_systems::vegetation::MAX_BLADES;
 pub use builtin::{BuiltinScene, builtin_scenes};
 pub use camera::{CameraMode, CameraSpec, MAX_CAMERA_COORDINATE};
 pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, MAX_WAYPOINTS, PathSpec};
+pub use character_model::{HUMAN_MODEL, MANNEQUIN_MODEL, role_key};
 pub use crowd::{CrowdLayout, CrowdSpec};
 pub use crowding::{MAX_CHARACTERS, SPAWN_CLEARANCE_M};
 pub use error::SceneError;
@@ -52,6 +55,7 @@ pub use grass::{
     MAX_GRASS_HEIGHT, MAX_RECOVERY_OMEGA, MAX_T_MAX,
 };
 pub use png_header::png_size;
+pub use prop::{MAX_PROP_FILE_BYTES, MAX_PROP_SCALE, MAX_PROP_SINK, MAX_PROPS, PropSpec};
 pub use render_settings::{
     APNG_DELAY_MS, GIF_DELAY_MS, MAX_FRAME_SIDE, RenderSettings, frame_delay_ms,
 };
@@ -95,6 +99,9 @@ pub struct Scene {
     /// Grass patches.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grass: Vec<GrassPatchSpec>,
+    /// Static meshes on the terrain (rocks, logs, bridges) the feet stand on.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub props: Vec<PropSpec>,
     /// The walkers (at least one).
     pub characters: Vec<CharacterSpec>,
     /// Folder relative paths are resolved against (the scene file's folder).
@@ -250,6 +257,12 @@ impl Scene {
                 ));
             }
         }
+        check::count_at_most("props", self.props.len(), MAX_PROPS)?;
+        for (k, p) in self.props.iter().enumerate() {
+            let field = format!("props[{k}]");
+            p.validate(&field, size)?;
+            p.check_file(&field, &self.base_dir)?;
+        }
         crowding::check_count(&self.characters)?;
         if self.characters.is_empty() {
             return Err(SceneError::invalid(
@@ -260,7 +273,7 @@ impl Scene {
         let mut seen = std::collections::HashSet::with_capacity(self.characters.len());
         for (k, c) in self.characters.iter().enumerate() {
             let field = format!("characters[{k}]");
-            c.validate(&field, size)?;
+            c.validate(&field, size, &self.base_dir)?;
             if !seen.insert(c.name.as_str()) {
                 return Err(SceneError::invalid(
                     format!("{field}.name"),

@@ -31,6 +31,19 @@
 //! - `I` is the proxy's pitch inertia about the ground: the body's inertia
 //!   scaled to the proxy mass plus `m_proxy * h_com²`, so a higher COM gives a
 //!   larger inertia, a lower natural frequency and a lower damping ratio.
+//!
+//! A second PD axis (beyond the paper, its limitation 3) leans the body into
+//! turns, about the walking direction (`phi` > 0 leaning left):
+//!
+//! ```text
+//! I_roll * phi'' = k_lat * (phi_turn - phi) - c_lat * phi'
+//! phi_turn = atan(v * omega / g)            (controller on; 0 when off)
+//! ```
+//!
+//! with `v` the pelvis speed and `omega` the rate of its heading (positive
+//! turning left): the lean that puts the resultant of gravity and the
+//! centripetal force through the feet. On a straight path `omega` is 0 and
+//! so is the lean; in a turn of radius `r` it is `atan(v² / (g r))`.
 
 use glam::{Mat3, Quat, Vec2, Vec3};
 
@@ -57,6 +70,10 @@ pub struct Balance {
     pub lean_stiffness: f32,
     /// Time constant of the low-pass giving `e_slow`, seconds.
     pub lean_time_constant: f32,
+    /// Stiffness k_lat of the lateral axis, N·m/rad.
+    pub lateral_stiffness: f32,
+    /// Damping c_lat of the lateral axis, N·m·s/rad.
+    pub lateral_damping: f32,
 }
 
 /// Default posture stiffness, N·m/rad: keeps every morphology's natural
@@ -68,6 +85,15 @@ pub const DEFAULT_PASSIVE_DAMPING: f32 = 12.0;
 pub const DEFAULT_LEAN_STIFFNESS: f32 = 100.0;
 /// Default time constant of the slow COM offset, seconds (about one step).
 pub const DEFAULT_LEAN_TIME_CONSTANT: f32 = 0.5;
+/// Default stiffness of the lateral axis, N·m/rad: settles a turn's lean in
+/// about half a second for an adult's proxy.
+pub const DEFAULT_LATERAL_STIFFNESS: f32 = 60.0;
+/// Default damping of the lateral axis, N·m·s/rad (about critical).
+pub const DEFAULT_LATERAL_DAMPING: f32 = 15.0;
+/// The largest lean into a turn, radians (30°).
+pub const MAX_TURN_LEAN: f32 = 0.52;
+/// Gravity, m/s², for the turn lean.
+const GRAVITY: f32 = 9.81;
 
 impl Balance {
     /// The controller with the given gains, enabled, and default passive terms.
@@ -80,6 +106,8 @@ impl Balance {
             passive_damping: DEFAULT_PASSIVE_DAMPING,
             lean_stiffness: DEFAULT_LEAN_STIFFNESS,
             lean_time_constant: DEFAULT_LEAN_TIME_CONSTANT,
+            lateral_stiffness: DEFAULT_LATERAL_STIFFNESS,
+            lateral_damping: DEFAULT_LATERAL_DAMPING,
         };
         b.set_gains(alpha, beta)?;
         Ok(b)
@@ -133,6 +161,16 @@ pub struct RigidProxy {
     pub slope: f32,
     /// The COM offset `e` low-passed (`e_slow`), metres.
     pub slow_offset: f32,
+    /// Roll inertia about the ground under the COM (about the walking direction), kg·m².
+    pub roll_inertia: f32,
+    /// Lean into a turn, radians (positive leaning left).
+    pub lean: f32,
+    /// Rate of the lean, rad/s.
+    pub lean_rate: f32,
+    /// The lean the lateral axis is driving towards, `atan(v ω / g)`, radians.
+    pub turn_lean: f32,
+    /// Pelvis heading (x, z) at the last step (zero before the first).
+    pub last_heading: Vec2,
     /// Debug collider: capsule radius, m.
     pub capsule_radius: f32,
     /// Debug collider: capsule half height (centre to cap centre), m.
@@ -157,6 +195,11 @@ impl RigidProxy {
             torque: 0.0,
             slope: 0.0,
             slow_offset: 0.0,
+            roll_inertia: inertia.z_axis.z + mass * body.com_height * body.com_height,
+            lean: 0.0,
+            lean_rate: 0.0,
+            turn_lean: 0.0,
+            last_heading: Vec2::ZERO,
             capsule_radius: 0.15 * body.desc.height,
             capsule_half_height: 0.35 * body.desc.height,
         }
@@ -225,8 +268,61 @@ pub fn balance_stage(
             / (1.0 + dt * balance.passive_damping / inertia);
         proxy.tilt += dt * proxy.tilt_rate;
     }
-    proxy.orientation = Quat::from_axis_angle(right, -proxy.tilt);
+    lateral_stage(proxy, balance, gait, dt);
+    proxy.orientation = proxy.body_rotation(forward);
     proxy.angular_velocity = right * -proxy.tilt_rate;
+}
+
+impl RigidProxy {
+    /// The body's rotation for walking along `forward`: the forward tilt
+    /// about the right axis, then the lean into the turn about `forward`
+    /// (none on a straight path).
+    pub fn body_rotation(&self, forward: Vec3) -> Quat {
+        let pitch = Quat::from_axis_angle(forward.cross(Vec3::Y), -self.tilt);
+        if self.lean == 0.0 {
+            pitch
+        } else {
+            Quat::from_axis_angle(forward, -self.lean) * pitch
+        }
+    }
+}
+
+/// The lean that balances a turn at `speed` (m/s) turning at `rate` (rad/s,
+/// positive left): `atan(v ω / g)`, within ±[`MAX_TURN_LEAN`].
+pub fn turn_lean(speed: f32, rate: f32) -> f32 {
+    (speed * rate / GRAVITY)
+        .atan()
+        .clamp(-MAX_TURN_LEAN, MAX_TURN_LEAN)
+}
+
+/// The lateral axis: drives the lean towards [`turn_lean`] of the pelvis's
+/// speed and heading rate (semi-implicit Euler, damping implicit).
+fn lateral_stage(proxy: &mut RigidProxy, balance: &Balance, gait: &Gait, dt: f32) {
+    let heading = gait.pelvis.heading;
+    if dt <= 0.0 {
+        return;
+    }
+    let previous = proxy.last_heading;
+    proxy.last_heading = heading;
+    let rate = if previous == Vec2::ZERO {
+        0.0
+    } else {
+        let left = Vec2::new(previous.y, -previous.x);
+        heading.dot(left).atan2(heading.dot(previous)) / dt
+    };
+    proxy.turn_lean = if balance.enabled {
+        turn_lean(gait.velocity.length(), rate)
+    } else {
+        0.0
+    };
+    if proxy.turn_lean == 0.0 && proxy.lean == 0.0 && proxy.lean_rate == 0.0 {
+        return;
+    }
+    let inertia = proxy.roll_inertia.max(1.0e-6);
+    let drive = balance.lateral_stiffness * (proxy.turn_lean - proxy.lean);
+    proxy.lean_rate =
+        (proxy.lean_rate + dt * drive / inertia) / (1.0 + dt * balance.lateral_damping / inertia);
+    proxy.lean += dt * proxy.lean_rate;
 }
 
 #[cfg(test)]

@@ -447,7 +447,7 @@ fn solve_legs(
 }
 
 /// Poses the trunk, head and arms over `pelvis`, rotated by the proxy's
-/// tilt about the hips.
+/// tilt and lean about the hips.
 fn pose_upper_body(
     pose: &mut Pose,
     body: &CharacterBody,
@@ -457,7 +457,7 @@ fn pose_upper_body(
     forward: Vec3,
     right: Vec3,
 ) {
-    let lean = Quat::from_axis_angle(right, -proxy.tilt);
+    let lean = proxy.body_rotation(forward);
     let up = lean * Vec3::Y;
     let neck = pelvis + up * body.trunk;
     pose.joints[Joint::Pelvis as usize] = pelvis;

@@ -253,7 +253,8 @@ pub struct Gait {
     /// True once the path has ended and both feet are planted.
     pub stopped: bool,
     /// How much of the scheduled foot roll is applied: 1 while walking,
-    /// falling to 0 over a quarter second once stopped (the feet roll flat).
+    /// falling to 0 over a quarter second once stopped (the feet roll flat)
+    /// and rising back over a quarter second when the walk starts again.
     pub roll: f32,
 }
 
@@ -331,7 +332,7 @@ impl Gait {
     ) -> (Vec2, Vec2) {
         let mut s = self.distance + ahead;
         if !path.is_looped() {
-            s = s.min(path.length());
+            s = s.min(path.end_distance());
         }
         let p = path.point_at(s);
         let right = Vec2::new(-p.heading.y, p.heading.x);
@@ -408,7 +409,9 @@ impl Gait {
 ///
 /// The phase advances with the distance walked (`speed * dt / stride`). At the
 /// end of a path that does not loop the pelvis stops and the phase runs on
-/// until both feet are planted; then the gait is `stopped`.
+/// until both feet are planted; then the gait is `stopped`, until the path
+/// reaches further (a steered path), when the walk starts again and the feet
+/// roll back in over a quarter second.
 pub fn gait_stage(
     gait: &mut Gait,
     body: &CharacterBody,
@@ -418,6 +421,9 @@ pub fn gait_stage(
 ) {
     let dt = clamp_dt(dt);
     gait.params = GaitParams::new(body, modifiers);
+    if gait.stopped && dt > 0.0 && !path.is_finished(gait.distance) {
+        gait.stopped = false;
+    }
     if dt == 0.0 || gait.stopped {
         gait.velocity = Vec2::ZERO;
         if gait.stopped && gait.roll > 0.0 {
@@ -437,8 +443,11 @@ pub fn gait_stage(
     if !finishing {
         gait.distance += step;
         if !path.is_looped() {
-            gait.distance = gait.distance.min(path.length());
+            gait.distance = gait.distance.min(path.end_distance());
         }
+    }
+    if gait.roll < 1.0 {
+        gait.roll = (gait.roll + dt / STOP_SETTLE_TIME).min(1.0);
     }
     gait.phase = (gait.phase + step / gait.params.stride).fract();
     gait.pelvis = path.point_at(gait.distance);

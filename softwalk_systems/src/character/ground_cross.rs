@@ -1,32 +1,55 @@
-//! A patch of ground seen through a cross of five vertical rays: its mean
-//! height, the normal of its plane and how little it gives. One ray reads
-//! whatever lies under a point (a print's wall, a rim, the edge between two
-//! materials); the cross reads the patch.
+//! A patch of ground seen through a cross of vertical rays: its mean
+//! height, the normal of its plane, and where a sole laid on it comes to
+//! rest. One ray reads whatever lies under a point (a print's wall, a rim,
+//! the edge between two materials); the cross reads the patch.
 
 use glam::{Vec2, Vec3};
 
 use crate::ground::GroundHit;
 
-/// The ground over a patch: the mean of the heights found and the unit
-/// normal of the plane through them.
+/// The ground over a patch: the mean of the heights found, the unit normal
+/// of the plane through them, and the heights at the patch's centre where a
+/// sole with that normal first touches the ground and where it stops.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct GroundCross {
     /// Mean of the heights found, metres.
     pub mean: f32,
     /// Unit normal of the patch's plane (up where a pair of rays missed).
     pub normal: Vec3,
-    /// The least give found, metres: a sole across two grounds rests on the
-    /// firmer one.
-    pub give: f32,
-    /// The mean give found, metres: the patch's mean floor is `mean - mean_give`.
+    /// Height at the centre of a plane with [`Self::normal`] lowered onto the
+    /// patch until it touches the highest surface found, metres: where a
+    /// sole landing half over a hole first meets the hole's edge.
+    pub rest_top: f32,
+    /// Height at the centre of the same plane pressed down until it meets
+    /// the highest floor (surface less give) found, metres: a sole across
+    /// two grounds, or across a print's edge, stops on the firmer floor.
+    pub rest_floor: f32,
+    /// The mean give along the line through the centre and the two ends
+    /// ahead and behind, metres: the patch's mean floor is `mean - mean_give`.
+    /// The rays to either side read the slope only: beside a walker's line
+    /// they can find another ground than its feet will press (the edge of a
+    /// snowfield beside a path on sand).
     pub mean_give: f32,
     /// What the ray at the patch's centre found.
     pub centre: Option<GroundHit>,
 }
 
+/// Where the rays between the centre and the two ends of the cross are
+/// cast, as fractions of the reach along: close enough that a print's rim
+/// (a ring about 3 cm wide) cannot pass between two of them under a sole.
+const ALONG_FRACTIONS: [f32; 3] = [0.25, 0.5, 0.75];
+
+/// One ray of the cross: its offset from the centre and what it found.
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    offset: Vec2,
+    height: f32,
+    give: f32,
+}
+
 impl GroundCross {
-    /// Casts `ground` at `at` and `reach_along` ahead and behind it along
-    /// the unit direction `forward`, and `reach_across` to either side;
+    /// Casts `ground` at `at`, at `reach_along` ahead and behind it along
+    /// the unit direction `forward`, and at `reach_across` to either side;
     /// `None` when every ray misses.
     pub fn sample(
         ground: impl Fn(Vec2) -> Option<GroundHit>,
@@ -35,35 +58,91 @@ impl GroundCross {
         reach_along: f32,
         reach_across: f32,
     ) -> Option<GroundCross> {
+        Self::cast(ground, at, forward, [reach_along, reach_across], &[])
+    }
+
+    /// [`GroundCross::sample`] under a sole of half-length `reach_along` and
+    /// half-width `reach_across`, with more rays along it (at
+    /// [`ALONG_FRACTIONS`] of the reach) so that where the sole rests sees
+    /// every rim under it. The mean and the slope are those of the five rays
+    /// of [`GroundCross::sample`].
+    pub fn under_sole(
+        ground: impl Fn(Vec2) -> Option<GroundHit>,
+        at: Vec2,
+        forward: Vec2,
+        reach_along: f32,
+        reach_across: f32,
+    ) -> Option<GroundCross> {
+        let reach = [reach_along, reach_across];
+        Self::cast(ground, at, forward, reach, &ALONG_FRACTIONS)
+    }
+
+    fn cast(
+        ground: impl Fn(Vec2) -> Option<GroundHit>,
+        at: Vec2,
+        forward: Vec2,
+        [reach_along, reach_across]: [f32; 2],
+        between: &[f32],
+    ) -> Option<GroundCross> {
         let right = Vec2::new(-forward.y, forward.x);
-        let centre = ground(at);
-        let surface = |h: Option<GroundHit>| h.map(|h| (h.point.y, h.give.max(0.0)));
-        let found = [
-            surface(centre),
-            surface(ground(at + forward * reach_along)),
-            surface(ground(at - forward * reach_along)),
-            surface(ground(at + right * reach_across)),
-            surface(ground(at - right * reach_across)),
+        let mut offsets = vec![
+            Vec2::ZERO,
+            forward * reach_along,
+            -forward * reach_along,
+            right * reach_across,
+            -right * reach_across,
         ];
-        let samples = found.map(|s| s.map(|(height, _)| height));
-        let heights: Vec<f32> = samples.iter().flatten().copied().collect();
-        if heights.is_empty() {
+        for fraction in between {
+            offsets.push(forward * (fraction * reach_along));
+            offsets.push(-forward * (fraction * reach_along));
+        }
+        let centre = ground(at);
+        let found: Vec<Option<Sample>> = offsets
+            .iter()
+            .map(|&offset| {
+                let hit = if offset == Vec2::ZERO {
+                    centre
+                } else {
+                    ground(at + offset)
+                };
+                hit.map(|h| Sample {
+                    offset,
+                    height: h.point.y,
+                    give: h.give.max(0.0),
+                })
+            })
+            .collect();
+        let cross: Vec<Sample> = found[..5].iter().flatten().copied().collect();
+        if cross.is_empty() {
             return None;
         }
-        let gives: Vec<f32> = found.iter().flatten().map(|&(_, give)| give).collect();
-        let give = gives.iter().copied().fold(f32::INFINITY, f32::min);
-        let mean_give = gives.iter().sum::<f32>() / gives.len() as f32;
+        let count = cross.len() as f32;
+        let mean = cross.iter().map(|s| s.height).sum::<f32>() / count;
+        let line: Vec<f32> = found[..3].iter().flatten().map(|s| s.give).collect();
+        let mean_give = line.iter().sum::<f32>() / line.len().max(1) as f32;
+        let height = |i: usize| found[i].map(|s| s.height);
         let grade = |ahead: Option<f32>, behind: Option<f32>, reach: f32| match (ahead, behind) {
             (Some(a), Some(b)) if reach > 0.0 => (a - b) / (2.0 * reach),
             _ => 0.0,
         };
-        let along = grade(samples[1], samples[2], reach_along);
-        let across = grade(samples[3], samples[4], reach_across);
+        let along = grade(height(1), height(2), reach_along);
+        let across = grade(height(3), height(4), reach_across);
         let rise = forward * along + right * across;
+        // The plane through the centre (or the mean) with the patch's slope;
+        // each sample's height above it says how far the plane must rise.
+        let base = centre.map_or(mean, |c| c.point.y);
+        let highest = |y: fn(&Sample) -> f32| {
+            found
+                .iter()
+                .flatten()
+                .map(|s| y(s) - (base + rise.dot(s.offset)))
+                .fold(f32::NEG_INFINITY, f32::max)
+        };
         Some(GroundCross {
-            mean: heights.iter().sum::<f32>() / heights.len() as f32,
+            mean,
             normal: Vec3::new(-rise.x, 1.0, -rise.y).normalize(),
-            give,
+            rest_top: base + highest(|s| s.height),
+            rest_floor: base + highest(|s| s.height - s.give),
             mean_give,
             centre,
         })
@@ -89,9 +168,14 @@ mod tests {
         let plane = |p: Vec2| hit(p, height(p), 0.1 + 0.01 * p.x);
         let c = GroundCross::sample(plane, Vec2::new(1.0, 2.0), Vec2::Y, 0.3, 0.2).unwrap();
         assert!((c.mean - height(Vec2::new(1.0, 2.0))).abs() < 1e-5);
+        let centre = height(Vec2::new(1.0, 2.0));
         assert!(
-            (c.give - (0.1 + 0.01 * 0.8)).abs() < 1e-6,
-            "the firmest sample"
+            (c.rest_top - centre).abs() < 1e-5,
+            "a plane rests on itself"
+        );
+        assert!(
+            (c.rest_floor - (centre - (0.1 + 0.01 * 0.8))).abs() < 1e-5,
+            "on the floor of the firmest sample"
         );
         let expected = Vec3::new(-0.2, 1.0, 0.1).normalize();
         assert!(c.normal.distance(expected) < 1e-5, "{}", c.normal);
@@ -99,6 +183,58 @@ mod tests {
         let c = GroundCross::sample(pit, Vec2::ZERO, Vec2::X, 0.3, 0.3).unwrap();
         assert!((c.mean + 0.1).abs() < 1e-6);
         assert_eq!(c.normal, Vec3::Y);
+        assert_eq!(
+            (c.rest_top, c.rest_floor),
+            (0.0, 0.0),
+            "a sole bridges the pit"
+        );
         assert!(GroundCross::sample(|_| None, Vec2::ZERO, Vec2::X, 0.3, 0.3).is_none());
+    }
+
+    #[test]
+    fn a_sole_over_a_print_edge_rests_on_the_edge_and_stops_on_the_firmer_floor() {
+        // An old print 5 cm deep (pressed firm, giving 1 cm) ahead of x = -0.1,
+        // loose sand giving 4 cm behind it; the sole centre is over the print.
+        let ground = |p: Vec2| {
+            if p.x > -0.1 {
+                hit(p, -0.05, 0.01)
+            } else {
+                hit(p, 0.0, 0.04)
+            }
+        };
+        let c = GroundCross::sample(ground, Vec2::ZERO, Vec2::X, 0.13, 0.05).unwrap();
+        let tilt = 0.05 / 0.26;
+        // The sole tilts with the patch and its heel meets the sand at 0.
+        let heel_on_sand = -0.05 + 0.13 * tilt;
+        assert!((c.rest_top - (-0.05 + (0.0 - heel_on_sand))).abs() < 1e-6);
+        assert!(c.rest_top > -0.05, "{}", c.rest_top);
+        // Pressed down, the tilted sole stops when its toe meets the print's
+        // firm floor, 1 cm lower: the sand under the heel gives 1 cm of its 4.
+        assert!((c.rest_floor - (c.rest_top - 0.01)).abs() < 1e-6);
+        // Untilted, the sole would have gone to the print's floor (-0.06)
+        // through the sand's edge.
+        assert!(c.rest_floor > -0.06 + 0.02);
+    }
+
+    #[test]
+    fn a_sole_sees_a_narrow_rim_between_the_ends_of_its_cross() {
+        // A rim 3 cm wide and 4 cm high, halfway between the centre and the heel.
+        let rim = |p: Vec2| {
+            hit(
+                p,
+                if (p.x + 0.065).abs() < 0.015 {
+                    0.04
+                } else {
+                    0.0
+                },
+                0.05,
+            )
+        };
+        let five = GroundCross::sample(rim, Vec2::ZERO, Vec2::X, 0.13, 0.05).unwrap();
+        assert_eq!(five.rest_top, 0.0, "five rays miss it");
+        let sole = GroundCross::under_sole(rim, Vec2::ZERO, Vec2::X, 0.13, 0.05).unwrap();
+        assert_eq!(sole.rest_top, 0.04);
+        assert!((sole.rest_floor - (0.04 - 0.05)).abs() < 1e-6);
+        assert_eq!((sole.mean, sole.normal), (five.mean, five.normal));
     }
 }

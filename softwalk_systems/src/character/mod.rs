@@ -1,12 +1,15 @@
 //! The walking character: description, body, walk cycle, foot rays, the rigid
 //! proxy with the paper's balance controller (eq. 1), and foot IK.
 //!
+//! A [`Steering`] generates the path from a desired velocity ([`steer_stage`]).
+//!
 //! Each fixed step runs, in order (each stage is a plain function taking all
 //! its state explicitly, so a schedule can run them as separate systems):
 //! 1. [`gait_stage`]: walk-cycle phase, footholds, swing trajectories;
 //! 2. [`foot_raycast_stage`]: vertical rays giving each foot's IK key;
 //! 3. (vegetation's virtual platforms, outside this module);
-//! 4. [`balance_stage`]: eq. 1 torque on the [`RigidProxy`], integrated;
+//! 4. [`balance_stage`]: eq. 1 torque on the [`RigidProxy`], integrated, and
+//!    the lateral axis leaning into turns;
 //! 5. [`foot_ik_stage`]: legs, feet, pelvis drop, tilt; the final [`Pose`] and [`FootState`]s.
 //!
 //! [`step_character`] runs 1, 2, 4 and 5 against one ground:
@@ -29,6 +32,7 @@
 
 mod balance;
 mod body;
+mod character_rig;
 mod desc;
 mod error;
 mod foot_ik;
@@ -37,19 +41,24 @@ mod ground_cross;
 mod ik;
 mod mesh;
 mod metrics;
+mod model_error;
 mod path;
 mod pelvis;
 mod pose;
 mod rays;
+mod rig_pose;
 mod skeleton;
+mod steering;
 mod step;
 mod support;
 
 pub use balance::{
-    Balance, DEFAULT_LEAN_STIFFNESS, DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING,
-    DEFAULT_POSTURE_STIFFNESS, RigidProxy, animated_com, balance_stage,
+    Balance, DEFAULT_LATERAL_DAMPING, DEFAULT_LATERAL_STIFFNESS, DEFAULT_LEAN_STIFFNESS,
+    DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, MAX_TURN_LEAN,
+    RigidProxy, animated_com, balance_stage, turn_lean,
 };
 pub use body::CharacterBody;
+pub use character_rig::{ArmChain, CharacterRig};
 pub use desc::CharacterDesc;
 pub use error::CharacterError;
 pub use foot_ik::{FootIK, foot_ik_stage};
@@ -60,9 +69,12 @@ pub use gait::{
 pub use ik::{TwoBoneSolution, solve_two_bone};
 pub use mesh::{capsule, character_mesh};
 pub use metrics::CharacterMetrics;
+pub use model_error::ModelError;
 pub use path::{PathPoint, PathSegment, WalkPath};
 pub use pose::Pose;
 pub use rays::{FootRays, GroundKey, foot_raycast_stage};
+pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
+pub use steering::{Steering, SteeringSettings, curve_radius, steer_stage, turn_angle};
 pub use step::{Character, step_character};
 pub use support::{FootSupport, RIM_CLEARANCE, SupportPoint};

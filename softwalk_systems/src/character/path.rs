@@ -1,4 +1,5 @@
-//! The path a character walks: straight runs and circular arcs, optionally looped.
+//! The path a character walks: straight runs, circular arcs and turns on
+//! the spot, optionally looped.
 
 use glam::{Vec2, Vec3};
 
@@ -19,6 +20,16 @@ pub enum PathSegment {
         /// Turn angle in radians (non-zero).
         angle: f32,
     },
+    /// A turn on the spot: the heading turns by `angle` (positive left)
+    /// while the position stays; the walk steps around it, one metre of
+    /// distance for every `1 / reach` radians turned.
+    Pivot {
+        /// Distance walked per radian turned, metres (> 0): sets how far
+        /// each step turns.
+        reach: f32,
+        /// Turn angle in radians (non-zero).
+        angle: f32,
+    },
 }
 
 impl PathSegment {
@@ -26,6 +37,20 @@ impl PathSegment {
         match *self {
             PathSegment::Straight { length } => length,
             PathSegment::Arc { radius, angle } => radius * angle.abs(),
+            PathSegment::Pivot { reach, angle } => reach * angle.abs(),
+        }
+    }
+
+    fn is_valid(&self) -> bool {
+        match *self {
+            PathSegment::Straight { length } => length.is_finite() && length > 0.0,
+            PathSegment::Arc {
+                radius: size,
+                angle,
+            }
+            | PathSegment::Pivot { reach: size, angle } => {
+                size.is_finite() && size > 0.0 && angle.is_finite() && angle != 0.0
+            }
         }
     }
 }
@@ -53,7 +78,9 @@ impl PathPoint {
 
 /// A walk path on the ground plane, parametrised by distance walked.
 ///
-/// Before its start the path extends straight backwards; after its end it
+/// Distances are counted from the path's `origin` (0 unless set with
+/// [`WalkPath::with_origin`]), so a path generated mid-walk can continue the
+/// distance its walker has already covered. Before its start the path extends straight backwards; after its end it
 /// stays at the end point, unless `looped`, when the distance wraps around
 /// (a looped path should end where it starts, heading the same way).
 #[derive(Debug, Clone, PartialEq)]
@@ -63,6 +90,7 @@ pub struct WalkPath {
     start_distance: Vec<f32>,
     length: f32,
     looped: bool,
+    origin: f32,
 }
 
 impl WalkPath {
@@ -94,13 +122,7 @@ impl WalkPath {
         let mut start_distance = Vec::with_capacity(segments.len());
         let mut length = 0.0;
         for seg in &segments {
-            let ok = match *seg {
-                PathSegment::Straight { length } => length.is_finite() && length > 0.0,
-                PathSegment::Arc { radius, angle } => {
-                    radius.is_finite() && radius > 0.0 && angle.is_finite() && angle != 0.0
-                }
-            };
-            if !ok {
+            if !seg.is_valid() {
                 return bad("segments", format!("{seg:?} needs finite positive sizes"));
             }
             starts.push(here);
@@ -114,7 +136,27 @@ impl WalkPath {
             start_distance,
             length,
             looped,
+            origin: 0.0,
         })
+    }
+
+    /// This path with its start at distance `origin` (a finite number): a
+    /// walker that has covered `origin` metres stands at its start.
+    pub fn with_origin(mut self, origin: f32) -> Self {
+        if origin.is_finite() {
+            self.origin = origin;
+        }
+        self
+    }
+
+    /// The distance at the path's start, metres.
+    pub fn origin(&self) -> f32 {
+        self.origin
+    }
+
+    /// The distance at the path's end: its origin plus its length, metres.
+    pub fn end_distance(&self) -> f32 {
+        self.origin + self.length
     }
 
     /// A straight path of `length` metres from `start` along `direction`.
@@ -136,7 +178,7 @@ impl WalkPath {
         Self::new(start, direction, vec![arc], true)
     }
 
-    /// Total length in metres.
+    /// Total length in metres (from the origin to the end).
     pub fn length(&self) -> f32 {
         self.length
     }
@@ -148,11 +190,12 @@ impl WalkPath {
 
     /// True when `distance` has reached the end of a path that does not loop.
     pub fn is_finished(&self, distance: f32) -> bool {
-        !self.looped && distance >= self.length
+        !self.looped && distance >= self.end_distance()
     }
 
     /// Position and heading after walking `distance` metres.
     pub fn point_at(&self, distance: f32) -> PathPoint {
+        let distance = distance - self.origin;
         let s = if self.looped {
             distance.rem_euclid(self.length)
         } else {
@@ -191,6 +234,15 @@ fn advance(from: PathPoint, seg: &PathSegment, along: f32) -> PathPoint {
                 heading: (from.heading * c + left * s).normalize(),
             }
         }
+        PathSegment::Pivot { reach, angle } => {
+            let turn = along / reach * angle.signum();
+            let left = Vec2::new(from.heading.y, -from.heading.x);
+            let (s, c) = turn.sin_cos();
+            PathPoint {
+                position: from.position,
+                heading: (from.heading * c + left * s).normalize(),
+            }
+        }
     }
 }
 
@@ -219,6 +271,23 @@ mod tests {
         assert!((end.position - Vec2::new(2.0, 2.0)).length() < 1e-4);
         assert!((end.heading - Vec2::X).length() < 1e-4);
         assert!((p.point_at(0.0).right3() - Vec3::NEG_X).length() < 1e-6);
+    }
+
+    #[test]
+    fn pivot_turns_in_place_and_origin_shifts_distances() {
+        let half = PathSegment::Pivot {
+            reach: 0.5,
+            angle: std::f32::consts::PI,
+        };
+        let p = WalkPath::new(Vec3::ZERO, Vec3::Z, vec![half], false)
+            .unwrap()
+            .with_origin(10.0);
+        assert_eq!(p.end_distance(), 10.0 + 0.5 * std::f32::consts::PI);
+        let mid = p.point_at(10.0 + 0.25 * std::f32::consts::PI);
+        assert_eq!(mid.position, Vec2::ZERO);
+        assert!((mid.heading - Vec2::X).length() < 1e-5, "{:?}", mid.heading);
+        assert!((p.point_at(20.0).heading - Vec2::NEG_Y).length() < 1e-5);
+        assert!(!p.is_finished(11.0) && p.is_finished(12.0));
     }
 
     #[test]

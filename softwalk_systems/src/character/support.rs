@@ -182,13 +182,17 @@ impl FootSupport {
     ) {
         let (along, across) = (0.5 * body.foot_length, 0.5 * body.foot_width);
         let heading = plan.foothold_heading;
-        let patch = GroundCross::sample(cast, plan.foothold, heading, along, across);
+        let patch = GroundCross::under_sole(cast, plan.foothold, heading, along, across);
         self.hit = self
             .landing
             .update(plan.foothold, patch.and_then(|p| p.centre));
         if let Some(patch) = patch {
+            // The sole meets the highest ground under it and stops on the
+            // highest floor: half over an old print it lands on the print's
+            // edge and presses it, not through it.
             self.landing.normal = patch.normal;
-            self.landing.give = self.landing.give.min(patch.give);
+            self.landing.point.y = patch.rest_top;
+            self.landing.give = patch.rest_top - patch.rest_floor;
         }
     }
 

@@ -15,7 +15,7 @@ use super::sole_ground::SoleGround;
 use super::timing::SystemTimings;
 use crate::character::{Character, CharacterDesc, WalkPath};
 use crate::foot::{FootSole, Side};
-use crate::terrain::Heightfield;
+use crate::terrain::{Heightfield, ScratchPool, SettleScratch, SmoothScratch};
 use crate::vegetation::{GrassPatch, GrassSettings, VegetationFriction, VirtualPlatform, XzRect};
 
 /// Builds a simulation step by step: terrain first, then meshes, grass and characters
@@ -32,8 +32,8 @@ impl SimBuilder {
         world.insert_resource(SystemFault::default());
         world.insert_resource(Props::default());
         world.insert_resource(SystemTimings::default());
-        world.insert_resource(crate::terrain::SmoothScratch::default());
-        world.insert_resource(crate::terrain::SettleScratch::default());
+        world.insert_resource(ScratchPool::<SmoothScratch>::default());
+        world.insert_resource(ScratchPool::<SettleScratch>::default());
         world.insert_resource(VegetationFriction::default());
         add_pipeline(&mut app.schedule);
         Ok(SimBuilder { app })

@@ -105,6 +105,21 @@ impl GroundState {
         self.terrain.mark_dirty(rect);
     }
 
+    /// Paints material `id` on every sample within `radius` metres of
+    /// `centre` (x, z) and marks the area for the renderer to redraw;
+    /// heights are untouched, so the simulation's ray structure stays valid.
+    pub fn paint_disc(
+        &mut self,
+        centre: glam::Vec2,
+        radius: f32,
+        id: crate::terrain::MaterialId,
+    ) -> Result<(), crate::terrain::TerrainError> {
+        if let Some(rect) = self.terrain.paint_disc(centre, radius, id)? {
+            self.unseen.add(rect);
+        }
+        Ok(())
+    }
+
     /// The terrain's total volume, cubic metres.
     pub fn volume(&self) -> f64 {
         self.volume

@@ -42,7 +42,7 @@ impl Ground for SceneGround<'_> {
         let (normal, give) = match (hit.target, self.terrain) {
             (HitTarget::Grid { .. }, Some(t)) => (
                 t.grid().normal_at(at.x, at.y).unwrap_or(hit.normal),
-                t.give_at(at.x, at.y).unwrap_or(0.0),
+                t.give_below(at.x, at.y, hit.point.y).unwrap_or(0.0),
             ),
             _ => (hit.normal, 0.0),
         };

@@ -2,6 +2,8 @@
 
 /// Senses material and vegetation under each character (set `character`).
 pub const GROUND_RESPONSE: &str = "ground_response";
+/// Steered characters: paths from their desired velocity (set `character`).
+pub const STEER: &str = "steer";
 /// Walk-cycle phase, footholds, swing trajectories (set `character`).
 pub const GAIT: &str = "gait";
 /// Vertical foot rays onto the ground: the IK keys (set `character`).

@@ -6,7 +6,7 @@ use engine::schedule::Schedule;
 use super::labels::*;
 use super::systems_character::{
     balance_system, foot_ik_system, foot_raycast_system, gait_system, ground_response_system,
-    metrics_system,
+    metrics_system, steer_system,
 };
 use super::systems_terrain::{carve_system, refit_system, settle_system, smooth_system};
 use super::systems_vegetation::{grass_deform_system, platform_system};
@@ -15,8 +15,9 @@ use super::timing::timed;
 type SystemFn = fn(&mut World);
 
 /// The pipeline, in order: `(name, set, system)`.
-const PIPELINE: [(&str, Option<&str>, SystemFn); 12] = [
+const PIPELINE: [(&str, Option<&str>, SystemFn); 13] = [
     (GROUND_RESPONSE, Some(SET_CHARACTER), ground_response_system),
+    (STEER, Some(SET_CHARACTER), steer_system),
     (GAIT, Some(SET_CHARACTER), gait_system),
     (FOOT_RAYCAST, Some(SET_CHARACTER), foot_raycast_system),
     (PLATFORM, Some(SET_CHARACTER), platform_system),

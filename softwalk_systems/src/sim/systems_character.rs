@@ -9,7 +9,8 @@ use super::labels;
 use super::sole_ground::SoleGround;
 use crate::character::{
     Balance, CharacterBody, CharacterMetrics, FootIK, FootRays, Gait, GaitModifiers, Pose,
-    RigidProxy, WalkPath, balance_stage, foot_ik_stage, foot_raycast_stage, gait_stage,
+    RigidProxy, Steering, WalkPath, balance_stage, foot_ik_stage, foot_raycast_stage, gait_stage,
+    steer_stage,
 };
 use crate::terrain::GaitResponse;
 use crate::vegetation::{GrassPatch, PlatformSettings, VegetationFriction};
@@ -100,6 +101,26 @@ fn report_fault(fault: &std::sync::Mutex<Option<String>>, message: String) {
     if slot.as_ref().is_none_or(|m| message < *m) {
         *slot = Some(message);
     }
+}
+
+/// System `steer`: each character with a [`Steering`] gets its path from
+/// its desired velocity, and its walking speed scaled to match.
+pub fn steer_system(world: &mut World) {
+    let dt = step_dt(world);
+    world
+        .query_mut::<(
+            &mut Steering,
+            &Gait,
+            &CharacterBody,
+            &mut WalkPath,
+            &mut GaitModifiers,
+        )>()
+        .par_for_each(
+            CHARACTER_BATCH,
+            |(steering, gait, body, path, modifiers)| {
+                modifiers.speed_scale *= steer_stage(steering, gait, body, path, dt);
+            },
+        );
 }
 
 /// System `gait`: advances every character's walk cycle.

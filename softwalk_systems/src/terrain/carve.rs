@@ -118,8 +118,14 @@ impl FootPrint {
 /// has the same area and volume on any grid. Of the removed volume, c_t is
 /// compacted and 1 - c_t is spread over the rim ring of [`rim_width`] just
 /// outside the pressed samples, weighted linearly from 1 at its inner edge
-/// to 0 at its outer edge (samples off the grid get none; with no rim sample
-/// on the grid the volume counts as compacted).
+/// to 0 at its outer edge. Samples off the grid, and samples a sole holds
+/// this step (any sole's, see [`HeldMask`](super::held::HeldMask)), get
+/// none: sand pushed out of one print cannot go under another planted foot.
+/// With no rim sample left the volume counts as compacted.
+///
+/// This is [`press`] followed by [`deposit_rim`]. With several feet, press
+/// them all first and then deposit every rim, so that no rim lands on a
+/// sole pressed later in the step.
 ///
 /// Without `contact`, a foot that was in contact is released: nothing is
 /// carved and the whole touched rectangle is returned (and added to
@@ -134,6 +140,46 @@ pub fn carve(
     contact: bool,
     dt: f32,
 ) -> Result<GridRect, TerrainError> {
+    let pressed = press(hf, print, sole, contact, dt)?;
+    Ok(deposit_rim(hf, print, pressed))
+}
+
+/// What one foot pressed this step: the rectangle it covered and the volume
+/// (in heights summed over samples) its rim is owed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pressed {
+    rect: GridRect,
+    removed: f64,
+    compacted: f64,
+    released: bool,
+}
+
+impl Pressed {
+    const NOTHING: Pressed = Pressed {
+        rect: GridRect::EMPTY,
+        removed: 0.0,
+        compacted: 0.0,
+        released: false,
+    };
+}
+
+impl Default for Pressed {
+    /// Nothing pressed.
+    fn default() -> Self {
+        Pressed::NOTHING
+    }
+}
+
+/// The first half of [`carve`]: presses the sole's samples (or releases a
+/// foot no longer in contact) and marks them held, leaving the displaced
+/// volume for [`deposit_rim`].
+pub fn press(
+    hf: &mut Heightfield,
+    print: &mut FootPrint,
+    sole: &FootSole,
+    contact: bool,
+    dt: f32,
+) -> Result<Pressed, TerrainError> {
     if !(dt.is_finite() && dt >= 0.0) {
         return Err(TerrainError::InvalidParameter {
             name: "dt",
@@ -148,7 +194,11 @@ pub fn carve(
         if !released.is_empty() {
             changes.carved.push(released);
         }
-        return Ok(released);
+        return Ok(Pressed {
+            rect: released,
+            released: true,
+            ..Pressed::NOTHING
+        });
     }
     let grid = hf.grid();
     let (origin, cell, nx, nz) = (grid.origin(), grid.cell_size(), grid.nx(), grid.nz());
@@ -161,14 +211,13 @@ pub fn carve(
     let (lo, hi) = foot.bounds(rim_width + 0.5 * cell);
     let rect = grid.rect_covering(lo, hi);
     if rect.is_empty() {
-        return Ok(GridRect::EMPTY);
+        return Ok(Pressed::NOTHING);
     }
     print.cover(rect, nx, nz);
 
     let parts = hf.parts_mut();
     let mut removed = 0.0f64;
     let mut compacted = 0.0f64;
-    let mut weight_sum = 0.0f64;
     print.rim.clear();
     for j in rect.j0..rect.j1 {
         for i in rect.i0..rect.i1 {
@@ -178,9 +227,7 @@ pub fn carve(
             let cover = (0.5 + (foot.radius - d) / cell).min(1.0);
             if cover <= 0.0 {
                 if d <= rim_start + rim_width {
-                    let w = 1.0 - (d - rim_start) / rim_width;
-                    print.rim.push((k, w));
-                    weight_sum += w as f64;
+                    print.rim.push((k, 1.0 - (d - rim_start) / rim_width));
                 }
                 continue;
             }
@@ -224,12 +271,38 @@ pub fn carve(
     // mid-stance, and smoothing must not pour the rim back under it every step.
     let held_bounds = print.touched.union(&rect);
     parts.changes.held.push_group(held_bounds, &print.pressed);
-    if removed == 0.0 {
-        return Ok(GridRect::EMPTY);
+    parts.held_mask.set(&print.pressed);
+    Ok(Pressed {
+        rect,
+        removed,
+        compacted,
+        released: false,
+    })
+}
+
+/// The second half of [`carve`]: spreads what `pressed` displaced and did
+/// not compact over the print's rim ring, skipping samples any sole holds;
+/// returns the rectangle to smooth and settle.
+pub fn deposit_rim(hf: &mut Heightfield, print: &mut FootPrint, pressed: Pressed) -> GridRect {
+    let Pressed {
+        rect,
+        removed,
+        mut compacted,
+        released,
+    } = pressed;
+    if released {
+        return rect;
     }
+    if removed == 0.0 {
+        return GridRect::EMPTY;
+    }
+    let cell = hf.grid().cell_size();
+    let parts = hf.parts_mut();
+    let free = |&&(k, _): &&(usize, f32)| !parts.held_mask.contains(k);
+    let weight_sum: f64 = print.rim.iter().filter(free).map(|&(_, w)| w as f64).sum();
     let mut to_rim = removed - compacted;
     if weight_sum > 0.0 {
-        for &(k, w) in &print.rim {
+        for &(k, w) in print.rim.iter().filter(free) {
             parts.heights[k] += (to_rim * w as f64 / weight_sum) as f32;
             parts.disturbed[k] = parts.disturbed[k].max(DISTURBED_RIM);
         }
@@ -244,5 +317,5 @@ pub fn carve(
     print.touched = print.touched.union(&rect);
     parts.changes.carved.push(rect);
     hf.mark_dirty(rect);
-    Ok(rect)
+    rect
 }

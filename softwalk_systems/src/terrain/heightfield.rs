@@ -7,7 +7,7 @@ use glam::Vec2;
 
 use super::dirty_rects::DirtyRects;
 use super::error::TerrainError;
-use super::held::HeldSamples;
+use super::held::{HeldMask, HeldSamples};
 use super::material::TerrainMaterial;
 use super::material_table::{MaterialId, MaterialTable};
 use super::settle::PendingSettle;
@@ -54,6 +54,33 @@ pub struct StepChanges {
     pub smoothing_capped: usize,
 }
 
+impl StepChanges {
+    /// Empties the record, keeping its buffers (every field is named, so a
+    /// new one cannot be forgotten).
+    pub fn clear(&mut self) {
+        let StepChanges {
+            rects,
+            carved,
+            smoothed,
+            carved_volume,
+            compacted_volume,
+            rim_volume,
+            held,
+            released,
+            settle_transfers,
+            settle_visits,
+            smoothing_capped,
+        } = self;
+        rects.clear();
+        carved.clear();
+        smoothed.clear();
+        held.clear();
+        released.clear();
+        (*carved_volume, *compacted_volume, *rim_volume) = (0.0, 0.0, 0.0);
+        (*settle_transfers, *settle_visits, *smoothing_capped) = (0, 0, 0);
+    }
+}
+
 /// A deformable loose ground: heights, a material per sample and the trodden mask.
 ///
 /// It remembers the surface it was created with: each sample's material is a
@@ -74,6 +101,7 @@ pub struct Heightfield {
     table: MaterialTable,
     material: Vec<u8>,
     disturbed: Vec<u8>,
+    held_mask: HeldMask,
     changes: StepChanges,
     pending_settle: Vec<PendingSettle>,
 }
@@ -93,6 +121,7 @@ impl Heightfield {
             table,
             material: vec![fill.0; n],
             disturbed: vec![0; n],
+            held_mask: HeldMask::new(n),
             changes: StepChanges::default(),
             pending_settle: Vec::new(),
         })
@@ -123,13 +152,22 @@ impl Heightfield {
     }
 
     /// How far a planted sole can still press the surface at world `(x, z)`,
-    /// metres: the material's print depth, or less where the loose layer left
-    /// above the firm floor is thinner (never below 0), at the nearest sample;
-    /// `None` off the grid.
+    /// metres: [`Heightfield::give_below`] the surface there; `None` off the grid.
     pub fn give_at(&self, x: f32, z: f32) -> Option<f32> {
+        self.give_below(x, z, self.grid.height_at(x, z)?)
+    }
+
+    /// How far a sole standing at height `surface` over world `(x, z)` can
+    /// press the ground, metres: the material's print depth (nearest sample),
+    /// or less where the loose layer between `surface` and the firm floor
+    /// (interpolated like the surface) is thinner; never below 0. `None` off
+    /// the grid. Measured from the surface a ray found, so surface minus give
+    /// is never below the firm floor, even on a print's wall.
+    pub fn give_below(&self, x: f32, z: f32, surface: f32) -> Option<f32> {
         let k = self.nearest_index(x, z)?;
-        let above_floor = self.grid.heights()[k] - self.firm_floor(k);
-        Some(self.material_of(k).print_depth().min(above_floor).max(0.0))
+        let material = self.material_of(k);
+        let firm_floor = self.initial.height_at(x, z)? - material.layer;
+        Some(material.print_depth().min(surface - firm_floor).max(0.0))
     }
 
     /// Index of the sample nearest to world `(x, z)`, or `None` off the grid.
@@ -193,6 +231,34 @@ impl Heightfield {
         Ok(())
     }
 
+    /// Sets every sample within `radius` metres of `centre` (x, z) to
+    /// material `id`; returns the grid rectangle it covered (`None` when the
+    /// disc misses the grid or `radius` is not a positive number).
+    pub fn paint_disc(
+        &mut self,
+        centre: Vec2,
+        radius: f32,
+        id: MaterialId,
+    ) -> Result<Option<GridRect>, TerrainError> {
+        self.table.get(id)?;
+        if !(radius > 0.0 && radius.is_finite() && centre.is_finite()) {
+            return Ok(None);
+        }
+        let reach = Vec2::splat(radius);
+        let rect = self.grid.rect_covering(centre - reach, centre + reach);
+        if rect.is_empty() {
+            return Ok(None);
+        }
+        let nx = self.grid.nx();
+        for (i, j) in rect.iter() {
+            let p = self.grid.sample_position(i, j);
+            if Vec2::new(p.x, p.z).distance(centre) <= radius {
+                self.material[j * nx + i] = id.0;
+            }
+        }
+        Ok(Some(rect))
+    }
+
     /// Sets each sample's material to `f(x, z)` (world position); the map is
     /// left unchanged if `f` returns an id not in the table.
     pub fn paint_fn(
@@ -252,11 +318,12 @@ impl Heightfield {
         &self.changes
     }
 
-    /// Starts a new step record; returns the previous one. Call it once at the
-    /// start of every fixed step, before carving (the held samples of the last
-    /// step are released).
-    pub fn begin_step(&mut self) -> StepChanges {
-        std::mem::take(&mut self.changes)
+    /// Starts a new step record, emptying the previous one in place (its
+    /// buffers are reused). Call it once at the start of every fixed step,
+    /// before carving (the held samples of the last step are released).
+    pub fn begin_step(&mut self) {
+        self.held_mask.clear(self.changes.held.all());
+        self.changes.clear();
     }
 
     /// True while settling work left by [`super::settle_step`] waits for
@@ -280,6 +347,7 @@ impl Heightfield {
             table: &self.table,
             material: &self.material,
             disturbed: &mut self.disturbed,
+            held_mask: &mut self.held_mask,
             changes: &mut self.changes,
         }
     }
@@ -294,6 +362,8 @@ pub(crate) struct TerrainParts<'a> {
     pub table: &'a MaterialTable,
     pub material: &'a [u8],
     pub disturbed: &'a mut [u8],
+    /// The samples held by soles this step, one bit each.
+    pub held_mask: &'a mut HeldMask,
     pub changes: &'a mut StepChanges,
 }
 
@@ -369,7 +439,8 @@ mod tests {
             hf.dirty().rects(),
             &[GridRect::new(1, 0, 6, 3), GridRect::new(30, 30, 32, 32)]
         );
-        assert_eq!(hf.begin_step().rects.area(), 4 + 15);
+        assert_eq!(hf.changes().rects.clone().area(), 4 + 15);
+        hf.begin_step();
         assert!(hf.changes().rects.is_empty());
     }
 

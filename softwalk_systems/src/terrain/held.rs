@@ -1,5 +1,7 @@
 //! [`HeldSamples`]: the samples the soles hold this step, grouped by print,
-//! so a window looks only at the prints it meets.
+//! so a window looks only at the prints it meets; and [`HeldMask`], the same
+//! samples as one bit per grid sample, so a rim can ask whether a sample is
+//! under a sole in constant time.
 
 use std::ops::Range;
 
@@ -38,15 +40,68 @@ impl HeldSamples {
             .flat_map(|(_, r)| self.samples[r.clone()].iter().copied())
     }
 
+    /// Removes every group, keeping the buffers.
+    pub fn clear(&mut self) {
+        self.samples.clear();
+        self.groups.clear();
+    }
+
     /// True when no sample is held.
     pub fn is_empty(&self) -> bool {
         self.samples.is_empty()
     }
 }
 
+/// One bit per grid sample: set while a sole holds the sample this step.
+/// Setting and clearing cost as much as the samples held, never the grid.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct HeldMask {
+    words: Vec<u64>,
+}
+
+impl HeldMask {
+    /// A mask of `samples` bits, none set.
+    pub fn new(samples: usize) -> Self {
+        HeldMask {
+            words: vec![0; samples.div_ceil(64)],
+        }
+    }
+
+    /// Sets the bits of `samples`.
+    pub fn set(&mut self, samples: &[usize]) {
+        for &k in samples {
+            self.words[k / 64] |= 1 << (k % 64);
+        }
+    }
+
+    /// Clears the bits of `samples`.
+    pub fn clear(&mut self, samples: &[usize]) {
+        for &k in samples {
+            self.words[k / 64] &= !(1 << (k % 64));
+        }
+    }
+
+    /// True when sample `k` is held.
+    #[inline]
+    pub fn contains(&self, k: usize) -> bool {
+        self.words[k / 64] & (1 << (k % 64)) != 0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_mask_holds_what_was_set_until_it_is_cleared() {
+        let mut mask = HeldMask::new(130);
+        mask.set(&[0, 63, 64, 129]);
+        assert!([0, 63, 64, 129].iter().all(|&k| mask.contains(k)));
+        assert!(!mask.contains(1) && !mask.contains(128));
+        mask.clear(&[63, 129]);
+        assert!(mask.contains(0) && mask.contains(64));
+        assert!(!mask.contains(63) && !mask.contains(129));
+    }
 
     #[test]
     fn a_window_sees_only_the_groups_it_meets() {

@@ -49,9 +49,11 @@ mod settle;
 mod smooth;
 mod step;
 mod units;
+mod waves;
 
 pub use carve::{
-    CONTACT_TOLERANCE, FootPrint, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, rim_width,
+    CONTACT_TOLERANCE, FootPrint, Pressed, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, deposit_rim,
+    press, rim_width,
 };
 pub use dirty_rects::DirtyRects;
 pub use error::TerrainError;
@@ -64,16 +66,18 @@ pub use material::{DEPTH_SCALE_M, GaitResponse, SINK_TIME_S, TerrainMaterial};
 pub use material_table::{MaterialId, MaterialTable};
 pub use settle::{
     SETTLE_AREA_RATE_M2_S, SETTLE_MARGIN_M, SETTLE_MAX_SWEEPS, SETTLE_OVERRELAXATION,
-    SETTLE_RUNOUT_SLOPE, SETTLE_TOLERANCE, SettleScratch, settle, settle_from, settle_margin_cells,
-    settle_max_sweeps, settle_pending, settle_pending_with, settle_step, settle_step_visits,
-    settle_step_with, stage_window,
+    SETTLE_RUNOUT_SLOPE, SETTLE_TOLERANCE, SettleScratch, settle, settle_each, settle_from,
+    settle_margin_cells, settle_max_sweeps, settle_pending, settle_pending_with, settle_step,
+    settle_step_visits, settle_step_with, stage_window,
 };
 pub use smooth::{
-    DIFFUSION_RATE, MAX_SMOOTHING_PASSES, SmoothScratch, smooth, smooth_with, smoothing_duration,
-    smoothing_pass_equivalent, smoothing_radius, smoothing_reach_m, smoothing_variance_rate,
+    DIFFUSION_RATE, MAX_SMOOTHING_PASSES, SmoothScratch, smooth, smooth_each, smooth_with,
+    smoothing_duration, smoothing_pass_equivalent, smoothing_radius, smoothing_reach_m,
+    smoothing_variance_rate,
 };
 pub use step::{
     FootSize, FootholdReport, StageScratch, plant_foothold, press_into, sole_on_ground, step_foot,
     step_foot_with,
 };
 pub use units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};
+pub use waves::ScratchPool;

@@ -7,7 +7,7 @@
 
 use engine::geom::GridRect;
 
-use super::heightfield::TerrainParts;
+use super::heightfield::{Heightfield, TerrainParts};
 
 /// Flag of a sample that is disturbed (its edges may move).
 pub(crate) const DISTURBED: u8 = 1;
@@ -44,8 +44,10 @@ pub(crate) struct Patch {
 impl Patch {
     /// Copies `rect` (non-empty, inside the grid) out of the terrain, framed,
     /// reusing the buffers.
-    pub fn load(&mut self, parts: &TerrainParts<'_>, rect: GridRect) {
-        let nx = parts.nx;
+    pub fn load(&mut self, hf: &Heightfield, rect: GridRect) {
+        let nx = hf.grid().nx();
+        let (heights, disturbed, material) =
+            (hf.grid().heights(), hf.disturbed(), hf.material_map());
         let stride = rect.width() + 2;
         let len = stride * (rect.height() + 2);
         self.rect = rect;
@@ -63,11 +65,11 @@ impl Patch {
         for (r, j) in (rect.j0..rect.j1).enumerate() {
             let grid = j * nx + rect.i0..j * nx + rect.i1;
             let local = (r + 1) * stride + 1..(r + 2) * stride - 1;
-            self.heights[local.clone()].copy_from_slice(&parts.heights[grid.clone()]);
-            self.disturbed[local.clone()].copy_from_slice(&parts.disturbed[grid.clone()]);
-            self.material[local.clone()].copy_from_slice(&parts.material[grid.clone()]);
+            self.heights[local.clone()].copy_from_slice(&heights[grid.clone()]);
+            self.disturbed[local.clone()].copy_from_slice(&disturbed[grid.clone()]);
+            self.material[local.clone()].copy_from_slice(&material[grid.clone()]);
             for (f, k) in self.floor[local.clone()].iter_mut().zip(grid) {
-                *f = parts.floor(k);
+                *f = hf.firm_floor(k);
             }
             for (f, &d) in self.flags[local.clone()]
                 .iter_mut()
@@ -76,7 +78,7 @@ impl Patch {
                 *f = u8::from(d != 0) * DISTURBED;
             }
         }
-        for k in parts.changes.held.near(rect) {
+        for k in hf.changes().held.near(rect) {
             let (i, j) = (k % nx, k / nx);
             if rect.contains(i, j) {
                 let l = self.local(i, j);

@@ -10,6 +10,7 @@ use super::material::TerrainMaterial;
 use super::patch::{DISTURBED, FIXED, Patch, edge_moves};
 use super::smooth::smoothing_radius;
 use super::units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};
+use super::waves::{ScratchPool, run_in_waves};
 
 /// Settling stops when no slope exceeds the repose slope by more than this
 /// (a slope, m/m: times the cell size, the height difference it allows
@@ -105,7 +106,9 @@ pub fn settle(hf: &mut Heightfield, window: GridRect) -> GridRect {
 /// Not part of any terrain's state.
 #[derive(Default)]
 pub struct SettleScratch {
-    patch: Patch,
+    /// Patches to load windows into (a relaxed one travels with its result
+    /// until it is written back, then returns here).
+    spare: Vec<Patch>,
     buffers: SettleBuffers,
 }
 
@@ -157,21 +160,39 @@ pub fn settle_step_with(
     seeds: GridRect,
     dt: f32,
 ) -> GridRect {
-    let Some((w, first)) = first_sweep(hf, window, seeds) else {
+    let Some((work, deferred)) = step_work(hf, window, seeds) else {
         return GridRect::EMPTY;
     };
-    if hf.changes().released.intersects(&seeds) {
-        hf.pending_settle_mut().push(PendingSettle {
-            window: w,
-            start: Start::Scan(first),
-            sweeps: 0,
-        });
+    if deferred {
+        hf.pending_settle_mut().push(work);
         return GridRect::EMPTY;
     }
     let budget = settle_step_visits(hf, dt);
-    let outcome = relax_window(hf, scratch, w, &Start::Scan(first), budget, 0);
+    let outcome = relax_window(hf, scratch, work.window, &work.start, budget, 0);
     hf.pending_settle_mut().extend(outcome.left);
     outcome.changed
+}
+
+/// The work of a [`settle_step`] call over `window` from `seeds`, and
+/// whether it waits for the next step (its seeds meet a print released this
+/// step); `None` when there are no seeds.
+fn step_work(hf: &Heightfield, window: GridRect, seeds: GridRect) -> Option<(PendingSettle, bool)> {
+    let (w, first) = first_sweep(hf, window, seeds)?;
+    let work = PendingSettle {
+        window: w,
+        start: Start::Scan(first),
+        sweeps: 0,
+    };
+    Some((work, hf.changes().released.intersects(&seeds)))
+}
+
+/// The visit budget of pending `work` in a step of `visits`: half of them
+/// for a released print's first sweep ([`release_scan_visits`]).
+fn pending_budget(work: &PendingSettle, visits: usize) -> usize {
+    match work.start {
+        Start::Scan(_) => release_scan_visits(visits),
+        Start::Queued(_) => visits,
+    }
 }
 
 /// Continues the settling work that earlier [`settle_step`] calls left
@@ -191,15 +212,57 @@ pub fn settle_pending_with(hf: &mut Heightfield, scratch: &mut SettleScratch, dt
     let mut changed = GridRect::EMPTY;
     let visits = settle_step_visits(hf, dt);
     for work in pending {
-        let budget = match work.start {
-            Start::Scan(_) => release_scan_visits(visits),
-            Start::Queued(_) => visits,
-        };
+        let budget = pending_budget(&work, visits);
         let outcome = relax_window(hf, scratch, work.window, &work.start, budget, work.sweeps);
         changed = changed.union(&outcome.changed);
         hf.pending_settle_mut().extend(outcome.left);
     }
     changed
+}
+
+/// [`settle_pending_with`] and then [`settle_step_with`] for each
+/// `(window, seeds)` of `windows`, with the result of those calls in that
+/// order; calls whose windows are apart run in parallel on the current rayon
+/// pool (the same bits on any number of threads). `scratches` holds one set
+/// of buffers per parallel call, grown on demand.
+pub fn settle_each(
+    hf: &mut Heightfield,
+    scratches: &mut ScratchPool<SettleScratch>,
+    windows: &[(GridRect, GridRect)],
+    dt: f32,
+) {
+    let visits = settle_step_visits(hf, dt);
+    // What each call leaves pending, in call order; the runs fill their slots.
+    let mut slots: Vec<Option<PendingSettle>> = Vec::new();
+    // (slot, visit budget, work)
+    let mut runs: Vec<(usize, usize, PendingSettle)> = Vec::new();
+    for work in std::mem::take(hf.pending_settle_mut()) {
+        runs.push((slots.len(), pending_budget(&work, visits), work));
+        slots.push(None);
+    }
+    for &(window, seeds) in windows {
+        let Some((work, deferred)) = step_work(hf, window, seeds) else {
+            continue;
+        };
+        if deferred {
+            slots.push(Some(work));
+        } else {
+            runs.push((slots.len(), visits, work));
+            slots.push(None);
+        }
+    }
+    let run_windows: Vec<GridRect> = runs.iter().map(|(_, _, work)| work.window).collect();
+    run_in_waves(
+        hf,
+        &run_windows,
+        &mut scratches.0,
+        |hf, scratch, k| {
+            let (_, budget, work) = &runs[k];
+            scratch.relax(hf, work.window, &work.start, *budget, work.sweeps)
+        },
+        |hf, scratch, k, relaxed| slots[runs[k].0] = scratch.commit(hf, relaxed).left,
+    );
+    hf.pending_settle_mut().extend(slots.into_iter().flatten());
 }
 
 /// The ground area settling may visit per second, m²/s: 96 sample visits
@@ -279,6 +342,14 @@ struct Outcome {
     left: Option<PendingSettle>,
 }
 
+/// What [`SettleScratch::relax`] computed in its patch, before it is written back.
+struct Relaxed {
+    patch: Patch,
+    outcome: Outcome,
+    transfers: usize,
+    visits: usize,
+}
+
 /// Relaxes `w` (inside the grid) from `start` until stable, the sweep cap
 /// (counting `sweeps_done` earlier sweeps) or the sweep that reaches
 /// `budget` visits.
@@ -290,16 +361,27 @@ fn relax_window(
     budget: usize,
     sweeps_done: usize,
 ) -> Outcome {
-    let cell = hf.grid().cell_size();
-    let max_sweeps = settle_max_sweeps(hf);
-    let outcome = {
-        let mut parts = hf.parts_mut();
-        let SettleScratch {
-            patch,
-            buffers: settle,
-        } = scratch;
-        patch.load(&parts, w);
-        settle.limits(patch, parts.table.materials(), cell);
+    let relaxed = scratch.relax(hf, w, start, budget, sweeps_done);
+    scratch.commit(hf, relaxed)
+}
+
+impl SettleScratch {
+    /// The sweeps of [`relax_window`] in the scratch's patch, reading `hf`
+    /// (nothing written back yet).
+    fn relax(
+        &mut self,
+        hf: &Heightfield,
+        w: GridRect,
+        start: &Start,
+        budget: usize,
+        sweeps_done: usize,
+    ) -> Relaxed {
+        let cell = hf.grid().cell_size();
+        let max_sweeps = settle_max_sweeps(hf);
+        let mut patch = self.spare.pop().unwrap_or_default();
+        patch.load(hf, w);
+        let settle = &mut self.buffers;
+        settle.limits(&patch, hf.table().materials(), cell);
         let SettleBuffers {
             limit,
             steep,
@@ -319,7 +401,7 @@ fn relax_window(
             ),
             Start::Queued(q) => (None, &q[..]),
         };
-        let nx = parts.nx;
+        let nx = hf.grid().nx();
         let queued_local: Vec<usize> = queued
             .iter()
             .map(|&k| patch.local(k % nx, k / nx))
@@ -346,27 +428,38 @@ fn relax_window(
         let left = relax.queued();
         let (transfers, visits) = (relax.transfers, relax.visits);
         let changed = if transfers > 0 {
-            mark_slumped(patch)
+            mark_slumped(&mut patch)
         } else {
             GridRect::EMPTY
         };
-        parts.changes.settle_transfers += transfers;
-        parts.changes.settle_visits += visits;
-        if !changed.is_empty() {
-            patch.store(&mut parts, changed);
-        }
         let sweeps = sweeps_done + sweeps;
         let left = (!left.is_empty() && sweeps < max_sweeps).then(|| PendingSettle {
             window: w,
             start: Start::Queued(left.into_iter().map(|l| patch.grid_index(l, nx)).collect()),
             sweeps,
         });
-        Outcome { changed, left }
-    };
-    if !outcome.changed.is_empty() {
-        hf.mark_dirty(outcome.changed);
+        Relaxed {
+            patch,
+            outcome: Outcome { changed, left },
+            transfers,
+            visits,
+        }
     }
-    outcome
+
+    /// Writes what [`SettleScratch::relax`] changed back into `hf`, marks it
+    /// dirty and counts the work; keeps the patch for the next call.
+    fn commit(&mut self, hf: &mut Heightfield, relaxed: Relaxed) -> Outcome {
+        let mut parts = hf.parts_mut();
+        parts.changes.settle_transfers += relaxed.transfers;
+        parts.changes.settle_visits += relaxed.visits;
+        let changed = relaxed.outcome.changed;
+        if !changed.is_empty() {
+            relaxed.patch.store(&mut parts, changed);
+            parts.changes.rects.add(changed);
+        }
+        self.spare.push(relaxed.patch);
+        relaxed.outcome
+    }
 }
 
 /// Flag of a sample moved by this call.

@@ -8,6 +8,7 @@ use engine::geom::GridRect;
 use super::heightfield::{DISTURBED_RIM, Heightfield};
 use super::patch::{Patch, edge_moves};
 use super::units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};
+use super::waves::{ScratchPool, run_in_waves};
 
 /// Diffusion rate of a full pass (stable below 0.25; a full pass adds a
 /// Gaussian variance of `2 * DIFFUSION_RATE` = 0.4 cell² per axis).
@@ -111,8 +112,17 @@ pub fn smooth(hf: &mut Heightfield, window: GridRect, dt: f32) -> GridRect {
 /// terrain's state.
 #[derive(Default)]
 pub struct SmoothScratch {
-    patch: Patch,
+    /// Patches to load windows into (a computed one travels with its result
+    /// until it is written back, then returns here).
+    spare: Vec<Patch>,
     buffers: SmoothBuffers,
+}
+
+/// What [`SmoothScratch::compute`] did in its patch, before it is written back.
+struct Smoothed {
+    patch: Patch,
+    changed: GridRect,
+    capped: bool,
 }
 
 impl std::fmt::Debug for SmoothScratch {
@@ -128,39 +138,91 @@ pub fn smooth_with(
     window: GridRect,
     dt: f32,
 ) -> GridRect {
+    let (w, scale) = smoothing_plan(hf, window, dt);
+    hf.parts_mut().changes.smoothed.push(w);
+    if let Some(scale) = scale {
+        let result = scratch.compute(hf, w, scale);
+        scratch.commit(hf, result);
+    }
+    w
+}
+
+/// [`smooth`] around each of `windows`, with the result of calling it for
+/// them in list order; calls whose grown windows are apart run in parallel
+/// on the current rayon pool (the same bits on any number of threads).
+/// `scratches` holds one set of buffers per parallel call, grown on demand.
+pub fn smooth_each(
+    hf: &mut Heightfield,
+    scratches: &mut ScratchPool<SmoothScratch>,
+    windows: &[GridRect],
+    dt: f32,
+) {
+    let plans: Vec<(GridRect, Option<f32>)> = (windows.iter())
+        .map(|&window| smoothing_plan(hf, window, dt))
+        .collect();
+    hf.parts_mut()
+        .changes
+        .smoothed
+        .extend(plans.iter().map(|&(w, _)| w));
+    let work: Vec<(GridRect, f32)> = (plans.into_iter())
+        .filter_map(|(w, scale)| scale.map(|s| (w, s)))
+        .collect();
+    let grown: Vec<GridRect> = work.iter().map(|&(w, _)| w).collect();
+    run_in_waves(
+        hf,
+        &grown,
+        &mut scratches.0,
+        |hf, scratch, k| scratch.compute(hf, work[k].0, work[k].1),
+        |hf, scratch, _, result| scratch.commit(hf, result),
+    );
+}
+
+/// The rectangle a smoothing of `window` works in (grown by
+/// [`smoothing_radius`], clipped) and its passes per unit of smoothness
+/// ([`smoothing_pass_equivalent`] of s_t = 1 over the [`smoothing_duration`]);
+/// no scale when there is nothing to do.
+fn smoothing_plan(hf: &Heightfield, window: GridRect, dt: f32) -> (GridRect, Option<f32>) {
     let full = hf.grid().full_rect();
     let radius = smoothing_radius(hf);
     let w = window
         .intersect(&full)
         .expand(radius, full.width(), full.height());
-    hf.parts_mut().changes.smoothed.push(w);
     if w.is_empty() || !(dt.is_finite() && dt > 0.0) || hf.table().max_smoothness() == 0.0 {
-        return w;
+        return (w, None);
     }
     let duration = smoothing_duration(hf, window, dt);
     let scale = smoothing_pass_equivalent(1.0, hf.grid().cell_size(), duration);
-    let changed = {
-        let mut parts = hf.parts_mut();
-        let SmoothScratch {
+    (w, Some(scale))
+}
+
+impl SmoothScratch {
+    /// Smooths `w` (inside the grid) in a patch loaded from `hf` (nothing
+    /// written back yet).
+    fn compute(&mut self, hf: &Heightfield, w: GridRect, scale: f32) -> Smoothed {
+        let mut patch = self.spare.pop().unwrap_or_default();
+        patch.load(hf, w);
+        let buffers = &mut self.buffers;
+        buffers.smoothness.clear();
+        (buffers.smoothness).extend(hf.table().materials().iter().map(|m| m.smoothness * scale));
+        let (changed, capped) = buffers.run(&mut patch);
+        Smoothed {
             patch,
-            buffers: smooth,
-        } = scratch;
-        patch.load(&parts, w);
-        smooth.smoothness.clear();
-        smooth
-            .smoothness
-            .extend(parts.table.materials().iter().map(|m| m.smoothness * scale));
-        let (changed, capped) = smooth.run(patch);
-        if !changed.is_empty() {
-            patch.store(&mut parts, changed);
+            changed,
+            capped,
         }
-        parts.changes.smoothing_capped += usize::from(capped);
-        changed
-    };
-    if !changed.is_empty() {
-        hf.mark_dirty(changed);
     }
-    w
+
+    /// Writes what [`SmoothScratch::compute`] changed back into `hf`, marks
+    /// it dirty and counts a capped call; keeps the patch for the next call.
+    fn commit(&mut self, hf: &mut Heightfield, smoothed: Smoothed) {
+        let mut parts = hf.parts_mut();
+        parts.changes.smoothing_capped += usize::from(smoothed.capped);
+        if !smoothed.changed.is_empty() {
+            smoothed.patch.store(&mut parts, smoothed.changed);
+            parts.changes.rects.add(smoothed.changed);
+        }
+        self.spare.push(smoothed.patch);
+    }
 }
 
 /// Smoothing's buffers, reused from call to call.

@@ -51,12 +51,20 @@ impl TerrainPaint {
         }
     }
 
-    /// Re-reads the disturbance of the samples in `rect` (after the ground changed there).
+    /// Re-reads the material and disturbance of the samples in `rect` (after
+    /// the ground changed there, or was repainted).
     pub fn refresh(&mut self, hf: &Heightfield, rect: engine::geom::GridRect) {
         let (nx, marks) = (hf.grid().nx(), hf.disturbed());
+        let palette: Vec<Vec3> = (hf.table().materials().iter())
+            .map(|m| material_albedo(&m.name))
+            .collect();
+        let map = hf.material_map();
         for (i, j) in rect.iter() {
             let k = j * nx + i;
             self.disturbed[k] = disturbance(marks[k]);
+            if let Some(&albedo) = palette.get(usize::from(map[k])) {
+                self.albedo[k] = albedo;
+            }
         }
     }
 }

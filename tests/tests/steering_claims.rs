@@ -1,0 +1,192 @@
+//! Steering and the lateral balance axis (issue 24): a character whose path
+//! comes from a desired velocity starts, stops, curves tightly and turns on
+//! the spot without sliding a planted foot, and leans into turns by
+//! `atan(v² / (g r))` while staying upright on straight paths.
+
+use glam::{Vec2, Vec3};
+use softwalk_systems::character::{
+    Character, CharacterDesc, GaitModifiers, GaitParams, Joint, Steering, WalkPath, steer_stage,
+    step_character,
+};
+use softwalk_systems::ground::FlatGround;
+
+const DT: f32 = 1.0 / 60.0;
+/// The foot-slide goal: a planted heel or toe moves at most this far per stance, metres.
+const SLIDE_GOAL_M: f32 = 0.02;
+/// A sole point within this of the ground counts as touching it, metres.
+const TOUCHING_M: f32 = 0.005;
+
+/// A steered adult standing at the origin facing +Z on flat ground.
+struct Steered {
+    character: Character,
+    steering: Steering,
+    path: WalkPath,
+    ground: FlatGround,
+}
+
+impl Steered {
+    fn new() -> Self {
+        let ground = FlatGround(0.0);
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 1.0).unwrap();
+        let character = Character::new(CharacterDesc::adult(), &path, &ground).unwrap();
+        Steered {
+            character,
+            steering: Steering::new(),
+            path,
+            ground,
+        }
+    }
+
+    /// Steps `seconds` wanting `velocity`; returns each step's heel and toe
+    /// positions with whether each foot was in contact.
+    fn walk(&mut self, velocity: Vec2, seconds: f32) -> Vec<[(bool, [Vec3; 2]); 2]> {
+        self.steering.set_desired_velocity(velocity).unwrap();
+        let steps = (seconds / DT).round() as usize;
+        (0..steps)
+            .map(|_| {
+                let c = &mut self.character;
+                let scale = steer_stage(&mut self.steering, &c.gait, &c.body, &mut self.path, DT);
+                c.modifiers.speed_scale = scale;
+                step_character(c, &self.path, &self.ground, DT);
+                let m = &c.metrics;
+                [0, 1].map(|k| (m.contact[k], [m.soles[k].heel, m.soles[k].toe]))
+            })
+            .collect()
+    }
+}
+
+/// The largest horizontal drift of a touching heel or toe from where it
+/// first touched, over each stance.
+fn worst_slide(samples: &[[(bool, [Vec3; 2]); 2]]) -> f32 {
+    let mut worst = 0.0f32;
+    for k in 0..2 {
+        let mut anchors: [Option<Vec3>; 2] = [None; 2];
+        for s in samples {
+            let (contact, points) = s[k];
+            if !contact {
+                anchors = [None; 2];
+                continue;
+            }
+            for (anchor, p) in anchors.iter_mut().zip(points) {
+                if p.y.abs() > TOUCHING_M {
+                    continue;
+                }
+                let a = *anchor.get_or_insert(p);
+                worst = worst.max(Vec2::new(p.x - a.x, p.z - a.z).length());
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn turning_on_the_spot_keeps_planted_feet_still() {
+    let mut s = Steered::new();
+    // A wish straight behind turns on the spot before walking off.
+    let samples = s.walk(Vec2::new(0.0, -0.8), 3.0);
+    let slide = worst_slide(&samples);
+    let heading = s.character.gait.pelvis.heading;
+    let travelled = s.character.gait.pelvis.position.length();
+    println!(
+        "turn on the spot: slide {:.2} cm, heading {heading:?}, pelvis moved {travelled:.2} m",
+        slide * 100.0
+    );
+    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
+    assert!(heading.y < -0.9, "did not turn round: {heading:?}");
+}
+
+#[test]
+fn tight_curves_start_and_stop_keep_planted_feet_still() {
+    let mut s = Steered::new();
+    let mut samples = s.walk(Vec2::new(0.0, 1.0), 2.0);
+    let started = s.character.gait.pelvis.position.y;
+    samples.extend(s.walk(Vec2::new(1.0, 0.0), 2.0));
+    samples.extend(s.walk(Vec2::new(0.0, -1.0), 2.5));
+    samples.extend(s.walk(Vec2::ZERO, 2.0));
+    let slide = worst_slide(&samples);
+    let gait = &s.character.gait;
+    println!(
+        "curves and stop: slide {:.2} cm, stopped {}, heading {:?}",
+        slide * 100.0,
+        gait.stopped,
+        gait.pelvis.heading
+    );
+    assert!(started > 1.0, "did not start: {started}");
+    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
+    assert!(gait.stopped && gait.double_support(), "did not stop");
+    let before = gait.pelvis.position;
+    s.walk(Vec2::ZERO, 1.0);
+    assert_eq!(s.character.gait.pelvis.position, before, "drifts at rest");
+    s.walk(Vec2::new(0.0, -1.0), 1.0);
+    let moved = (s.character.gait.pelvis.position - before).length();
+    assert!(moved > 0.5, "did not start again: {moved} m");
+}
+
+/// Mean lean of the trunk towards the character's left over the last
+/// `settled` seconds of `seconds` walking `path`, at `speed` m/s, in radians:
+/// from the pose (pelvis to neck) and from the proxy, and the largest
+/// lean from the pose over that time.
+fn mean_lean(path: &WalkPath, speed: f32, seconds: f32, settled: f32) -> (f32, f32, f32) {
+    let ground = FlatGround(0.0);
+    let mut c = Character::new(CharacterDesc::adult(), path, &ground).unwrap();
+    let natural = GaitParams::new(&c.body, &GaitModifiers::default()).speed;
+    c.modifiers.speed_scale = speed / natural;
+    let steps = (seconds / DT).round() as usize;
+    let from = steps - (settled / DT).round() as usize;
+    let (mut pose_sum, mut proxy_sum, mut largest) = (0.0, 0.0, 0.0f32);
+    for step in 0..steps {
+        step_character(&mut c, path, &ground, DT);
+        if step >= from {
+            let j = &c.pose.joints;
+            let trunk = j[Joint::Neck as usize] - j[Joint::Pelvis as usize];
+            let lean = (-trunk.dot(c.pose.right)).atan2(trunk.y);
+            pose_sum += lean;
+            largest = largest.max(lean.abs());
+            proxy_sum += c.proxy.lean;
+        }
+    }
+    let n = (steps - from) as f32;
+    (pose_sum / n, proxy_sum / n, largest)
+}
+
+#[test]
+fn the_body_leans_into_turns_by_v_squared_over_g_r() {
+    let (speed, radius) = (1.3f32, 2.0f32);
+    let expected = (speed * speed / (9.81 * radius)).atan();
+    for (dir, sign) in [(Vec3::Z, 1.0f32), (Vec3::NEG_Z, -1.0)] {
+        // A looped circle turns left; heading -Z from (0,0,0) with the
+        // circle mirrored gives the right turn.
+        let path = if sign > 0.0 {
+            WalkPath::circle(Vec3::ZERO, dir, radius).unwrap()
+        } else {
+            let arc = softwalk_systems::character::PathSegment::Arc {
+                radius,
+                angle: -std::f32::consts::TAU,
+            };
+            WalkPath::new(Vec3::ZERO, dir, vec![arc], true).unwrap()
+        };
+        let (pose, proxy, _) = mean_lean(&path, speed, 8.0, 4.0);
+        println!(
+            "turn {}: lean from the pose {:.2}°, proxy {:.2}°, atan(v²/gr) {:.2}°",
+            if sign > 0.0 { "left" } else { "right" },
+            pose.to_degrees(),
+            proxy.to_degrees(),
+            (sign * expected).to_degrees()
+        );
+        for lean in [pose, proxy] {
+            assert!(lean * sign > 0.0, "leans out of the turn: {lean}");
+            assert!(
+                (lean * sign - expected).abs() <= 0.3 * expected,
+                "lean {lean} rad against {expected} rad"
+            );
+        }
+    }
+    let straight = WalkPath::straight(Vec3::ZERO, Vec3::Z, 20.0).unwrap();
+    let (_, proxy, largest) = mean_lean(&straight, speed, 6.0, 5.5);
+    println!(
+        "straight: largest lean {:.3}° (pose), mean {:.3}° (proxy)",
+        largest.to_degrees(),
+        proxy.to_degrees()
+    );
+    assert!(largest.to_degrees() <= 0.5 && proxy.abs().to_degrees() <= 0.5);
+}
