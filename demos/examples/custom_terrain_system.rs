@@ -225,21 +225,15 @@ fn main() -> Result<(), Box<dyn Error>> {
     let out = common::output_dir("custom_terrain_system")?;
     let mut csv = String::from("run,mean_depth_m,deepest_m,pressed_samples,rain_volume_m3\n");
     for variant in Variant::ALL {
-        let mut app = build(variant)?;
-        println!("{}: {}", variant.label(), app.schedule.order().join(" -> "));
-        let before = terrain_of(&app.world, |hf| hf.grid().clone())?;
-        run_steps(&mut app, STEPS)?;
-        let depths = terrain_of(&app.world, |hf| measure(&before, hf))?;
-        let rained = app
-            .world
-            .get_resource::<Rain>()
-            .map_or(0.0, |r| r.added_volume);
+        let walk = walk(variant, STEPS)?;
+        println!("{}: {}", variant.label(), walk.order.join(" -> "));
+        let depths = &walk.depths;
         println!(
             "  mean print depth {:.1} cm, deepest {:.1} cm over {} pressed samples; rain added {:.2} L\n",
             100.0 * depths.mean,
             100.0 * depths.deepest,
             depths.pressed,
-            1000.0 * rained
+            1000.0 * walk.rained
         );
         csv += &format!(
             "{},{:.5},{:.5},{},{:.6}\n",
@@ -247,7 +241,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             depths.mean,
             depths.deepest,
             depths.pressed,
-            rained
+            walk.rained
         );
     }
     let path = out.join("prints.csv");
@@ -256,10 +250,73 @@ fn main() -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
+/// What one run of a variant shows: its system order, its prints and the
+/// volume the rain added (cubic metres).
+struct Walk {
+    order: Vec<String>,
+    depths: PrintDepths,
+    rained: f64,
+}
+
+/// Builds `variant` and walks it for `steps` steps.
+fn walk(variant: Variant, steps: u64) -> Result<Walk, Box<dyn Error>> {
+    let mut app = build(variant)?;
+    let order = app.schedule.order().iter().map(|s| s.to_string()).collect();
+    let before = terrain_of(&app.world, |hf| hf.grid().clone())?;
+    run_steps(&mut app, steps)?;
+    let depths = terrain_of(&app.world, |hf| measure(&before, hf))?;
+    let rained = app
+        .world
+        .get_resource::<Rain>()
+        .map_or(0.0, |r| r.added_volume);
+    Ok(Walk {
+        order,
+        depths,
+        rained,
+    })
+}
+
 /// Runs `f` on the world's terrain.
 fn terrain_of<T>(world: &World, f: impl FnOnce(&Heightfield) -> T) -> Result<T, Box<dyn Error>> {
     let ground = world
         .get_resource::<GroundState>()
         .ok_or("the world has no terrain")?;
     Ok(f(ground.terrain()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rain sits between `settle` and `refit` (and before `refit` once
+    /// `settle` is removed), adds volume, and makes the prints shallower.
+    #[test]
+    fn rain_fills_the_prints_and_settle_can_be_removed() {
+        let [pipeline, rain, no_settle] = Variant::ALL.map(|v| walk(v, 150).unwrap());
+        let has = |walk: &Walk, name: &str| walk.order.iter().any(|s| s == name);
+        let runs_before = |walk: &Walk, first: &str, then: &str| {
+            let position = |name| walk.order.iter().position(|s| s == name).unwrap();
+            position(first) < position(then)
+        };
+        assert!(!has(&pipeline, "rain"));
+        assert!(runs_before(&rain, labels::SETTLE, "rain"));
+        assert!(runs_before(&rain, "rain", labels::REFIT));
+        assert!(!has(&no_settle, labels::SETTLE));
+        assert!(runs_before(&no_settle, "rain", labels::REFIT));
+
+        assert!(
+            pipeline.depths.pressed > 100,
+            "{} pressed",
+            pipeline.depths.pressed
+        );
+        assert!(pipeline.depths.mean > 0.01, "mean {}", pipeline.depths.mean);
+        assert_eq!(pipeline.rained, 0.0);
+        assert!(rain.rained > 0.0 && no_settle.rained > 0.0);
+        assert!(
+            rain.depths.mean < 0.8 * pipeline.depths.mean,
+            "rain {} vs {}",
+            rain.depths.mean,
+            pipeline.depths.mean
+        );
+    }
 }

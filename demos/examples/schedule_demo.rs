@@ -40,26 +40,30 @@ fn main() -> Result<(), Box<dyn Error>> {
         Some(text) => text.parse()?,
         None => DEFAULT_STEPS,
     };
-
-    let mut app = build_world()?;
-
-    // A user system, ordered against the pipeline by label: after the foot
-    // IK, when this step's pose is final, and before the terrain set. Without
-    // the `before`, ties resolve by insertion order and it would run last.
-    app.add_system("log_com", log_com_each_second)
-        .after(labels::FOOT_IK)
-        .before(labels::SET_TERRAIN);
-    app.schedule.build()?;
+    let (app, image) = run_demo(steps, FRAME)?;
     println!("resolved system order:");
     app.schedule.print_order();
-
-    run_steps(&mut app, steps)?;
-
-    let image = render_final_frame(&app.world)?;
     let path = out.join("final.png");
     save_png(&path, &image)?;
     println!("wrote {}", path.display());
     Ok(())
+}
+
+/// Builds the world, adds the user system, runs `steps` steps and draws the
+/// last frame at `frame` pixels.
+fn run_demo(steps: u64, frame: (u32, u32)) -> Result<(App, RgbaImage), Box<dyn Error>> {
+    let mut app = build_world()?;
+    // A user system, ordered against the pipeline by label: after the foot
+    // IK, when this step's pose is final, and before the terrain set. Without
+    // the `before`, ties resolve by insertion order and it would run last.
+    app.world.insert_resource(ComLog::default());
+    app.add_system("log_com", log_com_each_second)
+        .after(labels::FOOT_IK)
+        .before(labels::SET_TERRAIN);
+    app.schedule.build()?;
+    run_steps(&mut app, steps)?;
+    let image = render_final_frame(&app.world, frame)?;
+    Ok((app, image))
 }
 
 /// An 8 x 4 m terrain of gentle sandy hills with a snow band in the middle,
@@ -95,13 +99,20 @@ fn build_world() -> Result<App, Box<dyn Error>> {
     Ok(sim.build()?)
 }
 
-/// User system: prints each walker's centre of mass at every whole second.
+/// Resource of the `log_com` system: `(seconds, centre of mass)` of each
+/// walker at every whole second.
+#[derive(Default)]
+struct ComLog(Vec<(f64, Vec3)>);
+
+/// User system: prints each walker's centre of mass at every whole second,
+/// and keeps it in [`ComLog`].
 fn log_com_each_second(world: &mut World) {
     let time = *world.resource::<Time>();
     let steps_per_second = (1.0 / f64::from(time.dt)).round() as u64;
     if !time.step.is_multiple_of(steps_per_second) {
         return;
     }
+    let mut log = world.resource_mut::<ComLog>();
     for (name, pose, body) in world
         .query::<(&CharacterName, &Pose, &CharacterBody)>()
         .iter()
@@ -111,12 +122,13 @@ fn log_com_each_second(world: &mut World) {
             "t = {:4.1} s  {}: COM ({:.2}, {:.2}, {:.2})",
             time.elapsed, name.0, com.x, com.y, com.z
         );
+        log.0.push((time.elapsed, com));
     }
 }
 
 /// Draws the world with [`WorldView`]: the camera looks down and back along
 /// the trail from ahead of the first walker.
-fn render_final_frame(world: &World) -> Result<RgbaImage, Box<dyn Error>> {
+fn render_final_frame(world: &World, frame: (u32, u32)) -> Result<RgbaImage, Box<dyn Error>> {
     let com = world
         .query::<&WalkerMetrics>()
         .iter()
@@ -127,9 +139,35 @@ fn render_final_frame(world: &World) -> Result<RgbaImage, Box<dyn Error>> {
         com + Vec3::new(-1.6, -1.2, 0.0),
     );
     let settings = ViewSettings {
-        width: FRAME.0,
-        height: FRAME.1,
+        width: frame.0,
+        height: frame.1,
         ..ViewSettings::default()
     };
     Ok(WorldView::new(world, rig, &settings)?.render(world, 0.0)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The user system runs between the foot IK and the terrain set, logs
+    /// the walker once a second as it walks forward, and the frame shows the
+    /// ground lit and shaded (not one flat colour).
+    #[test]
+    fn the_demo_logs_a_walker_moving_forward_and_draws_it() {
+        let (app, image) = run_demo(150, (96, 54)).unwrap();
+        let order = app.schedule.order();
+        let position = |name: &str| order.iter().position(|s| *s == name).unwrap();
+        assert!(position(labels::FOOT_IK) < position("log_com"));
+        assert!(position("log_com") < position(labels::CARVE));
+
+        let log = &app.world.resource::<ComLog>().0;
+        let times: Vec<f64> = log.iter().map(|(t, _)| t.round()).collect();
+        assert_eq!(times, [0.0, 1.0, 2.0]);
+        let walked = log[2].1.x - log[1].1.x;
+        assert!((0.5..2.5).contains(&walked), "walked {walked} m in 1 s");
+
+        let colours: std::collections::BTreeSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+        assert!(colours.len() > 200, "{} colours", colours.len());
+    }
 }

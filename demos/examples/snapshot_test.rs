@@ -25,7 +25,8 @@ use std::path::Path;
 
 use demos::scene::Scene;
 use demos::view::scene_view;
-use engine::snapshot::{Outcome, Tolerance};
+use engine::snapshot::{Outcome, Snapshot, Tolerance};
+use image::RgbaImage;
 use softwalk_systems::sim::run_steps;
 
 /// The scene, as a scene file would hold it (`softwalk scenes --dump default`
@@ -71,6 +72,22 @@ fn main() {
 }
 
 fn run() -> Result<(), Box<dyn Error>> {
+    let check = tiny_scene_check();
+    match check.check(&tiny_scene_frame()?)? {
+        Outcome::Identical => println!("identical to {}", check.golden_path().display()),
+        Outcome::WithinTolerance { diff_pixels, .. } => {
+            println!("matches within tolerance ({diff_pixels} pixels differ)")
+        }
+        Outcome::Created(path) => {
+            println!("new golden {}: look at it, then commit it", path.display())
+        }
+        Outcome::Updated(path) => println!("golden {} updated", path.display()),
+    }
+    Ok(())
+}
+
+/// The tiny scene's frame after its one simulated second.
+fn tiny_scene_frame() -> Result<RgbaImage, Box<dyn Error>> {
     let scene = Scene::from_toml_str(TINY_SCENE, Path::new(""))?;
     let (mut app, walkers) = scene.build_sim()?;
     run_steps(&mut app, scene.steps())?;
@@ -85,24 +102,28 @@ fn run() -> Result<(), Box<dyn Error>> {
         scene.render.height,
         1,
     )?;
-    let image = view.render(&app.world, scene.sim.dt)?;
+    Ok(view.render(&app.world, scene.sim.dt)?)
+}
 
-    // The tolerance absorbs last-bit differences between machines: a pixel
-    // counts only past a YIQ delta of 0.1, anti-aliased edges are forgiven,
-    // and up to 16 pixels may still differ.
-    let check = engine::snapshot!("example_tiny_scene").tolerance(Tolerance {
+/// The golden check of the tiny scene. The tolerance absorbs last-bit
+/// differences between machines: a pixel counts only past a YIQ delta of
+/// 0.1, anti-aliased edges are forgiven, and up to 16 pixels may still differ.
+fn tiny_scene_check() -> Snapshot {
+    engine::snapshot!("example_tiny_scene").tolerance(Tolerance {
         threshold: 0.1,
         max_diff_pixels: 16,
-    });
-    match check.check(&image)? {
-        Outcome::Identical => println!("identical to {}", check.golden_path().display()),
-        Outcome::WithinTolerance { diff_pixels, .. } => {
-            println!("matches within tolerance ({diff_pixels} pixels differ)")
-        }
-        Outcome::Created(path) => {
-            println!("new golden {}: look at it, then commit it", path.display())
-        }
-        Outcome::Updated(path) => println!("golden {} updated", path.display()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The example passes against the committed golden (in a test, a
+    /// mismatch panics with the paths of the actual, expected and diff PNGs).
+    #[test]
+    fn the_tiny_scene_matches_its_committed_golden() {
+        assert!(tiny_scene_check().golden_path().exists());
+        tiny_scene_check().assert_matches(&tiny_scene_frame().unwrap());
     }
-    Ok(())
 }

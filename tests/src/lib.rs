@@ -1,5 +1,6 @@
 //! Shared helpers for the integration tests in `tests/tests/`: small scenes
 //! built on the full pipeline (`softwalk_systems::sim`), walked and measured.
+//! It also compiles the Rust blocks of the README and the tutorial as doctests.
 
 use engine::schedule::App;
 use glam::{Vec2, Vec3};
@@ -96,3 +97,14 @@ pub fn steepest_wall_across(grid: &engine::geom::HeightGrid, c: Vec2) -> f32 {
         .map(|j| (grid.height(i, j + 1) - grid.height(i, j)).abs() / grid.cell_size())
         .fold(0.0, f32::max)
 }
+
+/// The README's Rust blocks, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeDoctests;
+
+/// The tutorial's Rust blocks, compiled (and run, unless `no_run`) by
+/// `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/tutorial.md")]
+pub struct TutorialDoctests;

@@ -3,15 +3,14 @@
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use super::bundle::{Bundle, Component};
+use super::command_queue::CommandQueue;
 use super::entity::Entity;
-use super::error::{CommandsError, EcsError};
+use super::error::EcsError;
 use super::world::World;
 
-type Command = Box<dyn FnOnce(&mut World) -> Result<(), EcsError> + Send>;
-
-/// Recorded structural changes (spawn, insert, remove, despawn, or any
-/// closure), applied to a world by [`CommandBuffer::run_on`] in the order
-/// they were recorded.
+/// Recorded structural changes to a world (spawn, insert, remove, despawn,
+/// or any closure), applied by [`CommandQueue::run_on`] in the order they
+/// were recorded.
 ///
 /// ```
 /// use engine::ecs::{CommandBuffer, World};
@@ -29,17 +28,9 @@ type Command = Box<dyn FnOnce(&mut World) -> Result<(), EcsError> + Send>;
 /// assert!(!world.contains(e));
 /// assert_eq!(world.len(), 1);
 /// ```
-#[derive(Default)]
-pub struct CommandBuffer {
-    commands: Vec<Command>,
-}
+pub type CommandBuffer = CommandQueue<World>;
 
-impl CommandBuffer {
-    /// An empty buffer.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
+impl CommandQueue<World> {
     /// Records spawning an entity with `bundle`.
     pub fn spawn<B: Bundle>(&mut self, bundle: B) {
         self.push(move |world| {
@@ -67,39 +58,15 @@ impl CommandBuffer {
     pub fn despawn(&mut self, entity: Entity) {
         self.push(move |world| world.despawn(entity));
     }
+}
 
-    /// Records an arbitrary change.
-    pub fn push(
-        &mut self,
-        command: impl FnOnce(&mut World) -> Result<(), EcsError> + Send + 'static,
-    ) {
-        self.commands.push(Box::new(command));
-    }
-
-    /// Number of recorded commands.
-    pub fn len(&self) -> usize {
-        self.commands.len()
-    }
-
-    /// Whether nothing is recorded.
-    pub fn is_empty(&self) -> bool {
-        self.commands.is_empty()
-    }
-
-    /// Applies every command in recording order and empties the buffer. A
-    /// failing command (e.g. its target was despawned) does not stop the
-    /// others; all failures are returned together.
-    pub fn run_on(&mut self, world: &mut World) -> Result<(), CommandsError> {
-        let failures: Vec<(usize, EcsError)> = self
-            .commands
-            .drain(..)
-            .enumerate()
-            .filter_map(|(index, command)| command(world).err().map(|error| (index, error)))
-            .collect();
-        if failures.is_empty() {
-            Ok(())
-        } else {
-            Err(CommandsError { failures })
+impl World {
+    /// The world's own deferred command buffer, usable through `&World`
+    /// (e.g. while a query is live). The schedule applies it after each system;
+    /// call [`World::apply_commands`] to apply it yourself.
+    pub fn commands(&self) -> Commands<'_> {
+        Commands {
+            buffer: self.command_queue(),
         }
     }
 }
@@ -114,10 +81,6 @@ pub struct Commands<'w> {
 }
 
 impl<'w> Commands<'w> {
-    pub(crate) fn new(buffer: &'w Mutex<CommandBuffer>) -> Self {
-        Commands { buffer }
-    }
-
     fn lock(&self) -> MutexGuard<'w, CommandBuffer> {
         self.buffer.lock().unwrap_or_else(PoisonError::into_inner)
     }

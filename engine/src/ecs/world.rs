@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use super::archetype::{Archetype, ArchetypeColumn, ComponentType, Edge};
 use super::borrow::{BorrowFlag, Ref, RefMut, SharedCell};
 use super::bundle::{Bundle, Component};
-use super::commands::{CommandBuffer, Commands};
+use super::command_queue::CommandQueue;
 use super::entity::{Entities, Entity, Location};
 use super::error::{BorrowConflict, BorrowTarget, CommandsError, EcsError};
 use super::events::Events;
@@ -62,7 +62,7 @@ pub struct World {
     component_ids: HashMap<TypeId, usize>,
     component_flags: Vec<BorrowFlag>,
     pub(crate) resources: Resources,
-    commands: std::sync::Mutex<CommandBuffer>,
+    commands: std::sync::Mutex<CommandQueue<World>>,
     event_updaters: Vec<(TypeId, EventUpdater)>,
 }
 
@@ -85,7 +85,7 @@ impl World {
             component_ids: HashMap::new(),
             component_flags: Vec::new(),
             resources: Resources::default(),
-            commands: std::sync::Mutex::new(CommandBuffer::new()),
+            commands: std::sync::Mutex::new(CommandQueue::new()),
             event_updaters: Vec::new(),
         }
     }
@@ -593,11 +593,9 @@ impl World {
 
     // ---------------------------------------------------------------- commands
 
-    /// The world's own deferred command buffer, usable through `&World`
-    /// (e.g. while a query is live). The schedule applies it after each system;
-    /// call [`World::apply_commands`] to apply it yourself.
-    pub fn commands(&self) -> Commands<'_> {
-        Commands::new(&self.commands)
+    /// The queue behind [`World::commands`].
+    pub(super) fn command_queue(&self) -> &std::sync::Mutex<CommandQueue<World>> {
+        &self.commands
     }
 
     /// Applies and clears the world's deferred commands, in recording order.

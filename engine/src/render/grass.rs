@@ -49,8 +49,12 @@ struct DrawnBlade {
 /// [`MIN_BLADE_PX`]: the meadow keeps its covered area while far blades cost
 /// fewer, fuller rows. Front to back, most hidden pixels fail the depth test
 /// early instead of being shaded and then overwritten.
+///
+/// Blades wholly outside one side of the view (or behind the near plane) are
+/// left out here, before any other work: set-up would cull them anyway.
 fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<DrawnBlade> {
     let focal = camera.focal_px();
+    let planes = camera.frustum_planes();
     let mut keys: Vec<(u64, f32)> = blades
         .par_iter()
         .enumerate()
@@ -64,6 +68,9 @@ fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<DrawnBlade> {
             } else {
                 return None;
             };
+            if outside_view(&planes, b, width) {
+                return None;
+            }
             // Non-negative floats order like their bit patterns; the index breaks ties.
             Some(((u64::from(distance.to_bits()) << 32) | k as u64, width))
         })
@@ -76,6 +83,19 @@ fn drawn_blades(blades: &[GrassBlade], camera: &Camera) -> Vec<DrawnBlade> {
             distance: f32::from_bits((key >> 32) as u32),
         })
         .collect()
+}
+
+/// Whether a blade drawn `width` wide lies wholly outside one of the side
+/// and near planes of the view: the ball around its root through its mid
+/// point and tip holds its five vertices. The margin keeps the test
+/// conservative against the rounding of the clip-space test in set-up.
+fn outside_view(planes: &[Vec4; 6], blade: &GrassBlade, width: f32) -> bool {
+    let radius = blade.mid.distance(blade.root) + blade.tip.distance(blade.mid) + width;
+    // The far plane is left to the depth test, as in set-up.
+    planes[..5].iter().any(|p| {
+        let normal = p.truncate();
+        normal.dot(blade.root) + p.w < -(1.001 * radius + 1e-3) * normal.length()
+    })
 }
 
 /// Sorts blade keys (root distance bits above the blade index, in index order)
@@ -357,11 +377,11 @@ mod tests {
                 .unwrap()
                 .look_at(Vec3::new(2.0, 0.2, z), Vec3::new(2.0, 0.0, 0.0), Vec3::Y)
         };
-        // Near: every blade at its own width, nearest first.
-        let near = drawn_blades(&blades, &camera(-1.0));
+        // Near (the whole row in view): every blade at its own width, nearest first.
+        let near = drawn_blades(&blades, &camera(-3.0));
         assert_eq!(near.len(), blades.len());
         assert!(near.iter().all(|d| d.width == 0.01));
-        let distance = |k: u32| blades[k as usize].root.distance(camera(-1.0).eye);
+        let distance = |k: u32| blades[k as usize].root.distance(camera(-3.0).eye);
         assert!(near.iter().all(|d| d.distance == distance(d.index)));
         assert!(
             near.windows(2)
@@ -379,6 +399,27 @@ mod tests {
             "{total} vs {original}"
         );
         assert!(far.iter().all(|d| d.width > 0.01));
+    }
+
+    #[test]
+    fn blades_outside_the_view_are_left_out() {
+        // 1 m from the middle of a 4 m row, the view spans about 0.8 m either
+        // side (a blade reaches 0.3 m further): the ends of the row are
+        // dropped, the middle is kept.
+        let blades = row_of_blades(4000);
+        let camera = Camera::perspective(0.9, 640, 400, 0.05, 500.0)
+            .unwrap()
+            .look_at(Vec3::new(2.0, 0.2, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::Y);
+        let drawn = drawn_blades(&blades, &camera);
+        let x = |d: &DrawnBlade| blades[d.index as usize].root.x;
+        assert!(drawn.iter().all(|d| (x(d) - 2.0).abs() < 1.5));
+        let middle = blades
+            .iter()
+            .filter(|b| (b.root.x - 2.0).abs() < 0.5)
+            .count();
+        let kept_middle = drawn.iter().filter(|d| (x(d) - 2.0).abs() < 0.5).count();
+        assert_eq!(kept_middle, middle);
+        assert!(10 * drawn.len() < 7 * blades.len(), "{} drawn", drawn.len());
     }
 
     #[test]

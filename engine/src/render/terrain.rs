@@ -29,6 +29,11 @@ pub struct TerrainStyle {
     pub shadow_range: f32,
     /// How much a fully disturbed sample is darkened (0..1).
     pub disturbed_darkening: f32,
+    /// How much the hollow's occlusion also dims the sun on a sample (0..1):
+    /// its light is scaled by `1 - hollow_darkening * (1 - sky_view)`, so a
+    /// print's floor and lower walls read darker than the open ground even
+    /// where the sun reaches them (bright snow would otherwise clip to white).
+    pub hollow_darkening: f32,
     /// A level of detail is used only while its cells stay below this many pixels.
     pub max_cell_px: f32,
     /// ... and its height error below this many pixels.
@@ -42,6 +47,7 @@ impl Default for TerrainStyle {
             ao_radius: 0.3,
             shadow_range: 4.0,
             disturbed_darkening: 0.25,
+            hollow_darkening: 0.8,
             max_cell_px: 12.0,
             max_error_px: 1.0,
         }
@@ -60,11 +66,16 @@ impl TerrainStyle {
         positive("shadow_range", self.shadow_range)?;
         positive("max_cell_px", self.max_cell_px)?;
         positive("max_error_px", self.max_error_px)?;
-        if !(0.0..=1.0).contains(&self.disturbed_darkening) {
-            return Err(RenderError::InvalidParameter {
-                name: "disturbed_darkening",
-                reason: format!("{} must lie in [0, 1]", self.disturbed_darkening),
-            });
+        for (name, share) in [
+            ("disturbed_darkening", self.disturbed_darkening),
+            ("hollow_darkening", self.hollow_darkening),
+        ] {
+            if !(0.0..=1.0).contains(&share) {
+                return Err(RenderError::InvalidParameter {
+                    name,
+                    reason: format!("{share} must lie in [0, 1]"),
+                });
+            }
         }
         Ok(())
     }
@@ -494,12 +505,13 @@ impl Patch {
                     for &c in &cols {
                         let (i, j) = (self.i0 + c, self.j0 + r);
                         let k = grid.index(i, j);
+                        let sky = light.sky_view[k];
                         let albedo = colors.albedo(i, j)
                             * (1.0
                                 - style.disturbed_darkening
-                                    * colors.disturbance(i, j).clamp(0.0, 1.0));
+                                    * colors.disturbance(i, j).clamp(0.0, 1.0))
+                            * (1.0 - style.hollow_darkening * (1.0 - sky));
                         let normal = grid.sample_normal(i, j);
-                        let sky = light.sky_view[k];
                         let radiance = lighting.radiance(albedo, normal, sky, light.sun_visible[k]);
                         let shaded = lighting.radiance(albedo, normal, sky, 0.0);
                         level.heights.push(grid.height(i, j));
