@@ -69,3 +69,14 @@ fn a_crowd_gives_the_same_world_on_one_two_and_four_threads() {
     assert_eq!(hash(&scene, false, 2), reference, "two threads");
     assert_eq!(hash(&scene, false, 4), reference, "four threads");
 }
+
+#[test]
+fn the_character_model_is_a_view_and_never_changes_the_world() {
+    let human = Scene::builtin("grass-small").unwrap();
+    assert_eq!(human.characters[0].model, demos::scene::HUMAN_MODEL);
+    let mut mannequin = human.clone();
+    for c in &mut mannequin.characters {
+        c.model = demos::scene::MANNEQUIN_MODEL.to_string();
+    }
+    assert_eq!(hash(&human, true, 2), hash(&mannequin, true, 2));
+}

@@ -34,11 +34,17 @@ const TOLERANCE: Tolerance = Tolerance {
 /// The last frame of the default scene's first 60 steps, drawn at 200 x 112
 /// every 2nd step (the follow camera moves as in a real run) with `threads`.
 fn default_scene_frame(threads: usize) -> RgbaImage {
+    default_scene_after(60, (200, 112), threads)
+}
+
+/// The last frame of the default scene's first `steps` steps at `size`,
+/// drawn every 2nd step with `threads`.
+fn default_scene_after(steps: u64, size: (u32, u32), threads: usize) -> RgbaImage {
     let scene = Scene::builtin("default").expect("built-in scene");
     let options = RunOptions {
-        steps: 60,
-        width: 200,
-        height: 112,
+        steps,
+        width: size.0,
+        height: size.1,
         render_every: 2,
         threads,
         ..RunOptions::from_scene(&scene)
@@ -53,6 +59,14 @@ fn default_scene_first_second_matches_its_golden() {
     let image = default_scene_frame(1);
     assert_eq!(image.dimensions(), (200, 112));
     engine::snapshot!("default_scene_first_second")
+        .tolerance(TOLERANCE)
+        .assert_matches(&image);
+}
+
+#[test]
+fn default_scene_first_frame_shows_the_skinned_human() {
+    let image = default_scene_after(1, (320, 180), 1);
+    engine::snapshot!("default_scene_first_frame_human")
         .tolerance(TOLERANCE)
         .assert_matches(&image);
 }

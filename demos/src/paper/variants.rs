@@ -71,6 +71,8 @@ pub fn walker(name: &str, body: CharacterDesc, controller: bool, path: PathSpec)
         controller,
         body,
         path,
+        model: crate::scene::HUMAN_MODEL.to_string(),
+        bones: Default::default(),
     }
 }
 

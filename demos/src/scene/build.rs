@@ -1,10 +1,12 @@
 //! From a validated [`Scene`] to a ready-to-run simulation, through
 //! `softwalk_systems::sim::SimBuilder`.
 
+use std::collections::BTreeMap;
+
 use engine::ecs::Entity;
 use engine::geom::TriMesh;
 use engine::schedule::App;
-use softwalk_systems::character::Balance;
+use softwalk_systems::character::{Balance, CharacterRig};
 use softwalk_systems::sim::{SimBuilder, SimError};
 use softwalk_systems::terrain::{Heightfield, MaterialTable};
 
@@ -15,6 +17,18 @@ use super::{Scene, SceneError};
 fn setup(part: impl Into<String>) -> impl FnOnce(SimError) -> SceneError {
     let part = part.into();
     move |source| SceneError::Setup { part, source }
+}
+
+/// Wraps a refusal to set up a spawned character's component with the scene part.
+fn spawn_failed<E: std::fmt::Display>(part: String) -> impl FnOnce(E) -> SceneError {
+    move |e| SceneError::Setup {
+        part,
+        source: SimError::System {
+            system: "spawn",
+            step: 0,
+            message: e.to_string(),
+        },
+    }
 }
 
 impl Scene {
@@ -85,22 +99,42 @@ impl Scene {
                 .map_err(setup(part))?;
             walkers.push(entity);
         }
-        let app = builder.build().map_err(setup("sim"))?;
+        let mut app = builder.build().map_err(setup("sim"))?;
+        self.attach_rigs(&mut app, &walkers)?;
         for (k, (c, entity)) in self.characters.iter().zip(&walkers).enumerate() {
-            let mut balance =
-                app.world
-                    .get_mut::<Balance>(*entity)
-                    .map_err(|e| SceneError::Setup {
-                        part: format!("characters[{k}].controller"),
-                        source: SimError::System {
-                            system: "spawn",
-                            step: 0,
-                            message: e.to_string(),
-                        },
-                    })?;
+            let mut balance = app
+                .world
+                .get_mut::<Balance>(*entity)
+                .map_err(spawn_failed(format!("characters[{k}].controller")))?;
             balance.enabled = c.controller;
         }
         Ok((app, walkers))
+    }
+
+    /// Gives each character drawn as a model its [`CharacterRig`]; one
+    /// model and bone table are loaded once and shared.
+    fn attach_rigs(&self, app: &mut App, walkers: &[Entity]) -> Result<(), SceneError> {
+        let mut loaded: Vec<(&str, &BTreeMap<String, String>, Option<CharacterRig>)> = Vec::new();
+        for (k, (c, &entity)) in self.characters.iter().zip(walkers).enumerate() {
+            let field = format!("characters[{k}]");
+            let known = loaded
+                .iter()
+                .find(|(model, bones, _)| *model == c.model && **bones == c.bones);
+            let rig = match known {
+                Some((_, _, rig)) => rig.clone(),
+                None => {
+                    let rig = c.rig(&field, &self.base_dir)?;
+                    loaded.push((&c.model, &c.bones, rig.clone()));
+                    rig
+                }
+            };
+            if let Some(rig) = rig {
+                app.world
+                    .insert(entity, (rig,))
+                    .map_err(spawn_failed(format!("{field}.model")))?;
+            }
+        }
+        Ok(())
     }
 }
 

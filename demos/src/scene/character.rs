@@ -4,11 +4,17 @@
 //! walking speed follows from its Froude number. The path is turned into a
 //! [`WalkPath`] here.
 
+use std::collections::BTreeMap;
+use std::path::Path;
+
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
-use softwalk_systems::character::{CharacterDesc, CharacterError, PathSegment, WalkPath};
+use softwalk_systems::character::{
+    CharacterDesc, CharacterError, CharacterRig, PathSegment, WalkPath,
+};
 
 use super::SceneError;
+use super::character_model::{default_model, load_character_rig};
 use super::check::{finite, identifier, in_range, on_terrain, positive};
 
 /// Default radius of the rounded corners of a waypoint path, metres.
@@ -201,6 +207,15 @@ pub struct CharacterSpec {
     pub body: CharacterDesc,
     /// The route.
     pub path: PathSpec,
+    /// What the character is drawn as: `"human"` (the built-in body, the
+    /// default), `"mannequin"` (capsules, for debugging) or a `.glb`/`.gltf`
+    /// file relative to the scene file.
+    #[serde(default = "default_model")]
+    pub model: String,
+    /// Rig bone names by role key (`thigh_l = "LeftUpLeg"`), over the names
+    /// the best-matching preset finds.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub bones: BTreeMap<String, String>,
 }
 
 fn default_controller() -> bool {
@@ -209,7 +224,12 @@ fn default_controller() -> bool {
 
 impl CharacterSpec {
     /// Checks the character; `field` is its path (`characters[0]`).
-    pub(crate) fn validate(&self, field: &str, size: [f32; 2]) -> Result<(), SceneError> {
+    pub(crate) fn validate(
+        &self,
+        field: &str,
+        size: [f32; 2],
+        base_dir: &Path,
+    ) -> Result<(), SceneError> {
         identifier(&format!("{field}.name"), &self.name)?;
         self.body.validate().map_err(|e| match e {
             CharacterError::InvalidField {
@@ -218,7 +238,14 @@ impl CharacterSpec {
             } => SceneError::invalid(format!("{field}.body.{name}"), reason),
             other => SceneError::invalid(format!("{field}.body"), other.to_string()),
         })?;
-        self.path.validate(&format!("{field}.path"), size)
+        self.path.validate(&format!("{field}.path"), size)?;
+        self.rig(field, base_dir).map(|_| ())
+    }
+
+    /// The rig the character is drawn as (`None` for the mannequin); `field`
+    /// is its path (`characters[0]`).
+    pub fn rig(&self, field: &str, base_dir: &Path) -> Result<Option<CharacterRig>, SceneError> {
+        load_character_rig(field, &self.model, &self.bones, base_dir)
     }
 }
 
@@ -232,6 +259,8 @@ mod tests {
             controller: true,
             body: CharacterDesc::adult(),
             path,
+            model: default_model(),
+            bones: BTreeMap::new(),
         }
     }
 
@@ -246,8 +275,11 @@ mod tests {
         assert!((end[0] - 1.0).abs() < 1e-5 && (end[1] - 4.0).abs() < 1e-5);
         let path = c.path.walk_path().unwrap();
         assert!((path.point_at(3.0).position - Vec2::new(1.0, 4.0)).length() < 1e-5);
-        c.validate("characters[0]", [10.0, 10.0]).unwrap();
-        let e = c.validate("characters[0]", [10.0, 3.0]).unwrap_err();
+        c.validate("characters[0]", [10.0, 10.0], Path::new(""))
+            .unwrap();
+        let e = c
+            .validate("characters[0]", [10.0, 3.0], Path::new(""))
+            .unwrap_err();
         assert!(
             e.to_string()
                 .starts_with("characters[0].path.length: point"),
@@ -279,7 +311,7 @@ mod tests {
             points: vec![[1.0, 1.0], [5.0, 1.0], [1.0, 1.01]],
             corner_radius: 1.0,
         })
-        .validate("characters[0]", [10.0, 10.0])
+        .validate("characters[0]", [10.0, 10.0], Path::new(""))
         .unwrap_err();
         assert_eq!(e.field(), Some("characters[0].path.points[1]"));
     }
@@ -292,7 +324,9 @@ mod tests {
             length: 3.0,
         });
         c.body.alpha = f32::NAN;
-        let e = c.validate("characters[1]", [10.0, 10.0]).unwrap_err();
+        let e = c
+            .validate("characters[1]", [10.0, 10.0], Path::new(""))
+            .unwrap_err();
         assert_eq!(e.field(), Some("characters[1].body.alpha"));
     }
 }

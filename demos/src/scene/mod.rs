@@ -20,6 +20,7 @@ mod build;
 mod builtin;
 mod camera;
 mod character;
+mod character_model;
 mod check;
 mod crowd;
 mod crowding;
@@ -45,6 +46,7 @@ use softwalk_systems::vegetation::MAX_BLADES;
 pub use builtin::{BuiltinScene, builtin_scenes};
 pub use camera::{CameraMode, CameraSpec, MAX_CAMERA_COORDINATE};
 pub use character::{CharacterSpec, DEFAULT_CORNER_RADIUS, MAX_TURN_DEG, MAX_WAYPOINTS, PathSpec};
+pub use character_model::{HUMAN_MODEL, MANNEQUIN_MODEL, role_key};
 pub use crowd::{CrowdLayout, CrowdSpec};
 pub use crowding::{MAX_CHARACTERS, SPAWN_CLEARANCE_M};
 pub use error::SceneError;
@@ -271,7 +273,7 @@ impl Scene {
         let mut seen = std::collections::HashSet::with_capacity(self.characters.len());
         for (k, c) in self.characters.iter().enumerate() {
             let field = format!("characters[{k}]");
-            c.validate(&field, size)?;
+            c.validate(&field, size, &self.base_dir)?;
             if !seen.insert(c.name.as_str()) {
                 return Err(SceneError::invalid(
                     format!("{field}.name"),

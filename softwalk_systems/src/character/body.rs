@@ -227,7 +227,7 @@ impl CharacterBody {
 }
 
 /// The outer product `a bᵀ`.
-fn outer(a: Vec3, b: Vec3) -> Mat3 {
+pub(crate) fn outer(a: Vec3, b: Vec3) -> Mat3 {
     Mat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 

@@ -32,6 +32,7 @@
 
 mod balance;
 mod body;
+mod character_rig;
 mod desc;
 mod error;
 mod foot_ik;
@@ -40,10 +41,12 @@ mod ground_cross;
 mod ik;
 mod mesh;
 mod metrics;
+mod model_error;
 mod path;
 mod pelvis;
 mod pose;
 mod rays;
+mod rig_pose;
 mod skeleton;
 mod steering;
 mod step;
@@ -55,6 +58,7 @@ pub use balance::{
     RigidProxy, animated_com, balance_stage, turn_lean,
 };
 pub use body::CharacterBody;
+pub use character_rig::{ArmChain, CharacterRig};
 pub use desc::CharacterDesc;
 pub use error::CharacterError;
 pub use foot_ik::{FootIK, foot_ik_stage};
@@ -65,9 +69,11 @@ pub use gait::{
 pub use ik::{TwoBoneSolution, solve_two_bone};
 pub use mesh::{capsule, character_mesh};
 pub use metrics::CharacterMetrics;
+pub use model_error::ModelError;
 pub use path::{PathPoint, PathSegment, WalkPath};
 pub use pose::Pose;
 pub use rays::{FootRays, GroundKey, foot_raycast_stage};
+pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use steering::{Steering, SteeringSettings, curve_radius, steer_stage, turn_angle};
 pub use step::{Character, step_character};

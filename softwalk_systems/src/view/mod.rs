@@ -19,6 +19,7 @@ mod camera_rig;
 mod overlays;
 mod palette;
 mod settings;
+mod skinned_figure;
 mod world_view;
 
 pub use camera_rig::CameraRig;

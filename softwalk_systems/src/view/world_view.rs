@@ -14,8 +14,9 @@ use super::camera_rig::CameraRig;
 use super::overlays::draw_overlays;
 use super::palette::TerrainPaint;
 use super::settings::ViewSettings;
-use crate::character::{Balance, CharacterBody, Pose, character_mesh};
-use crate::sim::{GroundState, Props, WalkerMetrics};
+use super::skinned_figure::SkinnedFigure;
+use crate::character::{Balance, CharacterBody, CharacterRig, Pose, character_mesh};
+use crate::sim::{Feet, GroundState, Props, WalkerMetrics};
 use crate::terrain::Heightfield;
 use crate::vegetation::GrassPatch;
 
@@ -41,11 +42,19 @@ pub enum ViewError {
     NoTerrain,
 }
 
-/// One character as drawn: its capsule mesh and colour.
+/// One character as drawn: its mesh and colour.
 struct Figure {
     entity: Entity,
-    mesh: TriMesh,
+    body: FigureBody,
     color: Vec3,
+}
+
+/// What a character is drawn as.
+enum FigureBody {
+    /// The capsule mannequin: one capsule per bone, placed by the pose.
+    Mannequin(TriMesh),
+    /// A skinned model, re-skinned each frame from its rig's pose.
+    Skinned(SkinnedFigure),
 }
 
 /// Draws a world as a [`CameraRig`] sees it: shaded terrain (re-meshed and
@@ -131,13 +140,18 @@ impl WorldView {
         }
         self.update_terrain(world)?;
         self.collect_blades(world);
-        let poses: Vec<(&Figure, Vec<Mat4>)> = self
-            .figures
-            .iter()
-            .filter_map(|f| Some((f, world.get::<Pose>(f.entity).ok()?.part_transforms())))
-            .collect();
+        let mut poses: Vec<(&Figure, Vec<Mat4>)> = Vec::with_capacity(self.figures.len());
+        for figure in &mut self.figures {
+            if let Some(parts) = figure.pose(world) {
+                poses.push((figure, parts));
+            }
+        }
         let figures = poses.iter().map(|(f, parts)| {
-            MeshInstance::new(&f.mesh, Mat4::IDENTITY, f.color).with_parts(parts)
+            let mesh = match &f.body {
+                FigureBody::Mannequin(mesh) => mesh,
+                FigureBody::Skinned(skinned) => skinned.mesh(),
+            };
+            MeshInstance::new(mesh, Mat4::IDENTITY, f.color).with_parts(parts)
         });
         let props = (self.props.iter()).map(|m| MeshInstance::new(m, Mat4::IDENTITY, PROP));
         let meshes: Vec<MeshInstance<'_>> = figures.chain(props).collect();
@@ -220,14 +234,41 @@ fn colors<'a>(paint: &'a TerrainPaint, hf: &Heightfield) -> SampleColors<'a> {
     }
 }
 
-/// Every character of the world, in entity order, with its mesh and colour.
+impl Figure {
+    /// Poses the figure as the world has it now: the mannequin's part
+    /// transforms, or nothing for a skinned model (its mesh is re-skinned in
+    /// world space). `None` when the entity has no pose.
+    fn pose(&mut self, world: &World) -> Option<Vec<Mat4>> {
+        let pose = world.get::<Pose>(self.entity).ok()?;
+        match &mut self.body {
+            FigureBody::Mannequin(_) => Some(pose.part_transforms()),
+            FigureBody::Skinned(skinned) => {
+                let body = world.get::<CharacterBody>(self.entity).ok()?;
+                let feet = world.get::<Feet>(self.entity).ok()?;
+                skinned.update(&body, &pose, &feet.0);
+                Some(Vec::new())
+            }
+        }
+    }
+}
+
+/// Every character of the world, in entity order, with its mesh and colour:
+/// skinned when it has a [`CharacterRig`], else the capsule mannequin.
 fn figures(world: &World) -> Vec<Figure> {
     let mut figures: Vec<Figure> = world
-        .query::<(Entity, &CharacterBody, Option<&Balance>)>()
+        .query::<(
+            Entity,
+            &CharacterBody,
+            Option<&Balance>,
+            Option<&CharacterRig>,
+        )>()
         .iter()
-        .map(|(entity, body, balance)| Figure {
+        .map(|(entity, body, balance, rig)| Figure {
             entity,
-            mesh: character_mesh(body),
+            body: match rig {
+                Some(rig) => FigureBody::Skinned(SkinnedFigure::new(rig.clone())),
+                None => FigureBody::Mannequin(character_mesh(body)),
+            },
             color: match balance.is_none_or(|b| b.enabled) {
                 true => WITH_CONTROLLER,
                 false => WITHOUT_CONTROLLER,

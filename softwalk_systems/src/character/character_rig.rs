@@ -1,0 +1,358 @@
+//! [`CharacterRig`]: a rigged, skinned model (glTF) prepared to be driven by
+//! the walking character: its legs, spine and arms found through a bone map,
+//! its rest pose, its soles and the height of its hips.
+
+use std::path::Path;
+use std::sync::{Arc, OnceLock};
+
+use engine::anim::gltf::load_gltf_from_slice;
+use engine::anim::{
+    BoneMap, BoneRole, LegChain, Model, RigChains, SkinnedVertices, skin_matrices, skin_serial,
+};
+use glam::{Mat3, Mat4, Quat, Vec3};
+
+use super::model_error::ModelError;
+
+/// The default character, a CC0 MakeHuman body with a game-engine rig
+/// (`assets/characters/human.glb`; see the README beside it), built in.
+const HUMAN_GLB: &[u8] = include_bytes!("../../../assets/characters/human.glb");
+/// How far above the lowest bind-pose vertex a foot vertex still counts as sole, metres.
+const SOLE_BAND: f32 = 0.012;
+/// Smallest share of a vertex's weight on a foot's bones for it to be part of that sole.
+const SOLE_WEIGHT: f32 = 0.5;
+
+/// An arm's joints: shoulder (upper arm bone), elbow (forearm bone), wrist (hand bone).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ArmChain {
+    /// The upper arm's joint.
+    pub shoulder: usize,
+    /// The forearm's joint.
+    pub elbow: usize,
+    /// The hand's joint.
+    pub wrist: usize,
+}
+
+/// A loaded model with everything the driver needs, shared (cloning is cheap).
+///
+/// Rest-pose figures are in the model's bind space after its rest transforms:
+/// Y up, the soles on the lowest vertex.
+#[derive(Debug, Clone)]
+pub struct CharacterRig {
+    data: Arc<RigData>,
+}
+
+#[derive(Debug)]
+struct RigData {
+    name: String,
+    model: Model,
+    map: BoneMap,
+    chains: RigChains,
+    arms: [Option<ArmChain>; 2],
+    rest_globals: Vec<Mat4>,
+    rest_positions: Vec<Vec3>,
+    ground: f32,
+    hip_height: f32,
+    height: f32,
+    frame: Mat3,
+    soles: [Vec<u32>; 2],
+    sole_centres: [Vec3; 2],
+    sole_lengths: [f32; 2],
+}
+
+impl CharacterRig {
+    /// The built-in human (parsed once, then shared).
+    pub fn human() -> Result<CharacterRig, ModelError> {
+        static HUMAN: OnceLock<CharacterRig> = OnceLock::new();
+        if let Some(rig) = HUMAN.get() {
+            return Ok(rig.clone());
+        }
+        let model = CharacterRig::parse_human()?;
+        let map = BoneMap::detect(&model.skeleton);
+        let rig = CharacterRig::new("human", model, map)?;
+        Ok(HUMAN.get_or_init(|| rig).clone())
+    }
+
+    /// Loads a `.glb` or `.gltf` file, its bones named by `map` (or by the
+    /// preset that matches most of them when `None`).
+    pub fn load(path: &Path, map: Option<BoneMap>) -> Result<CharacterRig, ModelError> {
+        let model = engine::anim::gltf::load_gltf(path).map_err(|source| ModelError::Load {
+            path: path.to_path_buf(),
+            source: Box::new(source),
+        })?;
+        let map = map.unwrap_or_else(|| BoneMap::detect(&model.skeleton));
+        CharacterRig::new(&path.display().to_string(), model, map)
+    }
+
+    /// Parses the built-in human's bytes afresh (for load-time benchmarks).
+    pub fn parse_human() -> Result<Model, ModelError> {
+        let path = Path::new("assets/characters/human.glb");
+        load_gltf_from_slice(HUMAN_GLB, path).map_err(|source| ModelError::Load {
+            path: path.to_path_buf(),
+            source: Box::new(source),
+        })
+    }
+
+    /// Prepares `model`, its bones named by `map`: the legs, spine and
+    /// head must be mapped (arms are optional), each foot must have sole
+    /// vertices, and the hips must stand above the soles.
+    pub fn new(name: &str, model: Model, map: BoneMap) -> Result<CharacterRig, ModelError> {
+        let chains = RigChains::find(&model.skeleton, &map)?;
+        let rest_globals = model.skeleton.rest_globals();
+        let rest_positions: Vec<Vec3> = rest_globals.iter().map(|m| m.w_axis.truncate()).collect();
+        let rest_vertices = rest_mesh(&model, &rest_globals)?;
+        let ground = rest_vertices
+            .positions
+            .iter()
+            .map(|p| p.y)
+            .fold(f32::INFINITY, f32::min);
+        let at = |j: usize| rest_positions[j];
+        let hip_mid = 0.5 * (at(chains.left.hip) + at(chains.right.hip));
+        let hip_height = hip_mid.y - ground;
+        if hip_height.is_nan() || hip_height <= 1e-3 {
+            return Err(ModelError::Shape {
+                reason: format!(
+                    "the hips stand {hip_height:.3} m above the lowest vertex; they must be above it"
+                ),
+            });
+        }
+        let height = (rest_vertices.positions.iter())
+            .map(|p| p.y)
+            .fold(f32::NEG_INFINITY, f32::max)
+            - ground;
+        let frame = rest_frame(&chains, &rest_positions)?;
+        let soles = [&chains.left, &chains.right]
+            .map(|leg| sole_vertices(&model, &rest_vertices, leg, ground));
+        for (k, sole) in soles.iter().enumerate() {
+            if sole.is_empty() {
+                return Err(ModelError::Shape {
+                    reason: format!(
+                        "no vertex of the {} foot lies within {SOLE_BAND} m of the soles",
+                        ["left", "right"][k]
+                    ),
+                });
+            }
+        }
+        let sole_centres = [0, 1].map(|k| sole_centre(&rest_vertices.positions, &soles[k]));
+        let sole_lengths = [0, 1].map(|k| sole_length(&rest_vertices.positions, &soles[k], frame));
+        let arm = |upper, lower, hand| {
+            Some(ArmChain {
+                shoulder: map.joint(upper)?,
+                elbow: map.joint(lower)?,
+                wrist: map.joint(hand)?,
+            })
+        };
+        use BoneRole::*;
+        let arms = [
+            arm(UpperArmL, LowerArmL, HandL),
+            arm(UpperArmR, LowerArmR, HandR),
+        ];
+        Ok(CharacterRig {
+            data: Arc::new(RigData {
+                name: name.to_string(),
+                model,
+                map,
+                chains,
+                arms,
+                rest_globals,
+                rest_positions,
+                ground,
+                hip_height,
+                height,
+                frame,
+                soles,
+                sole_centres,
+                sole_lengths,
+            }),
+        })
+    }
+
+    /// The name it was given (`human`, or the model's file).
+    pub fn name(&self) -> &str {
+        &self.data.name
+    }
+
+    /// The model: skeleton, skinned mesh and clips.
+    pub fn model(&self) -> &Model {
+        &self.data.model
+    }
+
+    /// The bone map its chains were found through.
+    pub fn bone_map(&self) -> &BoneMap {
+        &self.data.map
+    }
+
+    /// Its legs and spine.
+    pub fn chains(&self) -> &RigChains {
+        &self.data.chains
+    }
+
+    /// Its arms (left first), where the bone map names them.
+    pub fn arms(&self) -> &[Option<ArmChain>; 2] {
+        &self.data.arms
+    }
+
+    /// Each joint's global matrix in the rest pose.
+    pub fn rest_globals(&self) -> &[Mat4] {
+        &self.data.rest_globals
+    }
+
+    /// Each joint's position in the rest pose.
+    pub fn rest_positions(&self) -> &[Vec3] {
+        &self.data.rest_positions
+    }
+
+    /// Height of the lowest rest-pose vertex (the soles).
+    pub fn ground(&self) -> f32 {
+        self.data.ground
+    }
+
+    /// Height of the midpoint between the hip joints above the soles, rest pose.
+    pub fn hip_height(&self) -> f32 {
+        self.data.hip_height
+    }
+
+    /// Height of the highest rest-pose vertex above the soles.
+    pub fn height(&self) -> f32 {
+        self.data.height
+    }
+
+    /// The rest pose's facing frame: columns right, up (+Y), forward.
+    pub fn rest_frame(&self) -> Mat3 {
+        self.data.frame
+    }
+
+    /// The vertices of each sole (left first): foot vertices near the lowest vertex.
+    pub fn sole_vertices(&self) -> &[Vec<u32>; 2] {
+        &self.data.soles
+    }
+
+    /// The centre of each sole in the rest pose (left first), on the ground.
+    pub fn sole_centres(&self) -> &[Vec3; 2] {
+        &self.data.sole_centres
+    }
+
+    /// The length of each sole (left first) from heel to toe, rest pose.
+    pub fn sole_lengths(&self) -> &[f32; 2] {
+        &self.data.sole_lengths
+    }
+}
+
+/// The mesh skinned by the rest pose (the bind pose when the rest pose is it).
+fn rest_mesh(model: &Model, rest_globals: &[Mat4]) -> Result<SkinnedVertices, ModelError> {
+    let mut matrices = Vec::new();
+    skin_matrices(&model.skeleton, rest_globals, &mut matrices);
+    let mut out = SkinnedVertices::default();
+    skin_serial(&model.mesh, &matrices, &mut out)?;
+    Ok(out)
+}
+
+/// Right, up and forward of the rest pose: forward from the heels to the
+/// toes, right across it and the vertical.
+fn rest_frame(chains: &RigChains, rest: &[Vec3]) -> Result<Mat3, ModelError> {
+    let along = |leg: &LegChain| rest[leg.toe] - rest[leg.ankle];
+    let forward = (along(&chains.left) + along(&chains.right)) * Vec3::new(1.0, 0.0, 1.0);
+    let Some(forward) = forward.try_normalize() else {
+        return Err(ModelError::Shape {
+            reason: "the toes are straight above or below the ankles; the feet point nowhere"
+                .to_string(),
+        });
+    };
+    let right = forward.cross(Vec3::Y);
+    let left_side = (rest[chains.left.hip] - rest[chains.right.hip]).dot(right);
+    if left_side >= 0.0 {
+        return Err(ModelError::Shape {
+            reason: "the left hip is on the right of the body (the bone map swaps the sides)"
+                .to_string(),
+        });
+    }
+    Ok(Mat3::from_cols(right, Vec3::Y, forward))
+}
+
+/// The rest vertices weighted mostly to `leg`'s foot and toe that lie within
+/// [`SOLE_BAND`] of the ground.
+fn sole_vertices(model: &Model, rest: &SkinnedVertices, leg: &LegChain, ground: f32) -> Vec<u32> {
+    let mesh = &model.mesh;
+    (mesh.joints().iter().zip(mesh.weights()))
+        .zip(&rest.positions)
+        .enumerate()
+        .filter(|(_, ((js, ws), p))| {
+            let on_foot: f32 = (js.iter().zip(ws.iter()))
+                .filter(|(j, _)| [leg.ankle, leg.toe].contains(&(**j as usize)))
+                .map(|(_, w)| w)
+                .sum();
+            on_foot >= SOLE_WEIGHT && p.y <= ground + SOLE_BAND
+        })
+        .map(|(k, _)| k as u32)
+        .collect()
+}
+
+/// The middle of a sole's vertices' extent, at their lowest height.
+fn sole_centre(positions: &[Vec3], sole: &[u32]) -> Vec3 {
+    let (lo, hi) = sole
+        .iter()
+        .map(|&v| positions[v as usize])
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p), hi.max(p))
+        });
+    let mid = 0.5 * (lo + hi);
+    Vec3::new(mid.x, lo.y, mid.z)
+}
+
+/// A sole's extent from heel to toe along the rest frame's forward.
+fn sole_length(positions: &[Vec3], sole: &[u32], frame: Mat3) -> f32 {
+    let along = sole
+        .iter()
+        .map(|&v| positions[v as usize].dot(frame.z_axis));
+    let (lo, hi) = along.fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
+        (lo.min(x), hi.max(x))
+    });
+    hi - lo
+}
+
+/// The rotation turning `from` (orthonormal columns) onto `to`.
+pub(crate) fn frame_rotation(from: Mat3, to: Mat3) -> Quat {
+    Quat::from_mat3(&(to * from.transpose())).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_human_stands_facing_forward_on_two_soles() {
+        let rig = CharacterRig::human().unwrap();
+        assert!((1.5..1.9).contains(&rig.height()), "{}", rig.height());
+        assert!(rig.ground().abs() < 0.01);
+        assert!(rig.rest_frame().z_axis.z > 0.99, "faces +Z");
+        for (k, sole) in rig.sole_vertices().iter().enumerate() {
+            assert!(sole.len() > 10, "sole {k} has {} vertices", sole.len());
+            assert!((0.15..0.35).contains(&rig.sole_lengths()[k]));
+        }
+        // The left sole is on the character's left (+X when facing +Z).
+        assert!(rig.sole_centres()[0].x > rig.sole_centres()[1].x);
+        assert!(rig.arms().iter().all(Option::is_some));
+    }
+
+    #[test]
+    fn a_rig_whose_map_swaps_the_legs_is_refused() {
+        let model = CharacterRig::parse_human().unwrap();
+        let s = &model.skeleton;
+        let mut names: Vec<(BoneRole, String)> = BoneMap::detect(s)
+            .pairs()
+            .iter()
+            .map(|&(r, j)| (r, s.joints()[j].name.clone()))
+            .collect();
+        for (_, name) in &mut names {
+            *name = match name.strip_suffix("_l") {
+                Some(stem) => format!("{stem}_r"),
+                None => match name.strip_suffix("_r") {
+                    Some(stem) => format!("{stem}_l"),
+                    None => continue,
+                },
+            };
+        }
+        let map = BoneMap::from_names(s, &names);
+        let e = CharacterRig::new("swapped", model, map).unwrap_err();
+        assert!(e.to_string().contains("swaps the sides"), "{e}");
+    }
+}
