@@ -252,14 +252,20 @@ fn wished_scale(steering: &Steering, speed: f32, natural: f32, backward: bool) -
 }
 
 /// Replaces `path` by a stop `ahead` metres beyond the pelvis, or at the
-/// pelvis when the walker is already at rest.
+/// pelvis when the walker is already at rest; the stop keeps the path's
+/// direction of travel.
 fn hold_stop(path: &mut WalkPath, gait: &Gait, ahead: f32) {
     const AT_REST_M: f32 = 1.0e-3;
+    let backward = path.is_backward();
     if gait.velocity == Vec2::ZERO {
-        let back = gait.pelvis.position - gait.pelvis.heading * AT_REST_M;
-        let start = Vec3::new(back.x, 0.0, back.y);
-        let direction = Vec3::new(gait.pelvis.heading.x, 0.0, gait.pelvis.heading.y);
-        if let Ok(p) = WalkPath::straight(start, direction, AT_REST_M) {
+        let travel = if backward {
+            -gait.pelvis.heading
+        } else {
+            gait.pelvis.heading
+        };
+        let back = gait.pelvis.position - travel * AT_REST_M;
+        let rest = [PathSegment::Straight { length: AT_REST_M }];
+        if let Ok(p) = walk_path(back, gait.pelvis.heading, &rest, backward) {
             *path = p.with_origin(gait.distance - AT_REST_M);
         }
         return;
@@ -267,24 +273,32 @@ fn hold_stop(path: &mut WalkPath, gait: &Gait, ahead: f32) {
     let stop = [PathSegment::Straight {
         length: ahead.max(AT_REST_M),
     }];
-    let backward = path.is_backward();
     replace_path(path, gait, &stop, backward);
 }
 
 /// Replaces `path` by `segments` from the pelvis, continuing the gait's
 /// distance, walked forward or `backward` with the walker's facing.
 fn replace_path(path: &mut WalkPath, gait: &Gait, segments: &[PathSegment], backward: bool) {
-    let at = gait.pelvis.position;
-    let heading = gait.pelvis.heading;
+    let (at, facing) = (gait.pelvis.position, gait.pelvis.heading);
+    if let Ok(p) = walk_path(at, facing, segments, backward) {
+        *path = p.with_origin(gait.distance);
+    }
+}
+
+/// A path of `segments` from `at` (x, z) for a walker facing `facing`
+/// (x, z), walked forward or `backward`.
+fn walk_path(
+    at: Vec2,
+    facing: Vec2,
+    segments: &[PathSegment],
+    backward: bool,
+) -> Result<WalkPath, CharacterError> {
     let start = Vec3::new(at.x, 0.0, at.y);
-    let facing = Vec3::new(heading.x, 0.0, heading.y);
-    let made = if backward {
+    let facing = Vec3::new(facing.x, 0.0, facing.y);
+    if backward {
         WalkPath::walked_backward(start, facing, segments.to_vec())
     } else {
         WalkPath::new(start, facing, segments.to_vec(), false)
-    };
-    if let Ok(p) = made {
-        *path = p.with_origin(gait.distance);
     }
 }
 
@@ -357,6 +371,17 @@ mod tests {
         let back = path.point_at(path.origin() + 1.0);
         assert!((back.position - Vec2::new(0.0, -1.0)).length() < 1e-5);
         assert_eq!(back.heading, Vec2::Y, "keeps facing forward");
+
+        steering.set_desired_velocity(Vec2::ZERO).unwrap();
+        gait.velocity = Vec2::new(0.0, -0.6);
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(path.is_backward(), "a stop keeps stepping back");
+        let stop = path.point_at(path.end_distance()).position;
+        assert!((stop - Vec2::new(0.0, -0.2)).length() < 1e-5, "{stop}");
+        steering = Steering::new();
+        gait.velocity = Vec2::ZERO;
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(path.is_backward() && path.is_finished(gait.distance));
     }
 
     #[test]
