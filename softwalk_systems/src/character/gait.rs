@@ -269,8 +269,9 @@ pub struct Gait {
     /// True once the path has ended and both feet are planted.
     pub stopped: bool,
     /// How much of the scheduled foot roll is applied: 1 while walking,
-    /// falling to 0 over a quarter second once stopped (the feet roll flat)
-    /// and rising back over a quarter second when the walk starts again.
+    /// falling to 0 over a quarter second once stopped (the feet roll flat,
+    /// the sway and arm swing settle) and rising back over a quarter second
+    /// when the walk starts again.
     pub roll: f32,
 }
 
@@ -433,13 +434,13 @@ impl Gait {
     }
 
     /// Pelvis bob and sway and arm swing from the cycle phase (Boulic's
-    /// curves), as far as the foot roll is applied (they settle with the
-    /// feet at a stop); the arms swing against the legs, so backward the
-    /// other way round.
+    /// curves); sway and arms as far as the foot roll is applied (they
+    /// settle with the feet at a stop), the arms against the legs, so
+    /// backward the other way round.
     fn update_body(&mut self) {
         let p = &self.params;
         let (phi, r) = (self.phase, self.roll);
-        self.bob = r * (-p.bob_amplitude + p.bob_amplitude * (TAU * (2.0 * phi - 0.35)).sin());
+        self.bob = -p.bob_amplitude + p.bob_amplitude * (TAU * (2.0 * phi - 0.35)).sin();
         self.sway = r * -p.sway_amplitude * (TAU * (phi - 0.1)).sin();
         let arms = if self.backward { -r } else { r };
         self.arm_swing = arms * p.arm_amplitude * (TAU * (phi - 0.15)).sin();
@@ -491,8 +492,7 @@ pub fn gait_stage(
         if gait.stopped && gait.roll > 0.0 {
             let settled = (gait.roll - dt / STOP_SETTLE_TIME).max(0.0);
             let k = settled / gait.roll;
-            (gait.bob, gait.sway, gait.arm_swing) =
-                (gait.bob * k, gait.sway * k, gait.arm_swing * k);
+            (gait.sway, gait.arm_swing) = (gait.sway * k, gait.arm_swing * k);
             gait.roll = settled;
             gait.update_feet(body, path);
         }
