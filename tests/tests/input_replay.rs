@@ -1,11 +1,12 @@
 //! Recorded inputs replay headless (issue 24): a steered walk with turns, a
-//! stop and a material change ends in a known world, the same with or
-//! without frames, and its gait meets the gait-quality goals.
+//! stop and a material change, and one stepping back on sand, end in known
+//! worlds, the same with or without frames, and their gait meets the
+//! gait-quality goals.
 
 use std::path::Path;
 
 use demos::inputs::InputScript;
-use demos::paper::recorded_run::record_run_with_inputs;
+use demos::paper::recorded_run::{RecordedRun, record_run_with_inputs};
 use demos::runner::{self, RunObserver, RunOptions};
 use demos::scene::Scene;
 
@@ -13,10 +14,20 @@ use demos::scene::Scene;
 const STEPS: u64 = 600;
 /// The world the recorded walk ends in. Changes only when the simulation
 /// is meant to change: update it deliberately, and say so.
-const REPLAY_HASH: u64 = 0x1dd6_eea2_fa34_68af;
+const REPLAY_HASH: u64 = 0xaa01_a770_388a_ebbe;
+/// Steps of the recorded walk stepping back on sand (8 s at 60 Hz).
+const BACK_STEPS: u64 = 480;
+/// The world the walk stepping back ends in (same rule as [`REPLAY_HASH`]).
+const BACK_HASH: u64 = 0x4385_575c_c17d_05f9;
 
 fn script() -> InputScript {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs/turns_stop_snow.toml");
+    load("turns_stop_snow.toml")
+}
+
+fn load(name: &str) -> InputScript {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("inputs")
+        .join(name);
     InputScript::load(&path).unwrap()
 }
 
@@ -24,18 +35,23 @@ fn scene() -> Scene {
     Scene::builtin("default").unwrap()
 }
 
-#[test]
-fn a_recorded_walk_replays_to_a_known_world_meeting_the_gait_goals() {
-    let scene = scene();
-    let inputs = script();
-    let run = record_run_with_inputs(&scene, STEPS, Some(&inputs)).unwrap();
-    let again = record_run_with_inputs(&scene, STEPS, Some(&inputs)).unwrap();
+/// Replays `inputs` on `scene` for `steps` twice: the same world both
+/// times, its gait meeting the gait-quality goals. Returns the run and its hash.
+fn replay_twice(scene: &Scene, inputs: &InputScript, steps: u64) -> (RecordedRun, u64) {
+    let run = record_run_with_inputs(scene, steps, Some(inputs)).unwrap();
+    let again = record_run_with_inputs(scene, steps, Some(inputs)).unwrap();
     let hash = run.summary.world_hash.unwrap();
-    println!("replay hash {hash:#018x}");
+    println!("{}: replay hash {hash:#018x}", scene.name);
     assert_eq!(again.summary.world_hash, Some(hash), "replays differ");
     let quality = run.quality(0);
     println!("gait quality: {quality}");
     assert!(quality.passes(), "{:?}", quality.failures());
+    (run, hash)
+}
+
+#[test]
+fn a_recorded_walk_replays_to_a_known_world_meeting_the_gait_goals() {
+    let (run, hash) = replay_twice(&scene(), &script(), STEPS);
     let walked = &run.walkers[0];
     let stopped = walked[330..380].iter().all(|m| m.velocity.length() == 0.0);
     assert!(stopped, "the walker did not stop");
@@ -45,6 +61,16 @@ fn a_recorded_walk_replays_to_a_known_world_meeting_the_gait_goals() {
         "the curves did not take it to -z and on along +x: {last}"
     );
     assert_eq!(hash, REPLAY_HASH, "the replayed world changed");
+}
+
+#[test]
+fn a_recorded_walk_stepping_back_replays_to_a_known_world() {
+    let scene = Scene::builtin("sand-flat").unwrap();
+    let (run, hash) = replay_twice(&scene, &load("steps_back_sand.toml"), BACK_STEPS);
+    let walked = &run.walkers[0];
+    let backward = walked.iter().filter(|m| m.velocity.x < -0.2).count();
+    assert!(backward > 60, "stepped back for {backward} steps only");
+    assert_eq!(hash, BACK_HASH, "the replayed world changed");
 }
 
 /// Counts frames; draws nothing else.
@@ -59,21 +85,25 @@ impl RunObserver for Frames {
 
 #[test]
 fn replaying_with_frames_ends_in_the_same_world() {
-    let scene = scene();
-    let inputs = script();
-    let mut options = RunOptions::from_scene(&scene);
-    options.steps = 420;
-    options.hash = true;
-    options.width = 96;
-    options.height = 54;
-    options.render_every = 10;
-    let mut frames = Frames(0);
-    let drawn = runner::run_with_inputs(&scene, &options, Some(&inputs), &mut frames).unwrap();
-    options.render = false;
-    let mut none = Frames(0);
-    let headless = runner::run_with_inputs(&scene, &options, Some(&inputs), &mut none).unwrap();
-    assert_eq!(frames.0, 42);
-    assert_eq!(drawn.world_hash, headless.world_hash);
+    let stepping_back = Scene::builtin("sand-flat").unwrap();
+    for (scene, inputs) in [
+        (scene(), script()),
+        (stepping_back, load("steps_back_sand.toml")),
+    ] {
+        let mut options = RunOptions::from_scene(&scene);
+        options.steps = 420;
+        options.hash = true;
+        options.width = 96;
+        options.height = 54;
+        options.render_every = 10;
+        let mut frames = Frames(0);
+        let drawn = runner::run_with_inputs(&scene, &options, Some(&inputs), &mut frames).unwrap();
+        options.render = false;
+        let mut none = Frames(0);
+        let headless = runner::run_with_inputs(&scene, &options, Some(&inputs), &mut none).unwrap();
+        assert_eq!(frames.0, 42);
+        assert_eq!(drawn.world_hash, headless.world_hash, "{}", scene.name);
+    }
 }
 
 #[test]

@@ -1,8 +1,14 @@
 //! Steering and the lateral balance axis (issue 24): a character whose path
-//! comes from a desired velocity starts, stops, curves tightly and turns on
-//! the spot without sliding a planted foot, and leans into turns by
-//! `atan(v² / (g r))` while staying upright on straight paths.
+//! comes from a desired velocity starts, stops, curves tightly, turns on
+//! the spot and steps backward without sliding a planted foot, and leans
+//! into turns by `atan(v² / (g r))` while staying upright on straight paths.
 
+use std::path::Path;
+
+use demos::inputs::InputScript;
+use demos::paper::gait_quality::GaitQuality;
+use demos::paper::recorded_run::record_run_with_inputs;
+use demos::scene::Scene;
 use glam::{Vec2, Vec3};
 use softwalk_systems::character::{
     Character, CharacterDesc, GaitModifiers, GaitParams, Joint, Steering, WalkPath, steer_stage,
@@ -39,7 +45,7 @@ impl Steered {
 
     /// Steps `seconds` wanting `velocity`; returns each step's heel and toe
     /// positions with whether each foot was in contact.
-    fn walk(&mut self, velocity: Vec2, seconds: f32) -> Vec<[(bool, [Vec3; 2]); 2]> {
+    fn walk(&mut self, velocity: Vec2, seconds: f32) -> Vec<SoleSample> {
         self.steering.set_desired_velocity(velocity).unwrap();
         let steps = (seconds / DT).round() as usize;
         (0..steps)
@@ -55,9 +61,13 @@ impl Steered {
     }
 }
 
+/// Heel and toe heights are above the ground under them: a sole point
+/// within [`TOUCHING_M`] of it touches.
+type SoleSample = [(bool, [Vec3; 2]); 2];
+
 /// The largest horizontal drift of a touching heel or toe from where it
 /// first touched, over each stance.
-fn worst_slide(samples: &[[(bool, [Vec3; 2]); 2]]) -> f32 {
+fn worst_slide(samples: &[SoleSample]) -> f32 {
     let mut worst = 0.0f32;
     for k in 0..2 {
         let mut anchors: [Option<Vec3>; 2] = [None; 2];
@@ -82,8 +92,8 @@ fn worst_slide(samples: &[[(bool, [Vec3; 2]); 2]]) -> f32 {
 #[test]
 fn turning_on_the_spot_keeps_planted_feet_still() {
     let mut s = Steered::new();
-    // A wish straight behind turns on the spot before walking off.
-    let samples = s.walk(Vec2::new(0.0, -0.8), 3.0);
+    // A hurried wish straight behind turns on the spot before walking off.
+    let samples = s.walk(Vec2::new(0.0, -1.5), 3.0);
     let slide = worst_slide(&samples);
     let heading = s.character.gait.pelvis.heading;
     let travelled = s.character.gait.pelvis.position.length();
@@ -120,6 +130,58 @@ fn tight_curves_start_and_stop_keep_planted_feet_still() {
     s.walk(Vec2::new(0.0, -1.0), 1.0);
     let moved = (s.character.gait.pelvis.position - before).length();
     assert!(moved > 0.5, "did not start again: {moved} m");
+}
+
+/// Steps of the backward walk on sand (8 s at 60 Hz).
+const BACK_STEPS: u64 = 480;
+/// The steps of the backward walk while stepping back (the wish behind
+/// starts at step 120, the walker stops, then steps back until step 280).
+const STEPPING_BACK: std::ops::Range<usize> = 150..300;
+
+#[test]
+fn a_slow_wish_behind_steps_back_on_sand_facing_forward() {
+    let scene = Scene::builtin("sand-flat").unwrap();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs/steps_back_sand.toml");
+    let inputs = InputScript::load(&file).unwrap();
+    let run = record_run_with_inputs(&scene, BACK_STEPS, Some(&inputs)).unwrap();
+    let walked = &run.walkers[0];
+    let samples: Vec<SoleSample> = walked
+        .iter()
+        .map(|m| {
+            [0, 1].map(|k| {
+                let (sole, under) = (m.character.soles[k], m.sole_ground[k]);
+                let heel = sole.heel - Vec3::Y * under.heel;
+                (
+                    m.character.contact[k],
+                    [heel, sole.toe - Vec3::Y * under.toe],
+                )
+            })
+        })
+        .collect();
+    let back = &walked[STEPPING_BACK];
+    let landings = (1..back.len())
+        .flat_map(|s| [0, 1].map(|k| (s, k)))
+        .filter(|&(s, k)| back[s].character.contact[k] && !back[s - 1].character.contact[k])
+        .count();
+    let moved = back[back.len() - 1].character.com - back[0].character.com;
+    let facing_forward = walked
+        .iter()
+        .all(|m| m.character.soles.iter().all(|s| s.toe.x > s.heel.x));
+    let slide = worst_slide(&samples);
+    let whole = run.quality(0);
+    let stepping_back = GaitQuality::measure(back, run.dt);
+    println!(
+        "steps back on sand: {landings} steps, moved {:.2} m along x, slide {:.2} cm\n\
+         gait quality stepping back: {stepping_back}\nwhole walk: {whole}",
+        moved.x,
+        slide * 100.0
+    );
+    assert!((3..=4).contains(&landings), "{landings} steps back");
+    assert!(moved.x < -0.8 && moved.z.abs() < 0.05, "moved {moved}");
+    assert!(facing_forward, "the feet turned round");
+    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
+    assert!(stepping_back.passes(), "{:?}", stepping_back.failures());
+    assert!(whole.passes(), "{:?}", whole.failures());
 }
 
 /// Mean lean of the trunk towards the character's left over the last

@@ -16,7 +16,7 @@ use image::{Rgba, RgbaImage};
 use minifb::{Key, KeyRepeat, MouseButton, MouseMode, Window, WindowOptions};
 use softwalk_systems::character::{Gait, RigidProxy};
 use softwalk_systems::sim::{GroundState, WalkerMetrics};
-use softwalk_systems::view::WorldView;
+use softwalk_systems::view::{OverlayLayers, WorldView};
 
 use super::scene_and_options;
 use crate::cli::{CliError, ViewArgs};
@@ -120,6 +120,7 @@ struct Live<'a> {
     brush: Option<&'static str>,
     paused: bool,
     overlays: bool,
+    layers: OverlayLayers,
     frame_dir: Option<PathBuf>,
     shots: u32,
     mouse: Option<(f32, f32)>,
@@ -167,6 +168,7 @@ impl<'a> Live<'a> {
             brush: None,
             paused: false,
             overlays: scene.render.overlays,
+            layers: OverlayLayers::ALL,
             frame_dir: None,
             shots: 0,
             mouse: None,
@@ -251,6 +253,7 @@ impl<'a> Live<'a> {
     fn draw(&mut self) -> Result<RgbaImage, CliError> {
         self.view.look_at(self.orbit.eye(), self.orbit.target);
         self.view.set_overlays(self.overlays);
+        self.view.set_overlay_layers(self.layers);
         let dt = self.scene.sim.dt;
         self.view
             .render(&self.app.world, dt)
@@ -291,8 +294,8 @@ impl<'a> Live<'a> {
         Ok(())
     }
 
-    /// The one-shot keys: pause, single step, reset, overlays, brush,
-    /// screenshot, frame recording.
+    /// The one-shot keys: pause, single step, reset, overlays (all, or one
+    /// layer with 1 to 5), brush, screenshot, frame recording.
     fn keys(&mut self, window: &Window) -> Result<(), CliError> {
         for key in window.get_keys_pressed(KeyRepeat::No) {
             match key {
@@ -300,6 +303,11 @@ impl<'a> Live<'a> {
                 Key::N if self.paused => self.advance(1)?,
                 Key::R => self.act(InputAction::Reset)?,
                 Key::O => self.overlays = !self.overlays,
+                Key::Key1 => self.toggle_layer(0),
+                Key::Key2 => self.toggle_layer(1),
+                Key::Key3 => self.toggle_layer(2),
+                Key::Key4 => self.toggle_layer(3),
+                Key::Key5 => self.toggle_layer(4),
                 Key::B => {
                     let brush = next_brush(self.brush);
                     self.brush = Some(brush);
@@ -311,6 +319,13 @@ impl<'a> Live<'a> {
             }
         }
         Ok(())
+    }
+
+    /// Switches one overlay layer (see [`OverlayLayers::toggle`]) and shows
+    /// the overlays.
+    fn toggle_layer(&mut self, index: usize) {
+        self.layers.toggle(index);
+        self.overlays = true;
     }
 
     /// WASD or arrows and Shift to the desired velocity; records changes.

@@ -79,7 +79,7 @@ pub fn steer_character(world: &mut World, walker: Entity) -> Result<(), InputErr
 fn paint_ahead(world: &mut World, walker: Entity, name: &str) -> Result<(), InputError> {
     let ahead = world
         .get::<Gait>(walker)
-        .map(|g| g.pelvis.position + g.pelvis.heading * BRUSH_AHEAD_M)
+        .map(|g| g.pelvis.position + g.travel_heading() * BRUSH_AHEAD_M)
         .map_err(|e| InputError::Apply {
             what: "brush".into(),
             reason: e.to_string(),

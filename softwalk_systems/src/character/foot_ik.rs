@@ -273,13 +273,15 @@ pub fn foot_ik_stage(
     let dt = clamp_dt(dt);
     let forward = gait.pelvis.heading3();
     let right = forward.cross(Vec3::Y);
+    let travel = gait.travel_heading();
+    let travel = Vec3::new(travel.x, 0.0, travel.y);
     // Pelvis: walking height over the ground under it, bob, sway, and a small
-    // shift back against the trunk's lean.
+    // shift back against the trunk's lean (which is along the travel).
     let xz = gait.pelvis.position;
     let mut pelvis = Vec3::new(xz.x, rays.body.point.y, xz.y)
         + Vec3::Y * (gait.params.walking_hip_height(body) + gait.bob)
         + right * gait.sway
-        - forward * (PELVIS_COUNTER_SHIFT * body.trunk * proxy.tilt.sin());
+        - travel * (PELVIS_COUNTER_SHIFT * body.trunk * proxy.tilt.sin());
     let hips = [
         pelvis - right * body.hip_half_width,
         pelvis + right * body.hip_half_width,
@@ -289,7 +291,9 @@ pub fn foot_ik_stage(
     pelvis.y -= ik.pelvis_drop;
     let planted = gait.feet.map(|f| f.phase == FootPhase::Stance);
     let feet = solve_legs(ik, pose, body, &hips, &feet, planted, forward, dt);
-    pose_upper_body(pose, body, gait, proxy, pelvis, forward, right);
+    pose_upper_body(pose, body, gait, proxy, pelvis, travel, right);
+    pose.forward = forward;
+    pose.right = right;
     foot_states(ik, pose, gait, rays, &feet, dt)
 }
 
@@ -456,17 +460,17 @@ fn solve_legs(
 }
 
 /// Poses the trunk, head and arms over `pelvis`, rotated by the proxy's
-/// tilt and lean about the hips.
+/// tilt and lean (along and about the direction of `travel`) about the hips.
 fn pose_upper_body(
     pose: &mut Pose,
     body: &CharacterBody,
     gait: &Gait,
     proxy: &RigidProxy,
     pelvis: Vec3,
-    forward: Vec3,
+    travel: Vec3,
     right: Vec3,
 ) {
-    let lean = proxy.body_rotation(forward);
+    let lean = proxy.body_rotation(travel);
     let up = lean * Vec3::Y;
     let neck = pelvis + up * body.trunk;
     pose.joints[Joint::Pelvis as usize] = pelvis;
@@ -497,8 +501,6 @@ fn pose_upper_body(
         pose.joints[elbow as usize] = elbow_at;
         pose.joints[wrist as usize] = elbow_at + lower * body.forearm;
     }
-    pose.forward = forward;
-    pose.right = right;
 }
 
 /// Each foot's state after the pose (left first); records the lowest sole

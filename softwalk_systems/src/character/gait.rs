@@ -30,6 +30,11 @@ const MIDSTANCE_LEG: f32 = 0.995;
 const DOWNHILL_STEP_SHORTENING: f32 = 1.5;
 /// Time over which the feet roll flat once the walk has stopped, seconds.
 const STOP_SETTLE_TIME: f32 = 0.25;
+/// Stride factor while walking backward: people step back in short steps.
+pub const BACKWARD_STEP_SCALE: f32 = 0.7;
+/// Fraction of the scheduled foot roll applied while walking backward (the
+/// short steps need less roll to reach).
+const BACKWARD_ROLL: f32 = 0.5;
 
 /// Hermite ease from 0 to 1 over `t` in `[0, 1]` (clamped outside).
 pub(crate) fn smoothstep(t: f32) -> f32 {
@@ -60,6 +65,14 @@ pub fn scheduled_pitch(p: f32, duty: f32) -> f32 {
             HEEL_STRIKE_PITCH * smoothstep(2.0 * u - 1.0)
         }
     }
+}
+
+/// The foot roll of a backward step at a foot's own phase `p` for a stance
+/// fraction `duty`: [`scheduled_pitch`] run backward in time and scaled down,
+/// so the foot lands on its toe, rolls flat, lifts its toe before the heel
+/// leaves the ground, and reaches back toe-down through the swing.
+pub fn backward_pitch(p: f32, duty: f32) -> f32 {
+    BACKWARD_ROLL * scheduled_pitch((duty - p).rem_euclid(1.0), duty)
 }
 
 /// The step duration a stage really uses: `dt` clamped to `[0, MAX_STEP_DT]`,
@@ -240,8 +253,11 @@ pub struct Gait {
     pub params: GaitParams,
     /// The two feet, left first.
     pub feet: [FootPlan; 2],
-    /// The path point under the pelvis.
+    /// The path point under the pelvis (its heading is the facing direction).
     pub pelvis: PathPoint,
+    /// True while walking a path backward: short steps against the facing
+    /// direction, the feet rolling toe first.
+    pub backward: bool,
     /// Lateral pelvis offset along the character's right, metres.
     pub sway: f32,
     /// Vertical pelvis offset (<= 0), metres.
@@ -253,15 +269,16 @@ pub struct Gait {
     /// True once the path has ended and both feet are planted.
     pub stopped: bool,
     /// How much of the scheduled foot roll is applied: 1 while walking,
-    /// falling to 0 over a quarter second once stopped (the feet roll flat)
-    /// and rising back over a quarter second when the walk starts again.
+    /// falling to 0 over a quarter second once stopped (the feet roll flat,
+    /// the sway and arm swing settle) and rising back over a quarter second
+    /// when the walk starts again.
     pub roll: f32,
 }
 
 impl Gait {
     /// A character standing at the start of `path` in double support, left foot ahead.
     pub fn new(body: &CharacterBody, path: &WalkPath, modifiers: &GaitModifiers) -> Self {
-        let params = GaitParams::new(body, modifiers);
+        let params = walk_params(body, path, modifiers);
         let pelvis = path.point_at(0.0);
         let mut gait = Gait {
             distance: 0.0,
@@ -283,6 +300,7 @@ impl Gait {
                 contact: pelvis.position,
             }),
             pelvis,
+            backward: path.is_backward(),
             sway: 0.0,
             bob: 0.0,
             arm_swing: 0.0,
@@ -314,6 +332,16 @@ impl Gait {
     /// The foot's own phase: the right foot runs half a cycle behind the left.
     pub fn local_phase(&self, foot: usize) -> f32 {
         (self.phase + 0.5 * foot as f32).fract()
+    }
+
+    /// The unit direction of travel (x, z): the facing direction, or its
+    /// opposite while walking backward.
+    pub fn travel_heading(&self) -> Vec2 {
+        if self.backward {
+            -self.pelvis.heading
+        } else {
+            self.pelvis.heading
+        }
     }
 
     /// True while both feet are in stance.
@@ -359,7 +387,12 @@ impl Gait {
                 plan.from_heading = plan.foothold_heading;
                 (plan.foothold, plan.foothold_heading) = next;
             }
-            let pitch = self.roll * scheduled_pitch(p, duty);
+            let pitch = self.roll
+                * if self.backward {
+                    backward_pitch(p, duty)
+                } else {
+                    scheduled_pitch(p, duty)
+                };
             let plan = &mut self.feet[k];
             plan.pitch = pitch;
             if in_stance {
@@ -387,7 +420,12 @@ impl Gait {
             }
             plan.contact_along = if in_stance {
                 let half = 0.5 * body.foot_length;
-                if p < 0.5 * duty { -half } else { half }
+                let heel_first = !self.backward;
+                if (p < 0.5 * duty) == heel_first {
+                    -half
+                } else {
+                    half
+                }
             } else {
                 contact_offset(plan.pitch, body.foot_length)
             };
@@ -395,13 +433,31 @@ impl Gait {
         }
     }
 
-    /// Pelvis bob and sway and arm swing from the cycle phase (Boulic's curves).
+    /// Pelvis bob and sway and arm swing from the cycle phase (Boulic's
+    /// curves); sway and arms as far as the foot roll is applied (they
+    /// settle with the feet at a stop), the arms against the legs, so
+    /// backward the other way round.
     fn update_body(&mut self) {
         let p = &self.params;
-        let phi = self.phase;
+        let (phi, r) = (self.phase, self.roll);
         self.bob = -p.bob_amplitude + p.bob_amplitude * (TAU * (2.0 * phi - 0.35)).sin();
-        self.sway = -p.sway_amplitude * (TAU * (phi - 0.1)).sin();
-        self.arm_swing = p.arm_amplitude * (TAU * (phi - 0.15)).sin();
+        self.sway = r * -p.sway_amplitude * (TAU * (phi - 0.1)).sin();
+        let arms = if self.backward { -r } else { r };
+        self.arm_swing = arms * p.arm_amplitude * (TAU * (phi - 0.15)).sin();
+    }
+}
+
+/// The walk's parameters on `path`: backward, steps shorten by
+/// [`BACKWARD_STEP_SCALE`].
+fn walk_params(body: &CharacterBody, path: &WalkPath, modifiers: &GaitModifiers) -> GaitParams {
+    if path.is_backward() {
+        let shorter = GaitModifiers {
+            step_length_scale: modifiers.step_length_scale * BACKWARD_STEP_SCALE,
+            ..*modifiers
+        };
+        GaitParams::new(body, &shorter)
+    } else {
+        GaitParams::new(body, modifiers)
     }
 }
 
@@ -411,7 +467,10 @@ impl Gait {
 /// end of a path that does not loop the pelvis stops and the phase runs on
 /// until both feet are planted; then the gait is `stopped`, until the path
 /// reaches further (a steered path), when the walk starts again and the feet
-/// roll back in over a quarter second.
+/// roll back in over a quarter second. When the path's direction of travel
+/// turns round (forward to backward or back), the cycle runs backward in
+/// time from where it stands: the phase is mirrored about the stance, so the
+/// foot that just landed ahead is the next to lift.
 pub fn gait_stage(
     gait: &mut Gait,
     body: &CharacterBody,
@@ -420,14 +479,21 @@ pub fn gait_stage(
     dt: f32,
 ) {
     let dt = clamp_dt(dt);
-    gait.params = GaitParams::new(body, modifiers);
+    gait.params = walk_params(body, path, modifiers);
+    if gait.backward != path.is_backward() {
+        gait.backward = path.is_backward();
+        gait.phase = (gait.params.duty - gait.phase).rem_euclid(1.0);
+    }
     if gait.stopped && dt > 0.0 && !path.is_finished(gait.distance) {
         gait.stopped = false;
     }
     if dt == 0.0 || gait.stopped {
         gait.velocity = Vec2::ZERO;
         if gait.stopped && gait.roll > 0.0 {
-            gait.roll = (gait.roll - dt / STOP_SETTLE_TIME).max(0.0);
+            let settled = (gait.roll - dt / STOP_SETTLE_TIME).max(0.0);
+            let k = settled / gait.roll;
+            (gait.sway, gait.arm_swing) = (gait.sway * k, gait.arm_swing * k);
+            gait.roll = settled;
             gait.update_feet(body, path);
         }
         return;

@@ -1,5 +1,5 @@
 //! The path a character walks: straight runs, circular arcs and turns on
-//! the spot, optionally looped.
+//! the spot, optionally looped, walked facing forward or backward.
 
 use glam::{Vec2, Vec3};
 
@@ -60,7 +60,8 @@ impl PathSegment {
 pub struct PathPoint {
     /// Position (x, z).
     pub position: Vec2,
-    /// Unit walking direction (x, z).
+    /// Unit facing direction (x, z): the walking direction, or its opposite
+    /// on a path walked backward.
     pub heading: Vec2,
 }
 
@@ -83,6 +84,10 @@ impl PathPoint {
 /// distance its walker has already covered. Before its start the path extends straight backwards; after its end it
 /// stays at the end point, unless `looped`, when the distance wraps around
 /// (a looped path should end where it starts, heading the same way).
+///
+/// A path [walked backward](WalkPath::walked_backward) is laid out from its
+/// start along the opposite of the facing direction; its points face against
+/// the direction of travel.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WalkPath {
     segments: Vec<PathSegment>,
@@ -91,6 +96,7 @@ pub struct WalkPath {
     length: f32,
     looped: bool,
     origin: f32,
+    backward: bool,
 }
 
 impl WalkPath {
@@ -137,7 +143,26 @@ impl WalkPath {
             length,
             looped,
             origin: 0.0,
+            backward: false,
         })
+    }
+
+    /// A path from `start` (y ignored) walked backward by a walker facing
+    /// `facing` (horizontal part used): `segments` are laid out towards
+    /// `-facing`, and every point faces against the direction of travel.
+    pub fn walked_backward(
+        start: Vec3,
+        facing: Vec3,
+        segments: Vec<PathSegment>,
+    ) -> Result<Self, CharacterError> {
+        let mut path = Self::new(start, -facing, segments, false)?;
+        path.backward = true;
+        Ok(path)
+    }
+
+    /// True when the walker faces against the direction of travel.
+    pub fn is_backward(&self) -> bool {
+        self.backward
     }
 
     /// This path with its start at distance `origin` (a finite number): a
@@ -193,8 +218,21 @@ impl WalkPath {
         !self.looped && distance >= self.end_distance()
     }
 
-    /// Position and heading after walking `distance` metres.
+    /// Position and facing after walking `distance` metres.
     pub fn point_at(&self, distance: f32) -> PathPoint {
+        let p = self.travel_point_at(distance);
+        if self.backward {
+            PathPoint {
+                position: p.position,
+                heading: -p.heading,
+            }
+        } else {
+            p
+        }
+    }
+
+    /// Position and direction of travel after walking `distance` metres.
+    fn travel_point_at(&self, distance: f32) -> PathPoint {
         let distance = distance - self.origin;
         let s = if self.looped {
             distance.rem_euclid(self.length)
@@ -288,6 +326,21 @@ mod tests {
         assert!((mid.heading - Vec2::X).length() < 1e-5, "{:?}", mid.heading);
         assert!((p.point_at(20.0).heading - Vec2::NEG_Y).length() < 1e-5);
         assert!(!p.is_finished(11.0) && p.is_finished(12.0));
+    }
+
+    #[test]
+    fn a_path_walked_backward_moves_against_its_facing() {
+        let run = PathSegment::Straight { length: 2.0 };
+        let p = WalkPath::walked_backward(Vec3::ZERO, Vec3::Z, vec![run]).unwrap();
+        assert!(p.is_backward());
+        let end = p.point_at(1.5);
+        assert_eq!(end.position, Vec2::new(0.0, -1.5));
+        assert_eq!(end.heading, Vec2::Y);
+        assert!(
+            !WalkPath::straight(Vec3::ZERO, Vec3::Z, 1.0)
+                .unwrap()
+                .is_backward()
+        );
     }
 
     #[test]

@@ -8,9 +8,16 @@
 //!   `min_radius`) and then a straight run;
 //! - a direction further round turns on the spot first (a
 //!   [`PathSegment::Pivot`]) until the heading is within `pivot_end`;
+//! - a slow wish (up to `backward_max_speed`) further than `backward_start`
+//!   from the heading steps backward: the walker keeps facing forward and
+//!   walks a path [walked backward](WalkPath::walked_backward), slower
+//!   (`backward_speed_factor`) and in the gait's short backward steps;
 //! - a speed below `stop_speed` fixes a stop a short way ahead; the gait
 //!   halts there with both feet planted, and starts again on the next
 //!   desired velocity.
+//!
+//! Switching between walking forward and backward goes through a stop:
+//! the walker halts, its feet roll flat, and then it walks the other way.
 //!
 //! Footholds are still planned at lift-off and locked for the stance, so a
 //! turn never slides a planted foot.
@@ -50,6 +57,13 @@ pub struct SteeringSettings {
     /// How fast the speed scale follows the wish, per second (a sudden
     /// change of speed would jump the pelvis bob, which scales with speed).
     pub speed_change_rate: f32,
+    /// A wish further than this from the heading (radians) and no faster
+    /// than `backward_max_speed` steps backward instead of turning round.
+    pub backward_start: f32,
+    /// The fastest wish that steps backward, m/s; faster ones turn round.
+    pub backward_max_speed: f32,
+    /// Backward walking speed as a fraction of the wished speed.
+    pub backward_speed_factor: f32,
 }
 
 impl Default for SteeringSettings {
@@ -65,6 +79,9 @@ impl Default for SteeringSettings {
             stop_ahead: 0.2,
             stop_speed: 0.05,
             speed_change_rate: 1.0,
+            backward_start: 135f32.to_radians(),
+            backward_max_speed: 1.3,
+            backward_speed_factor: 0.5,
         }
     }
 }
@@ -169,10 +186,30 @@ fn plan_path(
         }
         return steering.speed_scale;
     }
-    steering.stopping = false;
     let natural = GaitParams::new(body, &GaitModifiers::default()).speed;
     let direction = steering.desired / speed;
     let angle = turn_angle(gait.pelvis.heading, direction);
+    let backward = angle.abs() > s.backward_start && speed <= s.backward_max_speed;
+    if backward != path.is_backward() {
+        if !(gait.stopped && gait.roll == 0.0) {
+            steering.pivoting = false;
+            if !steering.stopping {
+                steering.stopping = true;
+                hold_stop(path, gait, s.stop_ahead);
+            }
+            return steering.speed_scale;
+        }
+        steering.speed_scale = wished_scale(steering, speed, natural, backward);
+    }
+    steering.stopping = false;
+    if backward {
+        steering.pivoting = false;
+        let straight = PathSegment::Straight {
+            length: s.lookahead.max(1.0e-3),
+        };
+        replace_path(path, gait, &[straight], true);
+        return wished_scale(steering, speed, natural, true);
+    }
     if angle.abs() > s.pivot_start {
         steering.pivoting = true;
     } else if angle.abs() < s.pivot_end {
@@ -195,9 +232,19 @@ fn plan_path(
         })
     };
     let segments: Vec<PathSegment> = turn.into_iter().chain([straight]).collect();
-    replace_path(path, gait, &segments);
+    replace_path(path, gait, &segments, false);
+    wished_scale(steering, speed, natural, false)
+}
+
+/// The speed scale a wish of `speed` m/s asks of a walk whose natural speed
+/// is `natural`: slower backward, and never below the pivot's minimum while
+/// turning on the spot.
+fn wished_scale(steering: &Steering, speed: f32, natural: f32, backward: bool) -> f32 {
+    let s = &steering.settings;
     let scale = speed / natural.max(1.0e-3);
-    if steering.pivoting {
+    if backward {
+        scale * s.backward_speed_factor
+    } else if steering.pivoting {
         scale.max(s.pivot_min_speed_scale)
     } else {
         scale
@@ -205,14 +252,20 @@ fn plan_path(
 }
 
 /// Replaces `path` by a stop `ahead` metres beyond the pelvis, or at the
-/// pelvis when the walker is already at rest.
+/// pelvis when the walker is already at rest; the stop keeps the path's
+/// direction of travel.
 fn hold_stop(path: &mut WalkPath, gait: &Gait, ahead: f32) {
     const AT_REST_M: f32 = 1.0e-3;
+    let backward = path.is_backward();
     if gait.velocity == Vec2::ZERO {
-        let back = gait.pelvis.position - gait.pelvis.heading * AT_REST_M;
-        let start = Vec3::new(back.x, 0.0, back.y);
-        let direction = Vec3::new(gait.pelvis.heading.x, 0.0, gait.pelvis.heading.y);
-        if let Ok(p) = WalkPath::straight(start, direction, AT_REST_M) {
+        let travel = if backward {
+            -gait.pelvis.heading
+        } else {
+            gait.pelvis.heading
+        };
+        let back = gait.pelvis.position - travel * AT_REST_M;
+        let rest = [PathSegment::Straight { length: AT_REST_M }];
+        if let Ok(p) = walk_path(back, gait.pelvis.heading, &rest, backward) {
             *path = p.with_origin(gait.distance - AT_REST_M);
         }
         return;
@@ -220,17 +273,32 @@ fn hold_stop(path: &mut WalkPath, gait: &Gait, ahead: f32) {
     let stop = [PathSegment::Straight {
         length: ahead.max(AT_REST_M),
     }];
-    replace_path(path, gait, &stop);
+    replace_path(path, gait, &stop, backward);
 }
 
-/// Replaces `path` by `segments` from the pelvis, continuing the gait's distance.
-fn replace_path(path: &mut WalkPath, gait: &Gait, segments: &[PathSegment]) {
-    let at = gait.pelvis.position;
-    let heading = gait.pelvis.heading;
-    let start = Vec3::new(at.x, 0.0, at.y);
-    let direction = Vec3::new(heading.x, 0.0, heading.y);
-    if let Ok(p) = WalkPath::new(start, direction, segments.to_vec(), false) {
+/// Replaces `path` by `segments` from the pelvis, continuing the gait's
+/// distance, walked forward or `backward` with the walker's facing.
+fn replace_path(path: &mut WalkPath, gait: &Gait, segments: &[PathSegment], backward: bool) {
+    let (at, facing) = (gait.pelvis.position, gait.pelvis.heading);
+    if let Ok(p) = walk_path(at, facing, segments, backward) {
         *path = p.with_origin(gait.distance);
+    }
+}
+
+/// A path of `segments` from `at` (x, z) for a walker facing `facing`
+/// (x, z), walked forward or `backward`.
+fn walk_path(
+    at: Vec2,
+    facing: Vec2,
+    segments: &[PathSegment],
+    backward: bool,
+) -> Result<WalkPath, CharacterError> {
+    let start = Vec3::new(at.x, 0.0, at.y);
+    let facing = Vec3::new(facing.x, 0.0, facing.y);
+    if backward {
+        WalkPath::walked_backward(start, facing, segments.to_vec())
+    } else {
+        WalkPath::new(start, facing, segments.to_vec(), false)
     }
 }
 
@@ -264,7 +332,7 @@ mod tests {
     }
 
     #[test]
-    fn a_sideways_wish_curves_and_a_backward_one_pivots() {
+    fn a_sideways_wish_curves_and_a_fast_backward_one_pivots() {
         let (body, gait, mut path) = standing();
         let mut steering = Steering::new();
         steering.set_desired_velocity(Vec2::new(1.2, 0.0)).unwrap();
@@ -275,11 +343,45 @@ mod tests {
         assert!((far.heading - Vec2::X).length() < 1e-4);
         assert!(far.position.x > 4.0, "{far:?}");
 
-        steering.set_desired_velocity(Vec2::new(0.0, -1.0)).unwrap();
+        steering.set_desired_velocity(Vec2::new(0.0, -1.8)).unwrap();
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(steering.is_pivoting());
         let mid = path.point_at(path.origin() + 0.5);
         assert_eq!(mid.position, gait.pelvis.position);
+    }
+
+    #[test]
+    fn a_slow_backward_wish_stops_then_steps_back_facing_forward() {
+        let (body, mut gait, mut path) = standing();
+        let mut steering = Steering::new();
+        steering.set_desired_velocity(Vec2::new(0.2, -1.2)).unwrap();
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(!path.is_backward(), "not yet stopped: holds a stop first");
+        assert!(!steering.is_pivoting());
+        gait.stopped = true;
+        gait.roll = 0.0;
+        let scale = steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(path.is_backward());
+        let natural = GaitParams::new(&body, &GaitModifiers::default()).speed;
+        let wished = 0.5 * Vec2::new(0.2, -1.2).length() / natural;
+        assert!(
+            (scale - wished).abs() < 1e-5,
+            "starts at the backward speed: {scale}"
+        );
+        let back = path.point_at(path.origin() + 1.0);
+        assert!((back.position - Vec2::new(0.0, -1.0)).length() < 1e-5);
+        assert_eq!(back.heading, Vec2::Y, "keeps facing forward");
+
+        steering.set_desired_velocity(Vec2::ZERO).unwrap();
+        gait.velocity = Vec2::new(0.0, -0.6);
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(path.is_backward(), "a stop keeps stepping back");
+        let stop = path.point_at(path.end_distance()).position;
+        assert!((stop - Vec2::new(0.0, -0.2)).length() < 1e-5, "{stop}");
+        steering = Steering::new();
+        gait.velocity = Vec2::ZERO;
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(path.is_backward() && path.is_finished(gait.distance));
     }
 
     #[test]

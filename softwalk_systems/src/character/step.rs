@@ -79,7 +79,7 @@ pub fn step_character(character: &mut Character, path: &WalkPath, ground: &dyn G
     let c = character;
     let modifiers = c
         .modifiers
-        .on_ground(c.rays.body.normal, c.gait.pelvis.heading);
+        .on_ground(c.rays.body.normal, c.gait.travel_heading());
     gait_stage(&mut c.gait, &c.body, path, &modifiers, dt);
     foot_raycast_stage(&mut c.rays, &c.gait, &c.body, ground);
     balance_stage(&mut c.proxy, &c.balance, &c.body, &c.gait, &c.rays, dt);

@@ -80,7 +80,7 @@ pub fn ground_response_system(world: &mut World) {
             extra_clearance: response.extra_clearance,
             grade: 0.0,
         }
-        .on_ground(rays.body.normal, gait.pelvis.heading);
+        .on_ground(rays.body.normal, gait.travel_heading());
         let h = sensed_vegetation(&patches, p.x, p.y);
         let beta = base.beta * friction.beta(h) / friction.beta_bare;
         if let Err(e) = balance.set_gains(base.alpha, beta) {

@@ -16,6 +16,7 @@
 //! ```
 
 mod camera_rig;
+mod overlay_layers;
 mod overlays;
 mod palette;
 mod settings;
@@ -23,6 +24,7 @@ mod skinned_figure;
 mod world_view;
 
 pub use camera_rig::CameraRig;
+pub use overlay_layers::OverlayLayers;
 pub use overlays::draw_overlays;
 pub use palette::{TerrainPaint, material_albedo};
 pub use settings::ViewSettings;

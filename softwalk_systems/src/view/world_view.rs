@@ -11,6 +11,7 @@ use image::RgbaImage;
 use thiserror::Error;
 
 use super::camera_rig::CameraRig;
+use super::overlay_layers::OverlayLayers;
 use super::overlays::draw_overlays;
 use super::palette::TerrainPaint;
 use super::settings::ViewSettings;
@@ -70,6 +71,7 @@ pub struct WorldView {
     props: Vec<TriMesh>,
     blades: Vec<GrassBlade>,
     settings: ViewSettings,
+    layers: OverlayLayers,
 }
 
 impl WorldView {
@@ -121,6 +123,7 @@ impl WorldView {
                 .unwrap_or_default(),
             blades: Vec::new(),
             settings: *settings,
+            layers: OverlayLayers::ALL,
         };
         if let Some((follow, entity)) = view.follow
             && let Some(target) = followed_point(world, entity)
@@ -164,7 +167,7 @@ impl WorldView {
         };
         let mut image = self.renderer.render(&scene, &self.camera);
         if self.settings.overlays {
-            draw_overlays(world, &self.camera, &mut image);
+            draw_overlays(world, &self.camera, &mut image, self.layers);
         }
         Ok(image)
     }
@@ -186,6 +189,12 @@ impl WorldView {
     /// platforms) on or off from the next frame on.
     pub fn set_overlays(&mut self, on: bool) {
         self.settings.overlays = on;
+    }
+
+    /// Chooses which overlay layers are drawn while overlays are on (all
+    /// of them unless set), from the next frame on.
+    pub fn set_overlay_layers(&mut self, layers: OverlayLayers) {
+        self.layers = layers;
     }
 
     /// Re-meshes and re-lights only the terrain patches the simulation
