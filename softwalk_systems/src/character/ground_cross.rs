@@ -34,10 +34,10 @@ pub(crate) struct GroundCross {
     pub centre: Option<GroundHit>,
 }
 
-/// Where the rays between the centre and the two ends of the cross are
-/// cast, as fractions of the reach along: close enough that a print's rim
-/// (a ring about 3 cm wide) cannot pass between two of them under a sole.
-const ALONG_FRACTIONS: [f32; 3] = [0.25, 0.5, 0.75];
+/// Where the rays between the centre and the two ends of a cross under a
+/// sole are cast, as fractions of the reach along: close enough that a
+/// print's rim (a ring about 3 cm wide) cannot pass between two of them.
+pub(crate) const SOLE_RAYS: &[f32] = &[0.25, 0.5, 0.75];
 
 /// One ray of the cross: its offset from the centre and what it found.
 #[derive(Debug, Clone, Copy)]
@@ -49,35 +49,12 @@ struct Sample {
 
 impl GroundCross {
     /// Casts `ground` at `at`, at `reach_along` ahead and behind it along
-    /// the unit direction `forward`, and at `reach_across` to either side;
-    /// `None` when every ray misses.
+    /// the unit direction `forward` (and at the fractions `between` of that
+    /// reach, ahead and behind: [`SOLE_RAYS`] under a sole, so that where it
+    /// rests sees every rim under it), and at `reach_across` to either side;
+    /// `None` when every ray misses. The mean and the slope are read from
+    /// the centre and the four ends.
     pub fn sample(
-        ground: impl Fn(Vec2) -> Option<GroundHit>,
-        at: Vec2,
-        forward: Vec2,
-        reach_along: f32,
-        reach_across: f32,
-    ) -> Option<GroundCross> {
-        Self::cast(ground, at, forward, [reach_along, reach_across], &[])
-    }
-
-    /// [`GroundCross::sample`] under a sole of half-length `reach_along` and
-    /// half-width `reach_across`, with more rays along it (at
-    /// [`ALONG_FRACTIONS`] of the reach) so that where the sole rests sees
-    /// every rim under it. The mean and the slope are those of the five rays
-    /// of [`GroundCross::sample`].
-    pub fn under_sole(
-        ground: impl Fn(Vec2) -> Option<GroundHit>,
-        at: Vec2,
-        forward: Vec2,
-        reach_along: f32,
-        reach_across: f32,
-    ) -> Option<GroundCross> {
-        let reach = [reach_along, reach_across];
-        Self::cast(ground, at, forward, reach, &ALONG_FRACTIONS)
-    }
-
-    fn cast(
         ground: impl Fn(Vec2) -> Option<GroundHit>,
         at: Vec2,
         forward: Vec2,
@@ -166,7 +143,7 @@ mod tests {
     fn a_plane_is_read_exactly_and_a_pit_under_one_ray_is_averaged_out() {
         let height = |p: Vec2| 0.2 * p.x - 0.1 * p.y + 1.0;
         let plane = |p: Vec2| hit(p, height(p), 0.1 + 0.01 * p.x);
-        let c = GroundCross::sample(plane, Vec2::new(1.0, 2.0), Vec2::Y, 0.3, 0.2).unwrap();
+        let c = GroundCross::sample(plane, Vec2::new(1.0, 2.0), Vec2::Y, [0.3, 0.2], &[]).unwrap();
         assert!((c.mean - height(Vec2::new(1.0, 2.0))).abs() < 1e-5);
         let centre = height(Vec2::new(1.0, 2.0));
         assert!(
@@ -180,7 +157,7 @@ mod tests {
         let expected = Vec3::new(-0.2, 1.0, 0.1).normalize();
         assert!(c.normal.distance(expected) < 1e-5, "{}", c.normal);
         let pit = |p: Vec2| hit(p, if p.length() < 0.01 { -0.5 } else { 0.0 }, 0.0);
-        let c = GroundCross::sample(pit, Vec2::ZERO, Vec2::X, 0.3, 0.3).unwrap();
+        let c = GroundCross::sample(pit, Vec2::ZERO, Vec2::X, [0.3, 0.3], &[]).unwrap();
         assert!((c.mean + 0.1).abs() < 1e-6);
         assert_eq!(c.normal, Vec3::Y);
         assert_eq!(
@@ -188,7 +165,7 @@ mod tests {
             (0.0, 0.0),
             "a sole bridges the pit"
         );
-        assert!(GroundCross::sample(|_| None, Vec2::ZERO, Vec2::X, 0.3, 0.3).is_none());
+        assert!(GroundCross::sample(|_| None, Vec2::ZERO, Vec2::X, [0.3, 0.3], &[]).is_none());
     }
 
     #[test]
@@ -202,7 +179,7 @@ mod tests {
                 hit(p, 0.0, 0.04)
             }
         };
-        let c = GroundCross::sample(ground, Vec2::ZERO, Vec2::X, 0.13, 0.05).unwrap();
+        let c = GroundCross::sample(ground, Vec2::ZERO, Vec2::X, [0.13, 0.05], &[]).unwrap();
         let tilt = 0.05 / 0.26;
         // The sole tilts with the patch and its heel meets the sand at 0.
         let heel_on_sand = -0.05 + 0.13 * tilt;
@@ -230,9 +207,9 @@ mod tests {
                 0.05,
             )
         };
-        let five = GroundCross::sample(rim, Vec2::ZERO, Vec2::X, 0.13, 0.05).unwrap();
+        let five = GroundCross::sample(rim, Vec2::ZERO, Vec2::X, [0.13, 0.05], &[]).unwrap();
         assert_eq!(five.rest_top, 0.0, "five rays miss it");
-        let sole = GroundCross::under_sole(rim, Vec2::ZERO, Vec2::X, 0.13, 0.05).unwrap();
+        let sole = GroundCross::sample(rim, Vec2::ZERO, Vec2::X, [0.13, 0.05], SOLE_RAYS).unwrap();
         assert_eq!(sole.rest_top, 0.04);
         assert!((sole.rest_floor - (0.04 - 0.05)).abs() < 1e-6);
         assert_eq!((sole.mean, sole.normal), (five.mean, five.normal));

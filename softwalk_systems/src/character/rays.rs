@@ -109,7 +109,7 @@ fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -
     let at = gait.pelvis.position;
     let cast = |p: Vec2| ground.cast_down(p.x, p.y, from_y);
     let reach = BODY_SAMPLE_REACH;
-    match GroundCross::sample(cast, at, gait.pelvis.heading, reach, reach) {
+    match GroundCross::sample(cast, at, gait.pelvis.heading, [reach, reach], &[]) {
         Some(cross) => GroundKey {
             point: Vec3::new(at.x, cross.mean - cross.mean_give, at.y),
             normal: cross.normal,

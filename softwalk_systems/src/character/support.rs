@@ -16,7 +16,7 @@ use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
 use super::gait::{FootPlan, GaitParams, smoothstep};
-use super::ground_cross::GroundCross;
+use super::ground_cross::{GroundCross, SOLE_RAYS};
 use crate::foot::FootPhase;
 use crate::ground::{Ground, GroundHit};
 use crate::terrain::SINK_TIME_S;
@@ -182,7 +182,7 @@ impl FootSupport {
     ) {
         let (along, across) = (0.5 * body.foot_length, 0.5 * body.foot_width);
         let heading = plan.foothold_heading;
-        let patch = GroundCross::under_sole(cast, plan.foothold, heading, along, across);
+        let patch = GroundCross::sample(cast, plan.foothold, heading, [along, across], SOLE_RAYS);
         self.hit = self
             .landing
             .update(plan.foothold, patch.and_then(|p| p.centre));
