@@ -1,7 +1,7 @@
 //! Recorded inputs replay headless (issue 24): a steered walk with turns, a
-//! stop and a material change, and one stepping back on sand, end in known
-//! worlds, the same with or without frames, and their gait meets the
-//! gait-quality goals.
+//! stop and a material change, one stepping back on sand and one planting
+//! grass ahead, end in known worlds, the same with or without frames, and
+//! their gait meets the gait-quality goals.
 
 use std::path::Path;
 
@@ -127,4 +127,18 @@ fn unknown_brushes_and_characters_are_refused_before_the_first_step() {
         let line = demos::cli::error_line(&e);
         assert!(line.contains(expected), "{line}");
     }
+}
+
+#[test]
+fn the_grass_brush_plants_grass_ahead_that_the_walker_walks_through() {
+    let inputs = load("grass_ahead_sand.toml");
+    let scene = Scene::builtin("sand-flat").unwrap();
+    let (run, _) = replay_twice(&scene, &inputs, 300);
+    let walked = &run.walkers[0];
+    assert!(
+        walked[..90].iter().all(|m| m.grass_height == 0.0),
+        "grass before the brush"
+    );
+    let in_grass = walked[90..].iter().filter(|m| m.grass_height > 0.4).count();
+    assert!(in_grass > 30, "the walker met grass in {in_grass} steps");
 }

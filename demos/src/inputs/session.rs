@@ -5,7 +5,7 @@ use engine::ecs::Entity;
 use engine::schedule::App;
 use softwalk_systems::sim::GroundState;
 
-use super::apply::{InputState, steer_character};
+use super::apply::{GRASS_BRUSH, InputState, steer_character};
 use super::script::{InputAction, InputError, InputScript};
 use crate::scene::{Scene, SceneError};
 
@@ -109,15 +109,17 @@ impl<'a> InputSession<'a> {
     }
 }
 
-/// Refuses a script whose brush names a material the terrain does not have,
-/// before the first step.
+/// Refuses a script whose brush names a material the terrain does not have
+/// (or [`GRASS_BRUSH`]), before the first step.
 fn check_brushes(script: &InputScript, app: &App) -> Result<(), InputError> {
     let ground = app.world.get_resource::<GroundState>();
     let Some(table) = ground.as_deref().map(|g| g.terrain().table()) else {
         return Ok(());
     };
     for event in &script.events {
-        if let InputAction::Brush(name) = &event.action {
+        if let InputAction::Brush(name) = &event.action
+            && name != GRASS_BRUSH
+        {
             table.id(name).map_err(|e| InputError::Apply {
                 what: format!("brush {name:?} at step {}", event.step),
                 reason: e.to_string(),

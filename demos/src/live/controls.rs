@@ -1,5 +1,5 @@
 //! Keys to steering: WASD or the arrows move relative to the camera, Shift
-//! hurries; the material brush cycles through the loose grounds.
+//! hurries; the brush cycles through the loose grounds and grass.
 
 use glam::Vec2;
 
@@ -8,7 +8,7 @@ pub const WALK_SPEED_M_S: f32 = 1.2;
 /// Factor on the speed while Shift is held.
 pub const RUN_FACTOR: f32 = 1.5;
 /// The materials the brush cycles through, in order.
-pub const BRUSH_MATERIALS: [&str; 4] = ["sand", "soil", "mud", "snow"];
+pub const BRUSH_MATERIALS: [&str; 5] = ["sand", "soil", "mud", "snow", "grass"];
 
 /// The movement keys held this frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -93,7 +93,8 @@ mod tests {
     fn the_brush_cycles_through_the_grounds() {
         assert_eq!(next_brush(None), "sand");
         assert_eq!(next_brush(Some("sand")), "soil");
-        assert_eq!(next_brush(Some("snow")), "sand");
+        assert_eq!(next_brush(Some("snow")), "grass");
+        assert_eq!(next_brush(Some("grass")), "sand");
         assert_eq!(next_brush(Some("gravel")), "sand");
     }
 }
