@@ -24,12 +24,11 @@ pub(crate) struct GroundCross {
     /// the highest floor (surface less give) found, metres: a sole across
     /// two grounds, or across a print's edge, stops on the firmer floor.
     pub rest_floor: f32,
-    /// The mean give along the line through the centre and the two ends
-    /// ahead and behind, metres: the patch's mean floor is `mean - mean_give`.
-    /// The rays to either side read the slope only: beside a walker's line
-    /// they can find another ground than its feet will press (the edge of a
-    /// snowfield beside a path on sand).
-    pub mean_give: f32,
+    /// The median give of the centre and the four ends, metres: the patch's
+    /// floor is `mean - typical_give`. A median, so that one ray in a print
+    /// (pressed to its floor) or on another ground beside the walker's line
+    /// (the edge of a snowfield beside a path on sand) does not move it.
+    pub typical_give: f32,
     /// What the ray at the patch's centre found.
     pub centre: Option<GroundHit>,
 }
@@ -95,8 +94,9 @@ impl GroundCross {
         }
         let count = cross.len() as f32;
         let mean = cross.iter().map(|s| s.height).sum::<f32>() / count;
-        let line: Vec<f32> = found[..3].iter().flatten().map(|s| s.give).collect();
-        let mean_give = line.iter().sum::<f32>() / line.len().max(1) as f32;
+        let mut gives: Vec<f32> = cross.iter().map(|s| s.give).collect();
+        gives.sort_by(f32::total_cmp);
+        let typical_give = gives[gives.len() / 2];
         let height = |i: usize| found[i].map(|s| s.height);
         let grade = |ahead: Option<f32>, behind: Option<f32>, reach: f32| match (ahead, behind) {
             (Some(a), Some(b)) if reach > 0.0 => (a - b) / (2.0 * reach),
@@ -120,7 +120,7 @@ impl GroundCross {
             normal: Vec3::new(-rise.x, 1.0, -rise.y).normalize(),
             rest_top: base + highest(|s| s.height),
             rest_floor: base + highest(|s| s.height - s.give),
-            mean_give,
+            typical_give,
             centre,
         })
     }

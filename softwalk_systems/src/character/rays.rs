@@ -111,7 +111,7 @@ fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -
     let reach = BODY_SAMPLE_REACH;
     match GroundCross::sample(cast, at, gait.pelvis.heading, [reach, reach], &[]) {
         Some(cross) => GroundKey {
-            point: Vec3::new(at.x, cross.mean - cross.mean_give, at.y),
+            point: Vec3::new(at.x, cross.mean - cross.typical_give, at.y),
             normal: cross.normal,
             hit: true,
             pressing: false,
