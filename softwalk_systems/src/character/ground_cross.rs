@@ -61,43 +61,42 @@ impl GroundCross {
         between: &[f32],
     ) -> Option<GroundCross> {
         let right = Vec2::new(-forward.y, forward.x);
-        let mut offsets = vec![
+        let centre = ground(at);
+        let cast = |offset: Vec2| {
+            let hit = if offset == Vec2::ZERO {
+                centre
+            } else {
+                ground(at + offset)
+            };
+            hit.map(|h| Sample {
+                offset,
+                height: h.point.y,
+                give: h.give.max(0.0),
+            })
+        };
+        // The centre and the four ends: the mean, the give and the slope.
+        let ends = [
             Vec2::ZERO,
             forward * reach_along,
             -forward * reach_along,
             right * reach_across,
             -right * reach_across,
-        ];
-        for fraction in between {
-            offsets.push(forward * (fraction * reach_along));
-            offsets.push(-forward * (fraction * reach_along));
+        ]
+        .map(cast);
+        let mut gives = [0.0f32; 5];
+        let mut count = 0;
+        for s in ends.iter().flatten() {
+            gives[count] = s.give;
+            count += 1;
         }
-        let centre = ground(at);
-        let found: Vec<Option<Sample>> = offsets
-            .iter()
-            .map(|&offset| {
-                let hit = if offset == Vec2::ZERO {
-                    centre
-                } else {
-                    ground(at + offset)
-                };
-                hit.map(|h| Sample {
-                    offset,
-                    height: h.point.y,
-                    give: h.give.max(0.0),
-                })
-            })
-            .collect();
-        let cross: Vec<Sample> = found[..5].iter().flatten().copied().collect();
-        if cross.is_empty() {
+        if count == 0 {
             return None;
         }
-        let count = cross.len() as f32;
-        let mean = cross.iter().map(|s| s.height).sum::<f32>() / count;
-        let mut gives: Vec<f32> = cross.iter().map(|s| s.give).collect();
+        let mean = ends.iter().flatten().map(|s| s.height).sum::<f32>() / count as f32;
+        let gives = &mut gives[..count];
         gives.sort_by(f32::total_cmp);
-        let typical_give = gives[gives.len() / 2];
-        let height = |i: usize| found[i].map(|s| s.height);
+        let typical_give = gives[count / 2];
+        let height = |i: usize| ends[i].map(|s| s.height);
         let grade = |ahead: Option<f32>, behind: Option<f32>, reach: f32| match (ahead, behind) {
             (Some(a), Some(b)) if reach > 0.0 => (a - b) / (2.0 * reach),
             _ => 0.0,
@@ -106,20 +105,28 @@ impl GroundCross {
         let across = grade(height(3), height(4), reach_across);
         let rise = forward * along + right * across;
         // The plane through the centre (or the mean) with the patch's slope;
-        // each sample's height above it says how far the plane must rise.
+        // each sample's surface and floor above it say how far the plane must
+        // rise to rest on the patch and to stop on it.
         let base = centre.map_or(mean, |c| c.point.y);
-        let highest = |y: fn(&Sample) -> f32| {
-            found
-                .iter()
-                .flatten()
-                .map(|s| y(s) - (base + rise.dot(s.offset)))
-                .fold(f32::NEG_INFINITY, f32::max)
-        };
+        let between = between
+            .iter()
+            .flat_map(|f| [forward * (f * reach_along), -forward * (f * reach_along)])
+            .filter_map(cast);
+        let (top, floor) = ends.iter().flatten().copied().chain(between).fold(
+            (f32::NEG_INFINITY, f32::NEG_INFINITY),
+            |(top, floor), s| {
+                let plane = base + rise.dot(s.offset);
+                (
+                    top.max(s.height - plane),
+                    floor.max(s.height - s.give - plane),
+                )
+            },
+        );
         Some(GroundCross {
             mean,
             normal: Vec3::new(-rise.x, 1.0, -rise.y).normalize(),
-            rest_top: base + highest(|s| s.height),
-            rest_floor: base + highest(|s| s.height - s.give),
+            rest_top: base + top,
+            rest_floor: base + floor,
             typical_give,
             centre,
         })

@@ -145,29 +145,13 @@ pub fn carve(
 }
 
 /// What one foot pressed this step: the rectangle it covered and the volume
-/// (in heights summed over samples) its rim is owed.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// (in heights summed over samples) its rim is owed. The default is nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Pressed {
     rect: GridRect,
     removed: f64,
     compacted: f64,
     released: bool,
-}
-
-impl Pressed {
-    const NOTHING: Pressed = Pressed {
-        rect: GridRect::EMPTY,
-        removed: 0.0,
-        compacted: 0.0,
-        released: false,
-    };
-}
-
-impl Default for Pressed {
-    /// Nothing pressed.
-    fn default() -> Self {
-        Pressed::NOTHING
-    }
 }
 
 /// The first half of [`carve`]: presses the sole's samples (or releases a
@@ -197,7 +181,7 @@ pub fn press(
         return Ok(Pressed {
             rect: released,
             released: true,
-            ..Pressed::NOTHING
+            ..Pressed::default()
         });
     }
     let grid = hf.grid();
@@ -211,7 +195,7 @@ pub fn press(
     let (lo, hi) = foot.bounds(rim_width + 0.5 * cell);
     let rect = grid.rect_covering(lo, hi);
     if rect.is_empty() {
-        return Ok(Pressed::NOTHING);
+        return Ok(Pressed::default());
     }
     print.cover(rect, nx, nz);
 
