@@ -23,10 +23,10 @@
 use std::error::Error;
 use std::path::Path;
 
-use demos::scene::Scene;
-use demos::view::scene_view;
 use engine::snapshot::{Outcome, Snapshot, Tolerance};
 use image::RgbaImage;
+use softwalk_app::scene::Scene;
+use softwalk_app::view::scene_view;
 use softwalk_systems::sim::run_steps;
 
 /// The scene, as a scene file would hold it (`softwalk scenes --dump default`

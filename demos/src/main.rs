@@ -1,9 +1,11 @@
-//! The `softwalk` command-line program; all the work is in the `demos` library.
+//! The `softwalk` command-line program; all the work is in the `softwalk_app` library.
+
+#![forbid(unsafe_code)]
 
 use std::process::ExitCode;
 
 use clap::Parser;
-use demos::cli::{Cli, error_line, execute};
+use softwalk_app::cli::{Cli, error_line, execute};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

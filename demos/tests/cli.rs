@@ -48,7 +48,7 @@ fn dump_output_loads_back_as_a_scene_file() {
     assert!(out.status.success());
     let scene_file = dir.path().join("mixed.toml");
     fs::write(&scene_file, &out.stdout).unwrap();
-    let scene = demos::scene::Scene::load(&scene_file).unwrap();
+    let scene = softwalk_app::scene::Scene::load(&scene_file).unwrap();
     assert_eq!(scene.name, "mixed");
 }
 

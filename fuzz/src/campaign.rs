@@ -134,7 +134,7 @@ pub fn check_caught(input: &Input, dir: &Path) -> Result<Outcome, String> {
 
 /// The seeds inputs are mutated from: the built-in scenes, then the corpus's scene files.
 pub fn seeds(corpus: Option<&Path>) -> Vec<String> {
-    let mut seeds: Vec<String> = demos::scene::builtin_scenes()
+    let mut seeds: Vec<String> = softwalk_app::scene::builtin_scenes()
         .into_iter()
         .map(|b| b.toml)
         .collect();

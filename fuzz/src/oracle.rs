@@ -5,12 +5,12 @@
 
 use std::path::Path;
 
-use demos::cli::error_line;
-use demos::memory_estimate::MemoryEstimate;
-use demos::runner::RunOptions;
-use demos::scene::Scene;
 use engine::geom::{MeshBvh, Ray};
 use engine::glam::Vec3;
+use softwalk_app::cli::error_line;
+use softwalk_app::memory_estimate::MemoryEstimate;
+use softwalk_app::runner::RunOptions;
+use softwalk_app::scene::Scene;
 
 use crate::png_input::declared_pixels;
 
@@ -135,7 +135,7 @@ fn check_scene(text: &str, dir: &Path) -> Outcome {
         return Outcome::OverBudget;
     }
     coarsen(&mut scene);
-    match demos::runner::run(&scene, &options, &mut ()) {
+    match softwalk_app::runner::run(&scene, &options, &mut ()) {
         Ok(_) => Outcome::Accepted,
         Err(e) => Outcome::FailedMidRun(error_line(&e)),
     }

@@ -12,7 +12,7 @@ use softwalk_systems::vegetation::{GrassSettings, XzRect};
 /// The fixed step of every test scene.
 pub const DT: f32 = 1.0 / 60.0;
 
-pub use demos::paper::variants::rigid_material as rigid;
+pub use softwalk_app::paper::variants::rigid_material as rigid;
 
 /// What a test scene is made of.
 #[derive(Clone)]
@@ -85,7 +85,7 @@ pub fn walk(app: &mut App, steps: usize) -> Vec<WalkerMetrics> {
         .collect()
 }
 
-pub use demos::paper::stats::{mean, std_dev};
+pub use softwalk_app::paper::stats::{mean, std_dev};
 
 /// The steepest wall slope (m/m) across a print walked along +X: between
 /// neighbouring samples along Z within 0.2 m of `c`, on the column through it.

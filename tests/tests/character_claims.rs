@@ -2,10 +2,10 @@
 //! the slope with the controller, a higher COM tilts and oscillates more,
 //! stance feet neither slide nor float, and long walks stay bounded.
 
-use demos::paper::character::{LOOP_FLOAT_LIMIT, STANCE_LIMIT, float_limit};
-use demos::paper::stats::{mean, peak_to_peak, std_dev};
 use engine::geom::HeightGrid;
 use glam::{Vec2, Vec3};
+use softwalk_app::paper::character::{LOOP_FLOAT_LIMIT, STANCE_LIMIT, float_limit};
+use softwalk_app::paper::stats::{mean, peak_to_peak, std_dev};
 use softwalk_systems::character::{
     Character, CharacterDesc, CharacterMetrics, PathSegment, WalkPath, step_character,
 };

@@ -11,7 +11,7 @@ use softwalk_systems::character::{CharacterBody, CharacterRig, Pose, RigPose};
 use softwalk_systems::foot::FootPhase;
 use softwalk_systems::sim::{Feet, run_steps};
 
-use demos::scene::Scene;
+use softwalk_app::scene::Scene;
 
 /// Most accepted gap between the skinned sole and the ground during stance, metres.
 const SOLE_GAP_GOAL_M: f32 = 0.01;

@@ -4,9 +4,9 @@
 use std::fs;
 use std::path::Path;
 
-use demos::cli::{ArgsError, Cli, CliError, Command, error_line, execute};
-use demos::output::metrics_header;
-use demos::scene::{Scene, builtin_scenes};
+use softwalk_app::cli::{ArgsError, Cli, CliError, Command, error_line, execute};
+use softwalk_app::output::metrics_header;
+use softwalk_app::scene::{Scene, builtin_scenes};
 
 fn parse(args: &[&str]) -> Result<Cli, ArgsError> {
     Cli::parse_args(std::iter::once("softwalk").chain(args.iter().copied()))
@@ -182,7 +182,7 @@ fn run_writes_metrics_and_summary() {
         "every row has one cell per column"
     );
     let cell = |row: &str, name: &str| -> f32 {
-        let k = demos::output::metric_column(name).unwrap();
+        let k = softwalk_app::output::metric_column(name).unwrap();
         row.split(',').nth(k).unwrap().parse().unwrap()
     };
     let last = metrics.lines().last().unwrap();

@@ -1,8 +1,8 @@
 //! Same scene, same inputs: the same world, bit for bit, with or without
 //! rendering and on any thread count (checked through the world hash).
 
-use demos::runner::{RunOptions, run};
-use demos::scene::Scene;
+use softwalk_app::runner::{RunOptions, run};
+use softwalk_app::scene::Scene;
 
 const STEPS: u64 = 90;
 
@@ -56,12 +56,12 @@ fn a_different_scene_gives_a_different_hash() {
 fn a_crowd_gives_the_same_world_on_one_two_and_four_threads() {
     // 48 walkers crossing sand, snow and grass: per-character systems run
     // in parallel, ground edits in a fixed order.
-    let spec = demos::scene::CrowdSpec {
+    let spec = softwalk_app::scene::CrowdSpec {
         walkers: 48,
         size_m: 16.0,
         resolution: 801,
         spacing_m: 0.8,
-        ..demos::scene::CrowdSpec::default()
+        ..softwalk_app::scene::CrowdSpec::default()
     };
     let scene = Scene::from_toml_str(&spec.toml("crowd-test"), std::path::Path::new("")).unwrap();
     assert!(scene.warnings().is_empty());
@@ -73,10 +73,10 @@ fn a_crowd_gives_the_same_world_on_one_two_and_four_threads() {
 #[test]
 fn the_character_model_is_a_view_and_never_changes_the_world() {
     let human = Scene::builtin("grass-small").unwrap();
-    assert_eq!(human.characters[0].model, demos::scene::HUMAN_MODEL);
+    assert_eq!(human.characters[0].model, softwalk_app::scene::HUMAN_MODEL);
     let mut mannequin = human.clone();
     for c in &mut mannequin.characters {
-        c.model = demos::scene::MANNEQUIN_MODEL.to_string();
+        c.model = softwalk_app::scene::MANNEQUIN_MODEL.to_string();
     }
     assert_eq!(hash(&human, true, 2), hash(&mannequin, true, 2));
 }

@@ -1,9 +1,9 @@
 //! Every built-in scene runs a few seconds headless and passes sanity checks:
 //! no NaN, planted feet on the ground, prints where the feet were.
 
-use demos::scene::{Scene, builtin_scenes};
 use engine::ecs::World;
 use engine::geom::HeightGrid;
+use softwalk_app::scene::{Scene, builtin_scenes};
 use softwalk_systems::character::CharacterMetrics;
 use softwalk_systems::sim::{GroundState, WalkerMetrics, run_steps, sole_ends};
 

@@ -5,17 +5,17 @@
 //! These assert the real goals (issue 19): a walk on loose ground must not pop
 //! its pelvis or flicker its knees. Every test reports all of its failures, with
 //! the scene and character named, before failing. The figures are defined in
-//! `demos/src/paper/gait_quality.rs`, `gait_figures.rs` and `stillness.rs`.
+//! `softwalk_app/src/paper/gait_quality.rs`, `gait_figures.rs` and `stillness.rs`.
 //! Run with `--nocapture` to see every measured figure.
 
-use demos::paper::gait_figures::{GaitFigures, within};
-use demos::paper::gait_quality::STEP_UP_SCENES;
-use demos::paper::gait_quality::{SOLE_BELOW_GOAL_CM, deepest_sole};
-use demos::paper::recorded_run::{RecordedRun, record_run};
-use demos::paper::stillness::Stillness;
-use demos::paper::variants::checked;
-use demos::scene::{PathSpec, Scene, builtin_scenes};
 use rayon::prelude::*;
+use softwalk_app::paper::gait_figures::{GaitFigures, within};
+use softwalk_app::paper::gait_quality::STEP_UP_SCENES;
+use softwalk_app::paper::gait_quality::{SOLE_BELOW_GOAL_CM, deepest_sole};
+use softwalk_app::paper::recorded_run::{RecordedRun, record_run};
+use softwalk_app::paper::stillness::Stillness;
+use softwalk_app::paper::variants::checked;
+use softwalk_app::scene::{PathSpec, Scene, builtin_scenes};
 
 /// Length of each built-in scene's measured walk, seconds (at its own 60 Hz step).
 const SCENE_WALK_S: f32 = 5.0;

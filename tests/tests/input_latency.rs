@@ -9,13 +9,13 @@
 //! (waiting for the next frame to start) plus one frame per step needed,
 //! with one 60 Hz step per frame at 60 fps.
 
-use demos::inputs::{InputAction, InputEvent, InputScript, InputSession};
-use demos::scene::Scene;
-use demos::view::scene_view;
 use engine::ecs::Entity;
 use engine::schedule::App;
 use glam::Vec3;
 use image::RgbaImage;
+use softwalk_app::inputs::{InputAction, InputEvent, InputScript, InputSession};
+use softwalk_app::scene::Scene;
+use softwalk_app::view::scene_view;
 use softwalk_systems::sim::WalkerMetrics;
 
 /// The latency goal, frames.

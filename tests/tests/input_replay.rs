@@ -5,10 +5,10 @@
 
 use std::path::Path;
 
-use demos::inputs::InputScript;
-use demos::paper::recorded_run::{RecordedRun, record_run_with_inputs};
-use demos::runner::{self, RunObserver, RunOptions};
-use demos::scene::Scene;
+use softwalk_app::inputs::InputScript;
+use softwalk_app::paper::recorded_run::{RecordedRun, record_run_with_inputs};
+use softwalk_app::runner::{self, RunObserver, RunOptions};
+use softwalk_app::scene::Scene;
 
 /// Steps of the recorded walk (10 s at 60 Hz).
 const STEPS: u64 = 600;
@@ -124,7 +124,7 @@ fn unknown_brushes_and_characters_are_refused_before_the_first_step() {
         let inputs = InputScript::parse(text, Path::new("bad.toml")).unwrap();
         let mut frames = Frames(0);
         let e = runner::run_with_inputs(&scene, &options, Some(&inputs), &mut frames).unwrap_err();
-        let line = demos::cli::error_line(&e);
+        let line = softwalk_app::cli::error_line(&e);
         assert!(line.contains(expected), "{line}");
     }
 }

@@ -43,7 +43,14 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
 /// binary is named after its file).
 fn code_words(root: &Path) -> BTreeSet<String> {
     let mut files = Vec::new();
-    for krate in ["engine", "softwalk_systems", "demos", "tests", "benches"] {
+    for krate in [
+        "engine",
+        "softwalk_systems",
+        "softwalk_app",
+        "demos",
+        "tests",
+        "benches",
+    ] {
         rust_files(&root.join(krate), &mut files);
     }
     let mut words = BTreeSet::new();

@@ -1,13 +1,13 @@
 //! The paper report's machinery on one tiny scene: a headless trace, a claim
 //! measured from it, the Markdown it renders, a gallery frame, the command line.
 
-use demos::cli::{Cli, Command};
-use demos::paper::gait_section::{GAIT_SECTION_TITLE, gait_quality_claim};
-use demos::paper::gallery::render_at;
-use demos::paper::gallery_strip::render_strip;
-use demos::paper::measure::stance_errors;
-use demos::paper::trace::trace;
-use demos::paper::{Check, Claim, GalleryImage, Report, character};
+use softwalk_app::cli::{Cli, Command};
+use softwalk_app::paper::gait_section::{GAIT_SECTION_TITLE, gait_quality_claim};
+use softwalk_app::paper::gallery::render_at;
+use softwalk_app::paper::gallery_strip::render_strip;
+use softwalk_app::paper::measure::stance_errors;
+use softwalk_app::paper::trace::trace;
+use softwalk_app::paper::{Check, Claim, GalleryImage, Report, character};
 
 #[test]
 fn a_tiny_slope_walk_becomes_a_claim_table_in_the_markdown() {
@@ -58,7 +58,7 @@ fn a_tiny_slope_walk_becomes_a_claim_table_in_the_markdown() {
 
 #[test]
 fn a_gallery_frame_has_the_asked_size() {
-    let mut scene = demos::scene::Scene::builtin("sand-flat").unwrap();
+    let mut scene = softwalk_app::scene::Scene::builtin("sand-flat").unwrap();
     scene.terrain.resolution = 65;
     let image = render_at(&scene, 0.1, 64, 36).unwrap();
     assert_eq!(image.dimensions(), (64, 36));
@@ -66,7 +66,7 @@ fn a_gallery_frame_has_the_asked_size() {
 
 #[test]
 fn the_gait_quality_section_checks_every_goal_of_every_character() {
-    let mut scene = demos::scene::Scene::builtin("morphology").unwrap();
+    let mut scene = softwalk_app::scene::Scene::builtin("morphology").unwrap();
     scene.terrain.resolution = 101;
     let claim = gait_quality_claim(&scene, 1.5).unwrap();
     assert_eq!(claim.title, "Gait quality: morphology");
@@ -104,7 +104,7 @@ fn the_gait_quality_section_checks_every_goal_of_every_character() {
 
 #[test]
 fn the_snow_strip_is_eight_consecutive_frames_side_by_side() {
-    let mut scene = demos::scene::Scene::builtin("snow-flat").unwrap();
+    let mut scene = softwalk_app::scene::Scene::builtin("snow-flat").unwrap();
     scene.terrain.resolution = 65;
     let strip = render_strip(&scene, 0.2, 8, 20, 15).unwrap();
     assert_eq!(strip.dimensions(), (160, 15));

@@ -2,10 +2,10 @@
 //! starts, whichever setting asked for them, and the refusal names the
 //! estimate and its largest item.
 
-use demos::cli::{Cli, CliError, error_line, execute};
-use demos::memory_estimate::{BudgetError, DEFAULT_MAX_MEMORY, MemoryEstimate};
-use demos::runner::RunOptions;
-use demos::scene::{MAX_STEPS, Scene};
+use softwalk_app::cli::{Cli, CliError, error_line, execute};
+use softwalk_app::memory_estimate::{BudgetError, DEFAULT_MAX_MEMORY, MemoryEstimate};
+use softwalk_app::runner::RunOptions;
+use softwalk_app::scene::{MAX_STEPS, Scene};
 
 fn run(args: &[&str]) -> Result<(), CliError> {
     let mut all = vec!["softwalk"];

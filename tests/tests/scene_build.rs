@@ -1,7 +1,7 @@
 //! Every built-in scene becomes a simulation through `Scene::build_sim` and runs.
 
-use demos::paper::gait_quality::{GaitQuality, LEVEL_WALK_FIGURE};
-use demos::scene::{Scene, builtin_scenes};
+use softwalk_app::paper::gait_quality::{GaitQuality, LEVEL_WALK_FIGURE};
+use softwalk_app::scene::{Scene, builtin_scenes};
 use softwalk_systems::sim::{CharacterName, WalkerMetrics, run_steps};
 
 /// Steps each built-in scene is run for (2 s at 60 Hz).

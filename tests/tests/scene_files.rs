@@ -4,7 +4,7 @@
 use std::fs;
 use std::path::Path;
 
-use demos::scene::{Scene, SceneError, TerrainShape, builtin_scenes};
+use softwalk_app::scene::{Scene, SceneError, TerrainShape, builtin_scenes};
 
 /// A small valid scene; tests edit one line of it at a time.
 const BASE: &str = r#"

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use demos::scene::{GIF_DELAY_MS, MAX_REGIONS, Scene, SceneError};
+use softwalk_app::scene::{GIF_DELAY_MS, MAX_REGIONS, Scene, SceneError};
 use softwalk_systems::sim::run_steps;
 
 /// A small valid scene; tests edit it. `beta` is on line 16.

@@ -1,7 +1,7 @@
 //! Snapshot tests on rendered frames (goldens in `tests/snapshots/`).
 //!
 //! - the built-in `default` scene's first second, through the real run
-//!   (`demos::runner::run`: scene -> pipeline -> `SceneView` with overlays);
+//!   (`softwalk_app::runner::run`: scene -> pipeline -> `SceneView` with overlays);
 //! - a lit bumpy height grid with a real footprint, a mesh and grass blades,
 //!   through the engine's renderer alone.
 //!
@@ -10,9 +10,6 @@
 
 use std::f32::consts::PI;
 
-use demos::output::LastFrame;
-use demos::runner::{RunOptions, run};
-use demos::scene::Scene;
 use engine::geom::HeightGrid;
 use engine::render::{
     Camera, FrameScene, GrassBlade, Lighting, MeshInstance, Renderer, SampleColors, Sun,
@@ -21,6 +18,9 @@ use engine::render::{
 use engine::snapshot::Tolerance;
 use glam::{Mat4, Vec2, Vec3};
 use image::RgbaImage;
+use softwalk_app::output::LastFrame;
+use softwalk_app::runner::{RunOptions, run};
+use softwalk_app::scene::Scene;
 use softwalk_systems::character::capsule;
 use softwalk_systems::terrain::{FootPrint, FootSize, Heightfield, MaterialTable, plant_foothold};
 

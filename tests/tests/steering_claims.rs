@@ -5,11 +5,11 @@
 
 use std::path::Path;
 
-use demos::inputs::InputScript;
-use demos::paper::gait_quality::GaitQuality;
-use demos::paper::recorded_run::record_run_with_inputs;
-use demos::scene::Scene;
 use glam::{Vec2, Vec3};
+use softwalk_app::inputs::InputScript;
+use softwalk_app::paper::gait_quality::GaitQuality;
+use softwalk_app::paper::recorded_run::record_run_with_inputs;
+use softwalk_app::scene::Scene;
 use softwalk_systems::character::{
     Character, CharacterDesc, GaitModifiers, GaitParams, Joint, Steering, WalkPath, steer_stage,
     step_character,

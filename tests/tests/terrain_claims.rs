@@ -2,9 +2,9 @@
 //! synthetic planted feet: footholds along a line, each planted 0.3 s at
 //! 60 Hz, running carve -> smooth -> settle every step.
 
-use demos::paper::measure::{rim_split, steepest_slope};
-use demos::paper::stats::mean;
 use glam::Vec2;
+use softwalk_app::paper::measure::{rim_split, steepest_slope};
+use softwalk_app::paper::stats::mean;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::*;
 use softwalk_tests::steepest_wall_across;

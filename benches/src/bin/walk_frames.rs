@@ -15,8 +15,8 @@ use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 use std::time::Instant;
 
-use demos::scene::Scene;
-use demos::view::scene_view;
+use softwalk_app::scene::Scene;
+use softwalk_app::view::scene_view;
 use softwalk_systems::sim::step;
 
 /// CPU time the process's threads have run so far, in nanoseconds (Linux

@@ -7,9 +7,9 @@ use crate::runner::{Frame, ObserverError, RunObserver};
 /// Keeps the last frame a run renders (for a gallery image or a snapshot test).
 ///
 /// ```no_run
-/// use demos::output::LastFrame;
-/// use demos::scene::Scene;
-/// use demos::runner::{RunOptions, run};
+/// use softwalk_app::output::LastFrame;
+/// use softwalk_app::scene::Scene;
+/// use softwalk_app::runner::{RunOptions, run};
 ///
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let scene = Scene::builtin("default")?;

@@ -1,4 +1,6 @@
-//! The `softwalk` program's library: scenes, the command line and outputs.
+//! The `softwalk` program's library: scene files, runs, outputs, the paper
+//! report, recorded inputs and the live viewer. The `softwalk` binary (crate
+//! `demos`) only parses its arguments and calls [`cli::execute`].
 //!
 //! - [`scene`]: scene files (TOML), validation and the built-in scenes;
 //! - [`runner`]: runs a scene's simulation for the command line, drawing
@@ -7,7 +9,9 @@
 //! - [`output`]: `metrics.csv`, `summary.json`, frames and the printed summary;
 //! - [`paper`]: the paper's claims measured on reproduction scenes (`softwalk paper`);
 //! - [`memory_estimate`]: the memory a run needs, checked against a budget before it starts;
-//! - [`cli`]: the `softwalk` command line.
+//! - [`inputs`]: recorded steering inputs, replayed headless;
+//! - [`live`]: the live viewer's window-free logic (keys, camera, clock, heads-up line);
+//! - [`cli`] and [`commands`]: the `softwalk` command line, one file per subcommand.
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 

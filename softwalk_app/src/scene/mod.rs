@@ -9,7 +9,7 @@
 //! `x` in `[0, size_x]` and `z` in `[0, size_z]`, heights in `[0, max_height]`.
 //!
 //! ```
-//! use demos::scene::Scene;
+//! use softwalk_app::scene::Scene;
 //! let scene = Scene::builtin("sand-flat").unwrap();
 //! let text = scene.to_toml_string().unwrap();
 //! let again = Scene::from_toml_str(&text, std::path::Path::new("")).unwrap();

@@ -54,7 +54,7 @@ pub fn gait_quality_claim(scene: &Scene, seconds: f32) -> Result<Claim, PaperErr
         statement: STATEMENT.into(),
         method: format!(
             "Scene `{}` headless, {seconds} s at dt {:.4} s; walking samples from {SETTLE_S} s \
-             until the path's end (figures defined in `demos/src/paper/gait_quality.rs`){}.",
+             until the path's end (figures defined in `softwalk_app/src/paper/gait_quality.rs`){}.",
             scene.name,
             scene.sim.dt,
             if step_up {

@@ -1,6 +1,6 @@
 //! Built-in scenes: TOML text compiled into the program.
 //!
-//! Most are files under `demos/scenes/`; the per-material and grass scenes
+//! Most are files under `softwalk_app/scenes/`; the per-material and grass scenes
 //! are filled in from one template each, so the variants cannot drift apart.
 
 use super::SceneError;

@@ -64,7 +64,7 @@ impl Scene {
     /// Run it with `softwalk_systems::sim::run_steps`.
     ///
     /// ```
-    /// use demos::scene::Scene;
+    /// use softwalk_app::scene::Scene;
     /// let mut scene = Scene::builtin("sand-flat").unwrap();
     /// scene.terrain.resolution = 101; // keep the doctest quick
     /// let (mut app, walkers) = scene.build_sim().unwrap();
