@@ -5,7 +5,8 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use softwalk_app::cli::{Cli, error_line, execute};
+use softwalk_app::cli::{Cli, error_line};
+use softwalk_app::commands::execute;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

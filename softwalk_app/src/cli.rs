@@ -1,12 +1,11 @@
-//! The `softwalk` command line: arguments (clap derive), dispatch and the error type.
+//! The `softwalk` command line: arguments (clap derive) and the error type;
+//! [`crate::commands::execute`] dispatches a parsed command line.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use thiserror::Error;
 
-use crate::commands;
 use crate::out_dir::OutputDirError;
 use crate::runner::SimError;
 use crate::scene::{MAX_FRAME_SIDE, SceneError};
@@ -357,19 +356,6 @@ pub enum CliError {
         /// The scene's name.
         scene: String,
     },
-}
-
-/// Runs one parsed command line, printing to `stdout`.
-pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
-    match cli.command {
-        Command::Run(args) => commands::run::run(&args, stdout),
-        Command::Scenes(args) => commands::scenes::scenes(&args, stdout),
-        Command::Bench(args) => commands::bench::bench(&args, stdout),
-        Command::Paper(args) => commands::paper::paper(&args, stdout),
-        Command::Snapshot(args) => commands::snapshot::snapshot(&args, stdout),
-        Command::Inspect(args) => commands::inspect::inspect(&args, stdout),
-        Command::View(args) => commands::view::view(&args, stdout),
-    }
 }
 
 /// An error and its causes on one line, `a: b: c`; a cause already spelled out

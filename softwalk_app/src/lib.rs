@@ -1,6 +1,6 @@
 //! The `softwalk` program's library: scene files, runs, outputs, the paper
 //! report, recorded inputs and the live viewer. The `softwalk` binary (crate
-//! `demos`) only parses its arguments and calls [`cli::execute`].
+//! `demos`) only parses its arguments and calls [`commands::execute`].
 //!
 //! - [`scene`]: scene files (TOML), validation and the built-in scenes;
 //! - [`runner`]: runs a scene's simulation for the command line, drawing

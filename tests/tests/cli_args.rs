@@ -4,7 +4,8 @@
 use std::fs;
 use std::path::Path;
 
-use softwalk_app::cli::{ArgsError, Cli, CliError, Command, error_line, execute};
+use softwalk_app::cli::{ArgsError, Cli, CliError, Command, error_line};
+use softwalk_app::commands::execute;
 use softwalk_app::output::metrics_header;
 use softwalk_app::scene::{Scene, builtin_scenes};
 

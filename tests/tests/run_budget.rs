@@ -2,7 +2,8 @@
 //! starts, whichever setting asked for them, and the refusal names the
 //! estimate and its largest item.
 
-use softwalk_app::cli::{Cli, CliError, error_line, execute};
+use softwalk_app::cli::{Cli, CliError, error_line};
+use softwalk_app::commands::execute;
 use softwalk_app::memory_estimate::{BudgetError, DEFAULT_MAX_MEMORY, MemoryEstimate};
 use softwalk_app::runner::RunOptions;
 use softwalk_app::scene::{MAX_STEPS, Scene};

@@ -9,13 +9,28 @@ pub mod snapshot;
 mod threads;
 pub mod view;
 
+use std::io::Write;
+
 use rayon::ThreadPool;
 
-use crate::cli::{CliError, SceneArgs};
+use crate::cli::{Cli, CliError, Command, SceneArgs};
 use crate::memory_estimate::{MemoryEstimate, check_steps};
 use crate::runner::RunOptions;
 use crate::scene::Scene;
 use crate::scene_source::resolve_scene;
+
+/// Runs one parsed command line, printing to `stdout`.
+pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<(), CliError> {
+    match cli.command {
+        Command::Run(args) => run::run(&args, stdout),
+        Command::Scenes(args) => scenes::scenes(&args, stdout),
+        Command::Bench(args) => bench::bench(&args, stdout),
+        Command::Paper(args) => paper::paper(&args, stdout),
+        Command::Snapshot(args) => snapshot::snapshot(&args, stdout),
+        Command::Inspect(args) => inspect::inspect(&args, stdout),
+        Command::View(args) => view::view(&args, stdout),
+    }
+}
 
 /// The scene and the run options the shared arguments ask for (rendering on,
 /// no hash); a thread count above the machine's cores is clamped with a warning.

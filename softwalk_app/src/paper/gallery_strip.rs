@@ -4,7 +4,7 @@
 
 use image::RgbaImage;
 
-use super::gallery::write_png;
+use super::opaque_png::write_png;
 use super::recorded_run::record_run;
 use super::report::GalleryImage;
 use super::variants::builtin;

@@ -22,6 +22,7 @@ pub mod gallery;
 pub mod gallery_strip;
 pub mod ground;
 pub mod measure;
+mod opaque_png;
 pub mod recorded_run;
 pub mod report;
 pub mod stats;

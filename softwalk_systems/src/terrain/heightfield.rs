@@ -10,7 +10,7 @@ use super::error::TerrainError;
 use super::held::{HeldMask, HeldSamples};
 use super::material::TerrainMaterial;
 use super::material_table::{MaterialId, MaterialTable};
-use super::settle::PendingSettle;
+use super::pending_settle::PendingSettle;
 
 /// `disturbed` value of a sample pressed by a sole.
 pub const DISTURBED_PRESSED: u8 = 255;

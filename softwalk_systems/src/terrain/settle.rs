@@ -8,6 +8,7 @@ use engine::geom::GridRect;
 use super::heightfield::{DISTURBED_SLUMPED, Heightfield};
 use super::material::TerrainMaterial;
 use super::patch::{DISTURBED, FIXED, Patch, edge_moves};
+use super::pending_settle::{PendingSettle, Start};
 use super::smooth::smoothing_radius;
 use super::units::{REFERENCE_CELL_M, REFERENCE_RATE_HZ, cells_covering};
 use super::waves::{ScratchPool, run_in_waves};
@@ -295,16 +296,6 @@ fn release_scan_visits(visits: usize) -> usize {
     (visits / 2).max(1)
 }
 
-/// Settling work left for later steps: a window (grid samples) and where
-/// its next sweep starts.
-#[derive(Debug, Clone)]
-pub(crate) struct PendingSettle {
-    window: GridRect,
-    start: Start,
-    /// Sweeps made so far (the run stops at [`settle_max_sweeps`]).
-    sweeps: usize,
-}
-
 /// The window clipped to the grid and the first sweep's rectangle (the
 /// seeds grown by one sample, inside the window); `None` when there are no seeds.
 fn first_sweep(
@@ -322,16 +313,6 @@ fn first_sweep(
         w,
         seeds.expand(1, full.width(), full.height()).intersect(&w),
     ))
-}
-
-/// Where a relaxation starts.
-#[derive(Debug, Clone)]
-enum Start {
-    /// A first sweep over the steep samples of this rectangle (grid samples).
-    Scan(GridRect),
-    /// A sweep over the samples an interrupted run had queued (grid indices,
-    /// row-major).
-    Queued(Vec<usize>),
 }
 
 /// What one [`relax_window`] call did.

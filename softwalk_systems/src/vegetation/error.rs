@@ -40,3 +40,21 @@ pub enum VegetationError {
         z: f32,
     },
 }
+
+/// Fails with [`VegetationError::BadSetting`] unless `value` is finite and `ok`.
+pub(crate) fn check(
+    field: &'static str,
+    value: f32,
+    reason: &'static str,
+    ok: impl Fn(f32) -> bool,
+) -> Result<(), VegetationError> {
+    if value.is_finite() && ok(value) {
+        Ok(())
+    } else {
+        Err(VegetationError::BadSetting {
+            field,
+            value: value as f64,
+            reason,
+        })
+    }
+}

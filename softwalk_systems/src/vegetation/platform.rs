@@ -11,9 +11,8 @@ use std::collections::VecDeque;
 use glam::{Vec2, Vec3Swizzles};
 use serde::{Deserialize, Serialize};
 
-use super::error::VegetationError;
+use super::error::{VegetationError, check};
 use super::platform_ground::PlatformTop;
-use super::settings::check;
 use crate::foot::{FootPhase, FootState, Side};
 
 /// How many phase changes a platform remembers (for tests and plots).

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::error::VegetationError;
+use super::error::{VegetationError, check};
 use super::field::DeformationField;
 use super::platform::{PlatformDrop, PlatformSettings};
 use super::recovery::time_to_5_percent;
@@ -136,24 +136,6 @@ impl GrassSettings {
             check("colour", c, unit, |v| (0.0..=1.0).contains(&v))?;
         }
         self.platform.validate()
-    }
-}
-
-/// Fails with [`VegetationError::BadSetting`] unless `value` is finite and `ok`.
-pub(crate) fn check(
-    field: &'static str,
-    value: f32,
-    reason: &'static str,
-    ok: impl Fn(f32) -> bool,
-) -> Result<(), VegetationError> {
-    if value.is_finite() && ok(value) {
-        Ok(())
-    } else {
-        Err(VegetationError::BadSetting {
-            field,
-            value: value as f64,
-            reason,
-        })
     }
 }
 
