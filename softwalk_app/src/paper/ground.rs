@@ -9,7 +9,7 @@ use softwalk_systems::terrain::TerrainMaterial;
 
 use super::measure::{changed_cells, lift_offs, print_depth, rim_split, sharpness, steepest_slope};
 use super::report::{Check, Claim};
-use super::stats::mean;
+use super::stats::{mean, median};
 use super::trace::{Trace, trace};
 use super::variants::{RIGID, builtin, checked, walker, with_material, with_slope};
 use super::{PaperError, PaperOptions};
@@ -61,8 +61,10 @@ impl MaterialWalk {
         )
     }
 
+    /// The median print's sharpness: a print left nearly flat (a foot that
+    /// barely pressed) has a tiny depth, and its ratio says nothing of the walls.
     fn sharpness(&self) -> f32 {
-        mean(
+        median(
             self.prints
                 .iter()
                 .filter_map(|&c| sharpness(&self.trace.initial, &self.trace.last, c)),

@@ -9,6 +9,22 @@ pub fn mean(xs: impl IntoIterator<Item = f32>) -> f32 {
     (sum / n.max(1) as f64) as f32
 }
 
+/// Median of a series (0 for an empty one): the middle value, or the mean
+/// of the two middle ones. One outlier cannot move it.
+pub fn median(xs: impl IntoIterator<Item = f32>) -> f32 {
+    let mut v: Vec<f32> = xs.into_iter().collect();
+    if v.is_empty() {
+        return 0.0;
+    }
+    v.sort_by(f32::total_cmp);
+    let mid = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[mid]
+    } else {
+        0.5 * (v[mid - 1] + v[mid])
+    }
+}
+
 /// Population standard deviation of a series.
 pub fn std_dev(xs: &[f32]) -> f32 {
     let m = mean(xs.iter().copied());
@@ -28,6 +44,14 @@ pub fn peak_to_peak(xs: &[f32]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn one_outlier_does_not_move_the_median() {
+        assert_eq!(median([3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median([4.0, 1.0, 2.0, 3.0]), 2.5);
+        assert_eq!(median([20.0, 21.0, 1.0e6, 19.0, 22.0]), 21.0);
+        assert_eq!(median([]), 0.0);
+    }
 
     #[test]
     fn statistics_of_a_small_series() {

@@ -7,7 +7,7 @@ use engine::ecs::Entity;
 use engine::geom::TriMesh;
 use engine::schedule::App;
 use softwalk_systems::character::{Balance, CharacterRig};
-use softwalk_systems::sim::{SimBuilder, SimError};
+use softwalk_systems::sim::{SimBuilder, SimError, attach_rig};
 use softwalk_systems::terrain::{Heightfield, MaterialTable};
 
 use super::material::material_table;
@@ -111,7 +111,8 @@ impl Scene {
         Ok((app, walkers))
     }
 
-    /// Gives each character drawn as a model its [`CharacterRig`]; one
+    /// Gives each character drawn as a model its [`CharacterRig`], whose
+    /// skinned volume sets its centre of mass and inertia; one
     /// model and bone table are loaded once and shared.
     fn attach_rigs(&self, app: &mut App, walkers: &[Entity]) -> Result<(), SceneError> {
         let mut loaded: Vec<(&str, &BTreeMap<String, String>, Option<CharacterRig>)> = Vec::new();
@@ -129,8 +130,7 @@ impl Scene {
                 }
             };
             if let Some(rig) = rig {
-                app.world
-                    .insert(entity, (rig,))
+                attach_rig(&mut app.world, entity, rig)
                     .map_err(spawn_failed(format!("{field}.model")))?;
             }
         }

@@ -185,7 +185,7 @@ impl RigidProxy {
         RigidProxy {
             mass,
             inertia,
-            pitch_inertia: inertia.x_axis.x + mass * body.com_height * body.com_height,
+            pitch_inertia: about_ground(inertia.x_axis.x, mass, body.com_height),
             com: Vec3::Y * body.com_height,
             orientation: Quat::IDENTITY,
             angular_velocity: Vec3::ZERO,
@@ -195,7 +195,7 @@ impl RigidProxy {
             torque: 0.0,
             slope: 0.0,
             slow_offset: 0.0,
-            roll_inertia: inertia.z_axis.z + mass * body.com_height * body.com_height,
+            roll_inertia: about_ground(inertia.z_axis.z, mass, body.com_height),
             lean: 0.0,
             lean_rate: 0.0,
             turn_lean: 0.0,
@@ -204,6 +204,20 @@ impl RigidProxy {
             capsule_half_height: 0.35 * body.desc.height,
         }
     }
+
+    /// Takes the inertia and centre of mass height of `body` (after
+    /// [`CharacterBody::set_mass_properties`]), keeping the tilt and lean state.
+    pub fn take_body_mass(&mut self, body: &CharacterBody) {
+        self.inertia = body.inertia * (self.mass / body.desc.mass);
+        self.pitch_inertia = about_ground(self.inertia.x_axis.x, self.mass, body.com_height);
+        self.roll_inertia = about_ground(self.inertia.z_axis.z, self.mass, body.com_height);
+    }
+}
+
+/// An inertia about the centre of mass moved to the ground below it, `com_height`
+/// lower (the parallel-axis theorem).
+fn about_ground(about_com: f32, mass: f32, com_height: f32) -> f32 {
+    about_com + mass * com_height * com_height
 }
 
 /// The animated centre of mass: the upper body above the walking pelvis and

@@ -20,6 +20,15 @@ const MASS_FOOT: f32 = 0.0145;
 /// Segment centre of mass from the proximal joint, as a fraction of its length.
 const PROXIMAL_COM: f32 = 0.433;
 
+/// A body's mass properties in its own frame (X right, Y up, Z forward).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyMass {
+    /// Height of the centre of mass above the soles, metres.
+    pub com_height: f32,
+    /// Inertia about the centre of mass, kg·m².
+    pub inertia: Mat3,
+}
+
 /// A character's body: dimensions, masses, centre of mass and inertia.
 ///
 /// Lengths are in metres. The body frame has X to the character's right, Y up
@@ -186,6 +195,14 @@ impl CharacterBody {
         j[Joint::Neck as usize] = Vec3::new(0.0, self.hip_height + self.trunk, 0.0);
         j[Joint::HeadTop as usize] = Vec3::new(0.0, self.desc.height, 0.0);
         j
+    }
+
+    /// Takes the centre of mass height and inertia of `mass`, for example
+    /// those of a skinned mesh (`BodyMass::of_rig`), in place of the
+    /// capsules' own.
+    pub fn set_mass_properties(&mut self, mass: BodyMass) {
+        self.com_height = mass.com_height;
+        self.inertia = mass.inertia;
     }
 
     /// Whole-body centre of mass and inertia about it, from the standing pose:

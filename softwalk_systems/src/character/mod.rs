@@ -46,6 +46,7 @@ mod path;
 mod pelvis;
 mod pose;
 mod rays;
+mod rig_mass;
 mod rig_pose;
 mod skeleton;
 mod steering;
@@ -57,7 +58,7 @@ pub use balance::{
     DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, MAX_TURN_LEAN,
     RigidProxy, animated_com, balance_stage, turn_lean,
 };
-pub use body::CharacterBody;
+pub use body::{BodyMass, CharacterBody};
 pub use character_rig::{ArmChain, CharacterRig};
 pub use desc::CharacterDesc;
 pub use error::CharacterError;

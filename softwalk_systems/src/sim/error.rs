@@ -2,7 +2,7 @@ use engine::geom::GeomError;
 use engine::schedule::{AppError, ScheduleError};
 use thiserror::Error;
 
-use crate::character::CharacterError;
+use crate::character::{CharacterError, ModelError};
 use crate::terrain::TerrainError;
 use crate::vegetation::VegetationError;
 
@@ -17,6 +17,15 @@ pub enum SimError {
         /// Why.
         #[source]
         source: CharacterError,
+    },
+    /// A character's model could not be attached.
+    #[error("character `{name}`: its model: {source}")]
+    Model {
+        /// The character's name.
+        name: String,
+        /// Why.
+        #[source]
+        source: ModelError,
     },
     /// The terrain could not be built or stepped.
     #[error("terrain: {0}")]

@@ -47,6 +47,7 @@ mod ground_state;
 mod ground_view;
 pub mod labels;
 mod pipeline;
+mod rig_attach;
 mod run;
 mod sole_ground;
 mod systems_character;
@@ -63,6 +64,7 @@ pub use error::SimError;
 pub use ground_state::GroundState;
 pub use ground_view::SceneGround;
 pub use pipeline::add_pipeline;
+pub use rig_attach::attach_rig;
 pub use run::{run_steps, step};
 pub use sole_ground::{SoleGround, clamped_height, sole_ends};
 pub use systems_character::{

@@ -1,0 +1,124 @@
+//! A character's centre of mass and inertia from its skinned mesh: the
+//! model posed standing as the driver stands, its volume filled at the
+//! uniform density that gives the character's mass.
+
+use engine::anim::{SkinnedVertices, skin_serial};
+use engine::geom::SolidMass;
+use glam::{Mat3, Vec3};
+
+use super::body::{BodyMass, CharacterBody};
+use super::character_rig::CharacterRig;
+use super::model_error::ModelError;
+use super::pose::Pose;
+use super::rig_pose::RigPose;
+use super::skeleton::Joint;
+use crate::foot::FootState;
+
+impl BodyMass {
+    /// The mass properties of `rig` skinned in the driver's standing `pose`
+    /// and `feet` (as [`super::Character::new`] poses it), at the uniform
+    /// density that gives `body` its mass. The centre of mass height is
+    /// measured from the pelvis down, as if the pelvis stood at the body's
+    /// rest hip height.
+    ///
+    /// Fails when the mesh encloses no volume, for example a single sheet.
+    pub fn of_rig(
+        rig: &CharacterRig,
+        body: &CharacterBody,
+        pose: &Pose,
+        feet: &[FootState; 2],
+    ) -> Result<BodyMass, ModelError> {
+        let posed = RigPose::drive(rig, body, pose, feet);
+        let (mut globals, mut matrices) = (Vec::new(), Vec::new());
+        posed.skin_matrices(rig, &mut globals, &mut matrices);
+        let mut skinned = SkinnedVertices::default();
+        skin_serial(&rig.model().mesh, &matrices, &mut skinned)?;
+        // Heights are measured from where the soles would be with the pelvis
+        // at the body's rest hip height, as the body's own figures are: the
+        // driver stands with its knees slightly bent.
+        let pelvis = pose.joint(Joint::Pelvis);
+        let origin = pelvis - Vec3::Y * body.hip_height;
+        let to_body = body_frame(pose);
+        let local: Vec<Vec3> = skinned
+            .positions
+            .iter()
+            .map(|&p| to_body * (p - origin))
+            .collect();
+        let solid = SolidMass::of_surface(&local, rig.model().mesh.indices()).ok_or_else(|| {
+            ModelError::Shape {
+                reason: "the skinned mesh encloses no volume, so it has no mass to balance"
+                    .to_string(),
+            }
+        })?;
+        let density = body.desc.mass / solid.volume;
+        Ok(BodyMass {
+            com_height: solid.centroid.y,
+            inertia: solid.inertia * density,
+        })
+    }
+}
+
+/// The rotation from world axes to the body frame of `pose`: X right, Y up,
+/// Z forward.
+fn body_frame(pose: &Pose) -> Mat3 {
+    let forward = (pose.forward * Vec3::new(1.0, 0.0, 1.0)).normalize_or(Vec3::Z);
+    let right = forward.cross(Vec3::Y);
+    Mat3::from_cols(right, Vec3::Y, forward).transpose()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::character::{Character, CharacterDesc, WalkPath};
+    use crate::ground::FlatGround;
+
+    fn standing(desc: CharacterDesc) -> Character {
+        let path = WalkPath::straight(Vec3::new(1.0, 0.3, -2.0), Vec3::X, 5.0).unwrap();
+        Character::new(desc, &path, &FlatGround(0.3)).unwrap()
+    }
+
+    #[test]
+    fn the_human_has_a_human_centre_of_mass_and_inertia() {
+        let rig = CharacterRig::human().unwrap();
+        let c = standing(CharacterDesc::adult());
+        let m = BodyMass::of_rig(&rig, &c.body, &c.pose, &c.feet).unwrap();
+        // A standing adult's centre of mass is at 53–57 % of the standing height;
+        // the rig is scaled by hip height, so compare with the rig's own height.
+        let height = rig.height() * c.body.hip_height / rig.hip_height();
+        let ratio = m.com_height / height;
+        assert!(
+            (0.52..0.58).contains(&ratio),
+            "COM at {ratio:.3} of the height"
+        );
+        // Pitch and roll inertia of order 10 kg·m², yaw about a tenth of it.
+        let (pitch, yaw, roll) = (m.inertia.x_axis.x, m.inertia.y_axis.y, m.inertia.z_axis.z);
+        assert!((7.0..16.0).contains(&pitch), "pitch {pitch}");
+        assert!((7.0..16.0).contains(&roll), "roll {roll}");
+        assert!((0.5..3.0).contains(&yaw), "yaw {yaw}");
+        // Left and right mirror each other: no right-up or right-forward product.
+        assert!(m.inertia.x_axis.y.abs() < 0.05 * pitch && m.inertia.x_axis.z.abs() < 0.05 * pitch);
+    }
+
+    #[test]
+    fn the_mass_properties_do_not_depend_on_where_the_character_stands() {
+        let rig = CharacterRig::human().unwrap();
+        let here = standing(CharacterDesc::adult());
+        let path = WalkPath::straight(Vec3::new(-4.0, 0.0, 7.0), Vec3::Z, 5.0).unwrap();
+        let there = Character::new(CharacterDesc::adult(), &path, &FlatGround(0.0)).unwrap();
+        let a = BodyMass::of_rig(&rig, &here.body, &here.pose, &here.feet).unwrap();
+        let b = BodyMass::of_rig(&rig, &there.body, &there.pose, &there.feet).unwrap();
+        assert!((a.com_height - b.com_height).abs() < 1e-3);
+        assert!((a.inertia - b.inertia).abs_diff_eq(Mat3::ZERO, 0.05));
+    }
+
+    #[test]
+    fn a_taller_heavier_body_has_more_inertia() {
+        let rig = CharacterRig::human().unwrap();
+        let small = standing(CharacterDesc::child());
+        let tall = standing(CharacterDesc::new(1.9, 85.0));
+        let s = BodyMass::of_rig(&rig, &small.body, &small.pose, &small.feet).unwrap();
+        let t = BodyMass::of_rig(&rig, &tall.body, &tall.pose, &tall.feet).unwrap();
+        assert!(t.com_height > 1.5 * s.com_height);
+        assert!(t.inertia.x_axis.x > 10.0 * s.inertia.x_axis.x);
+    }
+}
