@@ -23,9 +23,9 @@ pub enum SimError {
     Model {
         /// The character's name.
         name: String,
-        /// Why.
+        /// Why (boxed: a model error is large).
         #[source]
-        source: ModelError,
+        source: Box<ModelError>,
     },
     /// The terrain could not be built or stepped.
     #[error("terrain: {0}")]

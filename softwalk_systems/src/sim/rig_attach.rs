@@ -35,7 +35,10 @@ pub fn attach_rig(world: &mut World, entity: Entity, rig: CharacterRig) -> Resul
                 .get::<CharacterName>(entity)
                 .map(|n| n.0.clone())
                 .unwrap_or_default();
-            SimError::Model { name, source }
+            SimError::Model {
+                name,
+                source: Box::new(source),
+            }
         })?
     };
     {
