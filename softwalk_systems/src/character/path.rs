@@ -110,8 +110,9 @@ pub struct WalkPath {
 }
 
 /// The largest angle between the travel of a path stepped back and straight
-/// behind the walker, radians (45°: a diagonal step back).
-pub const MAX_BACKWARD_ASLANT: f32 = std::f32::consts::FRAC_PI_4;
+/// behind the walker, radians (35°): further aslant, a foot lifting off
+/// drags its sole sideways through the wall of its own print on loose ground.
+pub const MAX_BACKWARD_ASLANT: f32 = 0.61;
 /// A travel within this of straight behind (radians) is straight behind.
 const STRAIGHT_BEHIND: f32 = 1.0e-6;
 

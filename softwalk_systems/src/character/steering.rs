@@ -407,7 +407,7 @@ fn walk_path(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::character::CharacterDesc;
+    use crate::character::{CharacterDesc, MAX_BACKWARD_ASLANT};
 
     const DT: f32 = 1.0 / 60.0;
 
@@ -510,21 +510,23 @@ mod tests {
         let (body, mut gait, mut path) = standing();
         at_rest(&mut gait);
         let mut steering = Steering::new();
-        // S with A, camera behind: back and to the walker's left (+x).
+        // S with A, camera behind: back and to the walker's left (+x), as
+        // far aslant as a step back goes.
         steering.set_desired_velocity(wish(135.0, 1.2)).unwrap();
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(path.is_backward() && !steering.is_pivoting());
+        let aslant = 180.0 - MAX_BACKWARD_ASLANT.to_degrees();
         let back = path.point_at(path.origin() + 1.0);
-        let expected = wish(135.0, 1.0);
+        let expected = wish(aslant, 1.0);
         assert!((back.position - expected).length() < 1e-5, "{back:?}");
         assert!((back.heading - Vec2::Y).length() < 1e-6, "keeps facing +z");
-        assert!((back.travel - expected).length() < 1e-6);
-        // A wish further to the side than a diagonal steps back diagonally.
-        steering.set_desired_velocity(wish(-125.0, 1.2)).unwrap();
+        assert!((back.travel - expected).length() < 1e-5);
+        // To the right, and within the bound: as wished.
+        steering.set_desired_velocity(wish(-150.0, 1.2)).unwrap();
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         let back = path.point_at(path.origin() + 1.0);
         assert!(
-            (back.position - wish(-135.0, 1.0)).length() < 1e-5,
+            (back.position - wish(-150.0, 1.0)).length() < 1e-5,
             "{back:?}"
         );
         assert!((back.heading - Vec2::Y).length() < 1e-6);
