@@ -265,6 +265,65 @@ fn back_with_a_side_key_steps_back_aslant_and_shift_hurries_in_short_steps() {
     assert!(whole.passes(), "{:?}", whole.failures());
 }
 
+/// Steps of the walk that stops on sand (5 s at 60 Hz).
+const STOP_STEPS: u64 = 300;
+/// The step before which every key is released.
+const STOP_AT: usize = 150;
+/// The slowest the walker moves before it rests, m/s (the braking floor).
+const LAST_SPEED_M_S: f32 = 0.3;
+
+#[test]
+fn a_stop_brakes_at_once_leans_back_and_rests_between_the_feet() {
+    let (run, samples, _) = recorded_on_sand("stop_sand.toml", STOP_STEPS);
+    let walked = &run.walkers[0];
+    let speed: Vec<f32> = walked.iter().map(|m| m.velocity.length()).collect();
+    let rest = STOP_AT + speed[STOP_AT..].iter().position(|&v| v == 0.0).unwrap();
+    let profile: Vec<String> = (STOP_AT - 1..=rest)
+        .step_by(3)
+        .map(|s| format!("{:.2}", speed[s]))
+        .collect();
+    let tilt = |s: usize| walked[s].character.tilt.to_degrees();
+    let walking_tilt = (STOP_AT - 60..STOP_AT).map(tilt).sum::<f32>() / 60.0;
+    let braking_tilt = (STOP_AT..rest).map(tilt).fold(f32::INFINITY, f32::min);
+    let travelled = walked[rest].character.com.x - walked[STOP_AT - 1].character.com.x;
+    let seconds = (rest + 1 - STOP_AT) as f32 * run.dt;
+    let at_rest = &walked[STOP_STEPS as usize - 1].character;
+    let feet = at_rest.feet.map(|f| f.x - at_rest.com.x);
+    let slide = worst_slide(&samples);
+    let whole = run.quality(0);
+    println!(
+        "stop on sand: pelvis speed every 3 steps from the key (m/s) {}\n\
+         rests after {seconds:.2} s and {travelled:.2} m; tilt {walking_tilt:.2}° walking, \
+         {braking_tilt:.2}° at most braking; feet {:.2} m and {:.2} m from the COM along x; \
+         slide {:.2} cm\nwhole walk: {whole}",
+        profile.join(" "),
+        feet[0],
+        feet[1],
+        slide * 100.0
+    );
+    assert!(speed[STOP_AT] < speed[STOP_AT - 1], "did not slow at once");
+    let slowing = speed[STOP_AT - 1..=rest]
+        .windows(2)
+        .all(|w| w[1] <= w[0] + 1e-4);
+    assert!(slowing, "sped up while stopping: {profile:?}");
+    assert!(
+        speed[rest - 1] <= LAST_SPEED_M_S,
+        "halted from {} m/s",
+        speed[rest - 1]
+    );
+    assert!((0.3..=1.2).contains(&seconds), "stopped in {seconds} s");
+    assert!(
+        braking_tilt < walking_tilt - 2.0,
+        "no lean back: {braking_tilt}°"
+    );
+    assert!(
+        feet[0].min(feet[1]) < 0.05 && feet[0].max(feet[1]) > -0.05,
+        "rests beside its feet, not between them: {feet:?}"
+    );
+    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
+    assert!(whole.passes(), "{:?}", whole.failures());
+}
+
 /// Mean lean of the trunk towards the character's left over the last
 /// `settled` seconds of `seconds` walking `path`, at `speed` m/s, in radians:
 /// from the pose (pelvis to neck) and from the proxy, and the largest

@@ -97,9 +97,9 @@ pub const DEFAULT_LATERAL_STIFFNESS: f32 = 60.0;
 pub const DEFAULT_LATERAL_DAMPING: f32 = 15.0;
 /// The largest lean into a turn, radians (30°).
 pub const MAX_TURN_LEAN: f32 = 0.52;
-/// The largest lean back while braking, radians (5°): the legs do most of
+/// The largest lean back while braking, radians (3°): the legs do most of
 /// the braking, the trunk leans back slightly.
-pub const MAX_BRAKE_LEAN: f32 = 0.087;
+pub const MAX_BRAKE_LEAN: f32 = 0.052;
 /// Gravity, m/s², for the turn lean.
 const GRAVITY: f32 = 9.81;
 
