@@ -110,6 +110,16 @@ fn walking() -> Vec<InputEvent> {
     }]
 }
 
+/// Walking off along +x, then every key released at step 60.
+fn stopped() -> Vec<InputEvent> {
+    let mut events = walking();
+    events.push(InputEvent {
+        step: 60,
+        action: InputAction::Velocity([0.0, 0.0]),
+    });
+    events
+}
+
 /// Frames from a key to its first visible change, for each case.
 fn latencies(cases: Vec<(&str, Vec<InputEvent>, u64, InputAction)>) -> u64 {
     let mut worst = 0;
@@ -158,6 +168,12 @@ fn starting_turning_stepping_back_stopping_and_painting_show_within_two_frames()
             walking(),
             120,
             InputAction::Velocity([-1.2, 0.0]),
+        ),
+        (
+            "W after a stop",
+            stopped(),
+            180,
+            InputAction::Velocity([1.2, 0.0]),
         ),
         ("brush", walking(), 120, InputAction::Brush("snow".into())),
     ]);
