@@ -320,6 +320,7 @@ fn a_stop_brakes_at_once_leans_back_and_rests_between_the_feet() {
         feet[0].min(feet[1]) < 0.05 && feet[0].max(feet[1]) > -0.05,
         "rests beside its feet, not between them: {feet:?}"
     );
+    assert_eq!(at_rest.contact, [true, true], "a foot in the air at rest");
     assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
     assert!(whole.passes(), "{:?}", whole.failures());
 }

@@ -59,9 +59,15 @@ pub struct SteeringSettings {
     pub stop_deceleration: f32,
     /// The shortest distance to a stop, metres.
     pub stop_min_distance: f32,
-    /// The smallest speed scale while braking (the last foot still closes
-    /// at a walking cadence).
+    /// The smallest speed scale while braking.
     pub stop_speed_floor: f32,
+    /// How fast the speed scale returns to where braking began while the
+    /// walker, at its stop, closes its last step, per second: the pelvis no
+    /// longer moves, and the last foot closes at a walking cadence (the bob,
+    /// which scales with speed, changes by under 2 mm a step at 60 Hz). Once
+    /// both feet are planted the scale holds (the stance fraction, which
+    /// follows the speed, must not move a planted foot into a swing).
+    pub stop_close_rate: f32,
     /// Desired speeds below this stop the walk, m/s.
     pub stop_speed: f32,
     /// How fast the speed scale follows the wish, per second (a sudden
@@ -91,6 +97,7 @@ impl Default for SteeringSettings {
             stop_deceleration: 2.0,
             stop_min_distance: 0.05,
             stop_speed_floor: 0.25,
+            stop_close_rate: 3.0,
             stop_speed: 0.05,
             speed_change_rate: 1.0,
             backward_start: 120f32.to_radians(),
@@ -228,9 +235,17 @@ pub fn steer_stage(
     let scale = &mut steering.speed_scale;
     let dt = clamp_dt(dt);
     if let Some(brake) = &steering.brake {
-        let moved = gait.velocity.length() * dt;
-        let left = path.end_distance() - gait.distance - moved;
-        *scale = brake.scale_at(left, steering.settings.stop_speed_floor);
+        let s = &steering.settings;
+        *scale = if gait.stopped {
+            *scale
+        } else if path.is_finished(gait.distance) {
+            let most = s.stop_close_rate.max(0.0) * dt;
+            *scale + (brake.from_scale - *scale).clamp(-most, most)
+        } else {
+            let moved = gait.velocity.length() * dt;
+            let left = path.end_distance() - gait.distance - moved;
+            brake.scale_at(left, s.stop_speed_floor)
+        };
         return *scale;
     }
     let most = steering.settings.speed_change_rate.max(0.0) * dt;
