@@ -93,23 +93,28 @@ fn worst_slide(samples: &[SoleSample]) -> f32 {
 
 #[test]
 fn turning_on_the_spot_keeps_planted_feet_still() {
-    let mut s = Steered::new();
-    // A wish 110° round (past `pivot_start`, short of stepping back) turns
-    // on the spot before walking off.
-    let (sin, cos) = 110f32.to_radians().sin_cos();
-    let samples = s.walk(Vec2::new(sin, cos) * 1.2, 3.0);
-    let slide = worst_slide(&samples);
-    let heading = s.character.gait.pelvis.heading;
-    let travelled = s.character.gait.pelvis.position.length();
-    println!(
-        "turn on the spot: slide {:.2} cm, heading {heading:?}, pelvis moved {travelled:.2} m",
-        slide * 100.0
-    );
-    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
-    assert!(
-        (heading - Vec2::new(sin, cos)).length() < 0.1,
-        "did not turn round: {heading:?}"
-    );
+    // A wish 110° round (past `pivot_start`, short of stepping back), and
+    // one straight behind faster than `backward_max_speed`, turn on the spot
+    // before walking off.
+    let fastest_back = SteeringSettings::default().backward_max_speed;
+    for (degrees, speed) in [(110f32, 1.2), (180.0, fastest_back + 0.3)] {
+        let mut s = Steered::new();
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let samples = s.walk(Vec2::new(sin, cos) * speed, 3.0);
+        let slide = worst_slide(&samples);
+        let heading = s.character.gait.pelvis.heading;
+        let travelled = s.character.gait.pelvis.position.length();
+        println!(
+            "turn on the spot by {degrees}° at {speed} m/s: slide {:.2} cm, heading {heading:?}, \
+             pelvis moved {travelled:.2} m",
+            slide * 100.0
+        );
+        assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
+        assert!(
+            (heading - Vec2::new(sin, cos)).length() < 0.1,
+            "did not turn round: {heading:?}"
+        );
+    }
 }
 
 #[test]
