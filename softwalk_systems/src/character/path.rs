@@ -407,6 +407,29 @@ mod tests {
     }
 
     #[test]
+    fn a_path_stepped_back_aslant_keeps_the_facing_within_its_bound() {
+        let run = || vec![PathSegment::Straight { length: 2.0 }];
+        let behind = Vec3::new(0.0, 0.0, -1.0);
+        let straight = WalkPath::stepped_back(Vec3::ZERO, Vec3::Z, behind, run()).unwrap();
+        let plain = WalkPath::walked_backward(Vec3::ZERO, Vec3::Z, run()).unwrap();
+        assert_eq!(straight, plain, "straight behind is walked backward");
+        // 30° off straight behind, to the walker's left (+x).
+        let (sin, cos) = 30f32.to_radians().sin_cos();
+        let aslant = Vec3::new(sin, 0.0, -cos);
+        let p = WalkPath::stepped_back(Vec3::ZERO, Vec3::Z, aslant, run()).unwrap();
+        let end = p.point_at(1.0);
+        assert!((end.position - Vec2::new(sin, -cos)).length() < 1e-6);
+        assert!((end.heading - Vec2::Y).length() < 1e-6, "{end:?}");
+        assert!((end.travel - Vec2::new(sin, -cos)).length() < 1e-6);
+        // Straight to the side: stepped back at the bound.
+        let p = WalkPath::stepped_back(Vec3::ZERO, Vec3::Z, Vec3::NEG_X, run()).unwrap();
+        let (sin, cos) = MAX_BACKWARD_ASLANT.sin_cos();
+        let end = p.point_at(1.0);
+        assert!((end.position - Vec2::new(-sin, -cos)).length() < 1e-6);
+        assert!((end.heading - Vec2::Y).length() < 1e-6);
+    }
+
+    #[test]
     fn circle_loops_back_to_its_start() {
         let p = WalkPath::circle(Vec3::new(1.0, 0.0, 0.0), Vec3::Z, 3.0).unwrap();
         let a = p.point_at(0.5);
