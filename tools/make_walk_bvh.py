@@ -24,7 +24,8 @@ CYCLE_S = 1.1
 CYCLES = 3
 FRAMES_PER_CYCLE = round(CYCLE_S * FPS)
 # Stance of a normal walk: heel strike at phase 0, toe-off at about 0.6.
-STANCE_WINDOW = (0.08, 0.5)
+# The left foot lies flat between these phases.
+STANCE_WINDOW = (0.1, 0.4)
 
 # The hierarchy: (name, parent, offset in cm, has rotation channels).
 # End sites are (name None, parent, offset).
@@ -183,19 +184,19 @@ def root_height(g):
 
 
 def stance_contact_z(p):
-    """The left stance sole's lowest point, z relative to the root."""
-    g = globals_at(p)
-    return min(sole_points(g, "Left"), key=lambda pt: pt[1])[2]
+    """The left sole's centre (between heel and ball), z relative to the root."""
+    heel, ball, _ = sole_points(globals_at(p), "Left")
+    return 0.5 * (heel[2] + ball[2])
 
 
 def walking_speed():
-    """cm/s that keeps the left stance sole in place over the stance window."""
+    """cm/s that keeps the flat left sole in place on average."""
     a, b = STANCE_WINDOW
     return (stance_contact_z(a) - stance_contact_z(b)) / ((b - a) * CYCLE_S)
 
 
 def largest_slide(speed):
-    """The most the left sole's lowest point moves, cm, over the stance window."""
+    """The most the flat left sole's centre moves, cm."""
     a, b = STANCE_WINDOW
     steps = 40
     zs = []
@@ -268,7 +269,7 @@ def main():
     print(
         f"wrote {out}: {CYCLES} cycles of {CYCLE_S} s at {FPS} fps, "
         f"{speed / 100.0:.2f} m/s, stride {speed * CYCLE_S / 100.0:.2f} m, "
-        f"stance sole slides at most {largest_slide(speed):.1f} cm"
+        f"flat sole slides at most {largest_slide(speed):.1f} cm"
     )
 
 
