@@ -7,10 +7,11 @@ LeftLeg, LeftFoot, LeftToeBase, Spine, Spine1, Neck, Head, LeftShoulder,
 LeftArm, LeftForeArm, LeftHand, ...), lengths are centimetres, +Y is up, the
 walker faces +Z and its left is +X.
 
-The joint angles are prescribed; the root follows from them: each frame it is
-raised so that the lowest point of either sole touches the ground (y = 0), and
-it moves forward at the constant speed that keeps the stance sole in place on
-average. The script prints that speed and the largest slide of a stance sole.
+The joint angles are prescribed, but for the hip of a standing leg: the root
+moves forward at a constant speed and each stance hip is solved so that its
+sole's lowest point stays where it landed (the speed is the one that takes
+the hip from its heel-strike to its toe-off flexion). Each frame the root is
+raised so that the lowest point of either sole touches the ground (y = 0).
 
 Usage: python3 tools/make_walk_bvh.py [OUTPUT]   (default assets/clips/walk.bvh)
 """
@@ -23,9 +24,8 @@ FPS = 60
 CYCLE_S = 1.1
 CYCLES = 3
 FRAMES_PER_CYCLE = round(CYCLE_S * FPS)
-# Stance of a normal walk: heel strike at phase 0, toe-off at about 0.6.
-# The left foot lies flat between these phases.
-STANCE_WINDOW = (0.1, 0.4)
+# Phase of toe-off (0 = heel strike): a foot stands for this part of the cycle.
+TOE_OFF = 0.6
 
 # The hierarchy: (name, parent, offset in cm, has rotation channels).
 # End sites are (name None, parent, offset).
@@ -71,58 +71,60 @@ def bump(p, centre, width):
     return math.exp(-0.5 * (d / width) ** 2)
 
 
-def hip_flexion(p):
-    """Thigh forward of the vertical, degrees: +30 at heel strike, -10 at toe-off."""
-    return 10.0 + 20.0 * math.cos(2.0 * math.pi * (p - 0.05))
-
-
-def knee_flexion(p):
-    """Degrees: 5 at heel strike, 18 at loading, near 0 mid-stance, 62 in swing."""
-    return 3.0 + 15.0 * bump(p, 0.15, 0.07) + 59.0 * bump(p, 0.72, 0.11)
-
-
-def ankle_dorsiflexion(p):
-    """Degrees, positive toe up: foot flat, tibia advance, push-off, swing."""
-    return (
-        -7.0 * bump(p, 0.06, 0.04)
-        + 10.0 * bump(p, 0.43, 0.1)
-        - 17.0 * bump(p, 0.62, 0.05)
-        + 3.0 * bump(p, 0.85, 0.1)
+def periodic_spline(keys, p):
+    """A smooth periodic curve through `keys`, values at evenly spaced phases
+    from 0 (a uniform Catmull-Rom spline closed on itself)."""
+    n = len(keys)
+    x = (p % 1.0) * n
+    k = int(x) % n
+    u = x - int(x)
+    p0, p1, p2, p3 = (keys[(k + d) % n] for d in (-1, 0, 1, 2))
+    return 0.5 * (
+        2.0 * p1
+        + (p2 - p0) * u
+        + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u * u
+        + (3.0 * p1 - p0 - 3.0 * p2 + p3) * u * u * u
     )
 
 
-def toe_extension(p):
-    """Degrees the toes bend up at push-off (the ball stays on the ground)."""
-    return 25.0 * bump(p, 0.58, 0.05)
+# Sagittal angles of one leg in degrees at phases 0, 0.1, ..., 0.9 (0 = its
+# heel strike, toe-off at about 0.6), after Perry's normative curves.
+# Hip flexion relative to the pelvis: +30 at heel strike, -10 at toe-off.
+HIP_FLEXION = [27.0, 26.0, 20.0, 10.0, 0.0, -9.0, -10.0, 12.0, 27.0, 30.0]
+# Knee flexion: 5 at heel strike, loading response, near 0 mid-stance, 62 in swing.
+KNEE_FLEXION = [5.0, 17.0, 15.0, 7.0, 4.0, 11.0, 38.0, 63.0, 58.0, 30.0]
+# Ankle dorsiflexion (toe up): foot flat, tibia advance, push-off, swing.
+ANKLE_DORSIFLEXION = [0.0, -5.0, 2.0, 6.0, 9.0, 5.0, -14.0, 0.0, 10.0, 7.0]
+# Toes bent up at push-off (the ball stays on the ground).
+TOE_EXTENSION = [0.0, 0.0, 0.0, 0.0, 5.0, 18.0, 10.0, 0.0, 0.0, 0.0]
+# Shoulder flexion (arm forward): back at this side's heel strike.
+SHOULDER_FLEXION = [-15.0, -12.0, -5.0, 5.0, 14.0, 18.0, 14.0, 5.0, -5.0, -12.0]
+# Elbow flexion: most bent as the arm swings forward.
+ELBOW_FLEXION = [12.0, 13.0, 16.0, 22.0, 28.0, 30.0, 28.0, 22.0, 16.0, 13.0]
+# Forward (anterior) tilt of the pelvis, degrees.
+PELVIS_TILT = 4.0
 
 
-def shoulder_flexion(p):
-    """Left arm forward of the vertical, degrees: back at left heel strike."""
-    return 3.0 - 17.0 * math.cos(2.0 * math.pi * (p - 0.02))
-
-
-def elbow_flexion(p):
-    """Degrees: most bent as the arm swings forward."""
-    return 20.0 - 10.0 * math.cos(2.0 * math.pi * (p - 0.02))
-
-
-def angles(p):
+def prescribed_angles(p):
     """Each joint's (z, x, y) Euler angles in degrees at walk phase `p`
-    (0 = left heel strike); positive x turns a hanging bone backward."""
+    (0 = left heel strike) from the normative curves; positive x turns a
+    hanging bone backward."""
     q = (p + 0.5) % 1.0
     two_pi = 2.0 * math.pi
-    pelvis_yaw = -5.0 * math.cos(two_pi * p)
-    pelvis_list = 4.0 * math.cos(two_pi * (p - 0.2))
+    pelvis_yaw = -6.0 * math.cos(two_pi * p)
+    pelvis_list = 3.0 * math.cos(two_pi * (p - 0.2))
     a = {name: (0.0, 0.0, 0.0) for name, _, _ in JOINTS}
-    a["Hips"] = (pelvis_list, 0.0, pelvis_yaw)
+    a["Hips"] = (pelvis_list, PELVIS_TILT, pelvis_yaw)
     for side, phase in (("Left", p), ("Right", q)):
-        a[side + "UpLeg"] = (0.0, -hip_flexion(phase), 0.0)
-        a[side + "Leg"] = (0.0, knee_flexion(phase), 0.0)
-        a[side + "Foot"] = (0.0, -ankle_dorsiflexion(phase), 0.0)
-        a[side + "ToeBase"] = (0.0, -toe_extension(phase), 0.0)
-        a[side + "Arm"] = (0.0, -shoulder_flexion(phase), 0.0)
-        a[side + "ForeArm"] = (0.0, -elbow_flexion(phase), 0.0)
-    a["Spine"] = (-0.6 * pelvis_list, 0.0, -1.6 * pelvis_yaw)
+        a[side + "UpLeg"] = (0.0, -periodic_spline(HIP_FLEXION, phase), 0.0)
+        a[side + "Leg"] = (0.0, periodic_spline(KNEE_FLEXION, phase), 0.0)
+        a[side + "Foot"] = (0.0, -periodic_spline(ANKLE_DORSIFLEXION, phase), 0.0)
+        a[side + "ToeBase"] = (0.0, -periodic_spline(TOE_EXTENSION, phase), 0.0)
+        # The arm swings with the opposite leg.
+        arm = (phase + 0.5) % 1.0
+        a[side + "Arm"] = (0.0, -periodic_spline(SHOULDER_FLEXION, arm), 0.0)
+        a[side + "ForeArm"] = (0.0, -periodic_spline(ELBOW_FLEXION, arm), 0.0)
+    a["Spine"] = (-0.6 * pelvis_list, -PELVIS_TILT, -1.6 * pelvis_yaw)
     a["Spine1"] = (-0.2 * pelvis_list, 0.0, -0.4 * pelvis_yaw)
     a["Neck"] = (0.2 * pelvis_list, 0.0, 0.6 * pelvis_yaw)
     return a
@@ -154,9 +156,8 @@ def zxy(z, x, y):
     return mul(mul(rot("z", z), rot("x", x)), rot("y", y))
 
 
-def globals_at(p):
-    """Each joint's (rotation, position) with the root at the origin."""
-    a = angles(p)
+def globals_of(a):
+    """Each joint's (rotation, position) for the angles `a`, root at the origin."""
     out = {}
     for name, parent, offset in JOINTS:
         local = zxy(*a[name])
@@ -177,33 +178,74 @@ def sole_points(g, side):
     return points
 
 
+# Forward distance of each sole point (heel, ball, toe tip) from the heel on a flat foot.
+FLAT_FROM_HEEL = (0.0, 18.0, 24.0)
+
+
+def lowest_z(a, side):
+    """Where the heel of a sole would be (forward, relative to the root) if the
+    sole lay flat on the ground under its lowest point."""
+    points = sole_points(globals_of(a), side)
+    k = min(range(len(points)), key=lambda i: points[i][1])
+    return points[k][2] - FLAT_FROM_HEEL[k]
+
+
+def with_hip(a, side, flexion):
+    """The angles `a` with one hip's flexion replaced."""
+    b = dict(a)
+    b[side + "UpLeg"] = (0.0, -flexion, 0.0)
+    return b
+
+
+def stance_speed():
+    """cm/s the root moves so that the stance hip, solved to keep the sole in
+    place, reaches its prescribed toe-off flexion at toe-off (bisection)."""
+    a = prescribed_angles(TOE_OFF)
+    wanted = periodic_spline(HIP_FLEXION, TOE_OFF)
+    lo, hi = 30.0, 300.0
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        if solve_hip(a, "Left", TOE_OFF, mid) > wanted:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def solve_hip(a, side, phase, speed):
+    """The stance hip flexion that keeps the sole, rolling from heel to toe
+    about its lowest point, where it landed while the root moves forward at
+    `speed` (bisection)."""
+    target = lowest_z(prescribed_angles(0.0), "Left") - speed * phase * CYCLE_S
+    lo, hi = -45.0, 60.0
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        if lowest_z(with_hip(a, side, mid), side) < target:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def angles(p, speed):
+    """The walk's angles at phase `p`: the prescribed curves, each stance hip
+    solved so its planted sole does not slide under a root moving at `speed`."""
+    a = prescribed_angles(p)
+    for side, phase in (("Left", p % 1.0), ("Right", (p + 0.5) % 1.0)):
+        if phase <= TOE_OFF:
+            a = with_hip(a, side, solve_hip(a, side, phase, speed))
+    return a
+
+
+def globals_at(p, speed):
+    """Each joint's (rotation, position) at phase `p`, root at the origin."""
+    return globals_of(angles(p, speed))
+
+
 def root_height(g):
     """How high the root must be for the lowest sole point to touch y = 0."""
     lowest = min(pt[1] for side in ("Left", "Right") for pt in sole_points(g, side))
     return -lowest
-
-
-def stance_contact_z(p):
-    """The left sole's centre (between heel and ball), z relative to the root."""
-    heel, ball, _ = sole_points(globals_at(p), "Left")
-    return 0.5 * (heel[2] + ball[2])
-
-
-def walking_speed():
-    """cm/s that keeps the flat left sole in place on average."""
-    a, b = STANCE_WINDOW
-    return (stance_contact_z(a) - stance_contact_z(b)) / ((b - a) * CYCLE_S)
-
-
-def largest_slide(speed):
-    """The most the flat left sole's centre moves, cm."""
-    a, b = STANCE_WINDOW
-    steps = 40
-    zs = []
-    for k in range(steps + 1):
-        p = a + (b - a) * k / steps
-        zs.append(stance_contact_z(p) + speed * p * CYCLE_S)
-    return max(zs) - min(zs)
 
 
 def hierarchy_lines():
@@ -246,8 +288,8 @@ def motion_lines(speed):
     for f in range(frames):
         t = f / FPS
         p = (t / CYCLE_S) % 1.0
-        a = angles(p)
-        height = root_height(globals_at(p))
+        a = angles(p, speed)
+        height = root_height(globals_of(a))
         values = [0.0, height, speed * t]
         for name, _, _ in JOINTS:
             values.extend(a[name])
@@ -259,7 +301,7 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     default = os.path.join(here, "..", "assets", "clips", "walk.bvh")
     out = sys.argv[1] if len(sys.argv) > 1 else default
-    speed = walking_speed()
+    speed = stance_speed()
     text = "\n".join(hierarchy_lines() + motion_lines(speed)) + "\n"
     os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
     tmp = out + ".tmp"
@@ -268,8 +310,7 @@ def main():
     os.replace(tmp, out)
     print(
         f"wrote {out}: {CYCLES} cycles of {CYCLE_S} s at {FPS} fps, "
-        f"{speed / 100.0:.2f} m/s, stride {speed * CYCLE_S / 100.0:.2f} m, "
-        f"flat sole slides at most {largest_slide(speed):.1f} cm"
+        f"{speed / 100.0:.2f} m/s, stride {speed * CYCLE_S / 100.0:.2f} m"
     )
 
 

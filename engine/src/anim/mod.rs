@@ -14,6 +14,8 @@
 //! Import: [`gltf::load_gltf`] and [`bvh::load_bvh`]. Rigs: a [`BoneMap`] names the
 //! bones a rig uses for each [`BoneRole`]; [`RigChains`] are the legs and spine found
 //! through it, and [`retarget`] moves a clip from one rig onto another by bone name.
+//! [`WalkCycle`] reads a walk clip's period, duty factor, stride and phase from its
+//! foot contacts.
 
 #![forbid(unsafe_code)]
 
@@ -32,6 +34,7 @@ mod skeleton;
 mod skinned_mesh;
 mod skinning;
 mod transform;
+mod walk_cycle;
 
 pub use bone_map::{BoneMap, BoneRole, RigPreset};
 pub use channel::{Channel, Property};
@@ -46,3 +49,4 @@ pub use skeleton::{Joint, Skeleton};
 pub use skinned_mesh::SkinnedMesh;
 pub use skinning::{SkinnedVertices, skin, skin_matrices, skin_serial};
 pub use transform::Transform;
+pub use walk_cycle::{ANALYSIS_RATE, MAX_ANALYSIS_SAMPLES, WalkCycle, WalkCycleError};
