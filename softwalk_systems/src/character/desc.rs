@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::balance::DEFAULT_PASSIVE_DAMPING;
+use super::clip_gait::ClipGait;
 use super::error::{CharacterError, check_range};
 
 /// What a scene file says about a character; [`super::CharacterBody::new`] turns it into a body.
@@ -30,6 +31,10 @@ pub struct CharacterDesc {
     /// Mass of the rigid proxy that carries the tilt, kilograms (> 0).
     #[serde(default = "one")]
     pub proxy_mass: f32,
+    /// The cadence, stride and duty of a walk clip, when the character walks
+    /// like one (a scene's `clip`), instead of the walk its Froude number sets.
+    #[serde(skip)]
+    pub clip_gait: Option<ClipGait>,
 }
 
 fn one() -> f32 {
@@ -56,6 +61,7 @@ impl CharacterDesc {
             beta: default_beta(),
             froude: default_froude(),
             proxy_mass: 1.0,
+            clip_gait: None,
         }
     }
 

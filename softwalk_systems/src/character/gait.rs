@@ -170,18 +170,34 @@ pub struct GaitParams {
 
 impl GaitParams {
     /// Boulic's walk for this body: v = sqrt(Fr g Ht), RV = v / Ht,
-    /// stride = 1.346 sqrt(RV) Ht, support time 0.752 Dc - 0.143.
+    /// stride = 1.346 sqrt(RV) Ht, support time 0.752 Dc - 0.143; or, when
+    /// its description has a [`super::ClipGait`], the clip's walk scaled to it.
+    /// The modifiers scale either.
     pub fn new(body: &CharacterBody, modifiers: &GaitModifiers) -> Self {
         let ht = body.hip_height;
         let speed_scale = sane(modifiers.speed_scale, 0.1, 2.0, 1.0);
         let length_scale = sane(modifiers.step_length_scale, 0.3, 1.5, 1.0);
-        let speed = (body.desc.froude * 9.81 * ht).sqrt() * speed_scale;
-        let rv = speed / ht;
         let grade = sane(modifiers.grade, -2.0, 2.0, 0.0);
         let slope_scale = 1.0 / (1.0 + DOWNHILL_STEP_SHORTENING * (-grade).max(0.0));
-        let stride = 1.346 * rv.sqrt() * ht * length_scale * slope_scale;
-        let cycle = stride / speed;
-        let duty = ((0.752 * cycle - 0.143) / cycle).clamp(0.55, 0.7);
+        let (speed, stride, duty) = match body.desc.clip_gait {
+            Some(clip) => {
+                let walk = clip.timing(body);
+                let stride = walk.stride * length_scale * slope_scale;
+                (walk.speed * speed_scale, stride, walk.duty)
+            }
+            None => {
+                let speed = (body.desc.froude * 9.81 * ht).sqrt() * speed_scale;
+                let rv = speed / ht;
+                let stride = 1.346 * rv.sqrt() * ht * length_scale * slope_scale;
+                let cycle = stride / speed;
+                (
+                    speed,
+                    stride,
+                    ((0.752 * cycle - 0.143) / cycle).clamp(0.55, 0.7),
+                )
+            }
+        };
+        let rv = speed / ht;
         GaitParams {
             speed,
             stride,

@@ -33,6 +33,8 @@
 mod balance;
 mod body;
 mod character_rig;
+mod clip_gait;
+mod clip_walk;
 mod desc;
 mod error;
 mod foot_ik;
@@ -60,6 +62,8 @@ pub use balance::{
 };
 pub use body::{BodyMass, CharacterBody};
 pub use character_rig::{ArmChain, CharacterRig};
+pub use clip_gait::{CLIP_DUTY_RANGE, ClipGait, ClipTiming};
+pub use clip_walk::ClipWalk;
 pub use desc::CharacterDesc;
 pub use error::CharacterError;
 pub use foot_ik::{FootIK, foot_ik_stage};

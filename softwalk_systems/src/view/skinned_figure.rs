@@ -5,7 +5,7 @@ use engine::anim::{SkinnedVertices, skin};
 use engine::geom::TriMesh;
 use glam::{Affine3A, Mat4};
 
-use crate::character::{CharacterBody, CharacterRig, Pose, RigPose};
+use crate::character::{CharacterBody, CharacterRig, ClipWalk, Gait, Pose, RigPose};
 use crate::foot::FootState;
 
 /// A skinned model with its scratch buffers and the world-space mesh of the last frame.
@@ -40,11 +40,21 @@ impl SkinnedFigure {
         }
     }
 
-    /// Poses the rig after the driver and skins the mesh into world space,
-    /// in parallel over vertices (each vertex is computed alone, so the result
-    /// does not depend on the thread count).
-    pub(super) fn update(&mut self, body: &CharacterBody, pose: &Pose, feet: &[FootState; 2]) {
-        let rig_pose = RigPose::drive(&self.rig, body, pose, feet);
+    /// Poses the rig after the driver (the upper body from the walk clip it
+    /// plays, if any) and skins the mesh into world space, in parallel over
+    /// vertices (each vertex is computed alone, so the result does not depend
+    /// on the thread count).
+    pub(super) fn update(
+        &mut self,
+        body: &CharacterBody,
+        pose: &Pose,
+        feet: &[FootState; 2],
+        clip: Option<(&ClipWalk, &Gait)>,
+    ) {
+        let rig_pose = match clip {
+            Some((clip, gait)) => clip.drive(&self.rig, body, pose, feet, gait),
+            None => RigPose::drive(&self.rig, body, pose, feet),
+        };
         rig_pose.skin_matrices(&self.rig, &mut self.globals, &mut self.matrices);
         // The matrices cover every joint of the skeleton the mesh was checked against.
         if skin(&self.rig.model().mesh, &self.matrices, &mut self.skinned).is_ok() {

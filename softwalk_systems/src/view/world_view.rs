@@ -16,7 +16,9 @@ use super::overlays::draw_overlays;
 use super::palette::TerrainPaint;
 use super::settings::ViewSettings;
 use super::skinned_figure::SkinnedFigure;
-use crate::character::{Balance, CharacterBody, CharacterRig, Pose, character_mesh};
+use crate::character::{
+    Balance, CharacterBody, CharacterRig, ClipWalk, Gait, Pose, character_mesh,
+};
 use crate::sim::{Feet, GroundState, Props, WalkerMetrics};
 use crate::terrain::Heightfield;
 use crate::vegetation::GrassPatch;
@@ -254,7 +256,10 @@ impl Figure {
             FigureBody::Skinned(skinned) => {
                 let body = world.get::<CharacterBody>(self.entity).ok()?;
                 let feet = world.get::<Feet>(self.entity).ok()?;
-                skinned.update(&body, &pose, &feet.0);
+                let clip = world.get::<ClipWalk>(self.entity).ok();
+                let gait = world.get::<Gait>(self.entity).ok();
+                let playing = clip.as_deref().zip(gait.as_deref());
+                skinned.update(&body, &pose, &feet.0, playing);
                 Some(Vec::new())
             }
         }
