@@ -73,6 +73,7 @@ pub fn walker(name: &str, body: CharacterDesc, controller: bool, path: PathSpec)
         path,
         model: crate::scene::HUMAN_MODEL.to_string(),
         bones: Default::default(),
+        clip: None,
     }
 }
 

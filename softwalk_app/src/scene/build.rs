@@ -11,7 +11,7 @@ use softwalk_systems::sim::{SimBuilder, SimError, attach_rig};
 use softwalk_systems::terrain::{Heightfield, MaterialTable};
 
 use super::material::material_table;
-use super::{Scene, SceneError};
+use super::{LoadedClip, Scene, SceneError};
 
 /// Wraps a simulation refusal with the scene part it came from.
 fn setup(part: impl Into<String>) -> impl FnOnce(SimError) -> SceneError {
@@ -84,6 +84,12 @@ impl Scene {
                 .grass(patch.area(), patch.settings())
                 .map_err(setup(format!("grass[{k}]")))?;
         }
+        let clips = self
+            .characters
+            .iter()
+            .enumerate()
+            .map(|(k, c)| c.walk_clip(&format!("characters[{k}]"), &self.base_dir))
+            .collect::<Result<Vec<_>, _>>()?;
         let mut walkers = Vec::with_capacity(self.characters.len());
         for (k, c) in self.characters.iter().enumerate() {
             let part = format!("characters[{k}]");
@@ -95,12 +101,12 @@ impl Scene {
                 },
             })?;
             let entity = builder
-                .character(&c.name, c.body, path)
+                .character(&c.name, c.desc(clips[k].as_ref()), path)
                 .map_err(setup(part))?;
             walkers.push(entity);
         }
         let mut app = builder.build().map_err(setup("sim"))?;
-        self.attach_rigs(&mut app, &walkers)?;
+        self.attach_rigs(&mut app, &walkers, &clips)?;
         for (k, (c, entity)) in self.characters.iter().zip(&walkers).enumerate() {
             let mut balance = app
                 .world
@@ -112,9 +118,15 @@ impl Scene {
     }
 
     /// Gives each character drawn as a model its [`CharacterRig`], whose
-    /// skinned volume sets its centre of mass and inertia; one
-    /// model and bone table are loaded once and shared.
-    fn attach_rigs(&self, app: &mut App, walkers: &[Entity]) -> Result<(), SceneError> {
+    /// skinned volume sets its centre of mass and inertia, and, with a walk
+    /// clip, the [`softwalk_systems::character::ClipWalk`] its upper body plays; one model and bone table
+    /// are loaded once and shared.
+    fn attach_rigs(
+        &self,
+        app: &mut App,
+        walkers: &[Entity],
+        clips: &[Option<LoadedClip>],
+    ) -> Result<(), SceneError> {
         let mut loaded: Vec<(&str, &BTreeMap<String, String>, Option<CharacterRig>)> = Vec::new();
         for (k, (c, &entity)) in self.characters.iter().zip(walkers).enumerate() {
             let field = format!("characters[{k}]");
@@ -129,10 +141,15 @@ impl Scene {
                     rig
                 }
             };
-            if let Some(rig) = rig {
-                attach_rig(&mut app.world, entity, rig)
-                    .map_err(spawn_failed(format!("{field}.model")))?;
+            let Some(rig) = rig else { continue };
+            if let Some(clip) = &clips[k] {
+                let walk = clip.on_rig(&rig)?;
+                app.world
+                    .insert(entity, (walk,))
+                    .map_err(spawn_failed(format!("{field}.clip")))?;
             }
+            attach_rig(&mut app.world, entity, rig)
+                .map_err(spawn_failed(format!("{field}.model")))?;
         }
         Ok(())
     }

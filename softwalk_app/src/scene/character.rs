@@ -14,6 +14,7 @@ use softwalk_systems::character::{
 };
 
 use super::SceneError;
+use super::character_clip::{LoadedClip, load_clip};
 use super::character_model::{default_model, load_character_rig};
 use super::check::{finite, identifier, in_range, on_terrain, positive};
 
@@ -216,6 +217,11 @@ pub struct CharacterSpec {
     /// the best-matching preset finds.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub bones: BTreeMap<String, String>,
+    /// A `.bvh` walk clip relative to the scene file: the character walks
+    /// with its cadence, stride (scaled by leg length) and duty factor, and
+    /// a rigged character plays its upper body in step with the gait.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clip: Option<String>,
 }
 
 fn default_controller() -> bool {
@@ -239,7 +245,35 @@ impl CharacterSpec {
             other => SceneError::invalid(format!("{field}.body"), other.to_string()),
         })?;
         self.path.validate(&format!("{field}.path"), size)?;
-        self.rig(field, base_dir).map(|_| ())
+        let rig = self.rig(field, base_dir)?;
+        if let Some(clip) = self.walk_clip(field, base_dir)?
+            && let Some(rig) = &rig
+        {
+            clip.on_rig(rig)?;
+        }
+        Ok(())
+    }
+
+    /// The walk clip the character walks like, loaded and analysed (`None`
+    /// without a `clip`); `field` is its path (`characters[0]`).
+    pub fn walk_clip(
+        &self,
+        field: &str,
+        base_dir: &Path,
+    ) -> Result<Option<LoadedClip>, SceneError> {
+        self.clip
+            .as_deref()
+            .map(|clip| load_clip(field, clip, base_dir))
+            .transpose()
+    }
+
+    /// The body description the simulation builds: `body`, walking with the
+    /// clip's gait when there is a clip.
+    pub fn desc(&self, clip: Option<&LoadedClip>) -> CharacterDesc {
+        CharacterDesc {
+            clip_gait: clip.map(|c| c.gait),
+            ..self.body
+        }
     }
 
     /// The rig the character is drawn as (`None` for the mannequin); `field`
@@ -261,6 +295,7 @@ mod tests {
             path,
             model: default_model(),
             bones: BTreeMap::new(),
+            clip: None,
         }
     }
 
