@@ -97,9 +97,10 @@ KNEE_FLEXION = [5.0, 17.0, 15.0, 7.0, 4.0, 11.0, 38.0, 63.0, 58.0, 30.0]
 ANKLE_DORSIFLEXION = [0.0, -5.0, 2.0, 6.0, 9.0, 5.0, -14.0, 0.0, 10.0, 7.0]
 # Toes bent up at push-off (the ball stays on the ground).
 TOE_EXTENSION = [0.0, 0.0, 0.0, 0.0, 5.0, 18.0, 10.0, 0.0, 0.0, 0.0]
-# Shoulder flexion (arm forward): back at this side's heel strike.
+# Shoulder flexion (arm forward) at the phases of the same side's leg: back
+# as that leg lands, forward as it pushes off.
 SHOULDER_FLEXION = [-15.0, -12.0, -5.0, 5.0, 14.0, 18.0, 14.0, 5.0, -5.0, -12.0]
-# Elbow flexion: most bent as the arm swings forward.
+# Elbow flexion at the same phases: most bent as the arm swings forward.
 ELBOW_FLEXION = [12.0, 13.0, 16.0, 22.0, 28.0, 30.0, 28.0, 22.0, 16.0, 13.0]
 # Forward (anterior) tilt of the pelvis, degrees.
 PELVIS_TILT = 4.0
@@ -120,10 +121,9 @@ def prescribed_angles(p):
         a[side + "Leg"] = (0.0, periodic_spline(KNEE_FLEXION, phase), 0.0)
         a[side + "Foot"] = (0.0, -periodic_spline(ANKLE_DORSIFLEXION, phase), 0.0)
         a[side + "ToeBase"] = (0.0, -periodic_spline(TOE_EXTENSION, phase), 0.0)
-        # The arm swings with the opposite leg.
-        arm = (phase + 0.5) % 1.0
-        a[side + "Arm"] = (0.0, -periodic_spline(SHOULDER_FLEXION, arm), 0.0)
-        a[side + "ForeArm"] = (0.0, -periodic_spline(ELBOW_FLEXION, arm), 0.0)
+        # The arm swings with the opposite leg: back as its own leg lands.
+        a[side + "Arm"] = (0.0, -periodic_spline(SHOULDER_FLEXION, phase), 0.0)
+        a[side + "ForeArm"] = (0.0, -periodic_spline(ELBOW_FLEXION, phase), 0.0)
     a["Spine"] = (-0.6 * pelvis_list, -PELVIS_TILT, -1.6 * pelvis_yaw)
     a["Spine1"] = (-0.2 * pelvis_list, 0.0, -0.4 * pelvis_yaw)
     a["Neck"] = (0.2 * pelvis_list, 0.0, 0.6 * pelvis_yaw)
