@@ -108,3 +108,30 @@ pub struct ReadmeDoctests;
 #[cfg(doctest)]
 #[doc = include_str!("../../docs/tutorial.md")]
 pub struct TutorialDoctests;
+
+/// The world hash after `steps` steps of `scene` run on `threads` threads,
+/// rendering small frames every 15 steps when `render` is set.
+pub fn world_hash_after(
+    scene: &softwalk_app::scene::Scene,
+    steps: u64,
+    render: bool,
+    threads: usize,
+) -> u64 {
+    use softwalk_app::runner::{RunOptions, run};
+    let mut options = RunOptions::from_scene(scene);
+    options.steps = steps;
+    options.render = render;
+    options.width = 96;
+    options.height = 54;
+    options.render_every = 15;
+    options.threads = threads;
+    options.hash = true;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool");
+    let summary = pool
+        .install(|| run(scene, &options, &mut ()))
+        .expect("the scene runs");
+    summary.world_hash.expect("a hash was asked for")
+}

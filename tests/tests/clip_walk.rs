@@ -197,3 +197,22 @@ fn a_missing_or_non_walk_clip_is_refused_naming_the_field() {
     assert_eq!(e.field(), Some("characters[0].clip"));
     assert!(e.to_string().contains("not a walk clip"), "{e}");
 }
+
+#[test]
+fn the_clip_walk_is_deterministic_and_changes_the_world() {
+    let scene = with_clip("snow-flat");
+    let steps = 90;
+    let reference = softwalk_tests::world_hash_after(&scene, steps, false, 1);
+    assert_eq!(
+        softwalk_tests::world_hash_after(&scene, steps, true, 2),
+        reference,
+        "rendering and two threads leave the world as it is"
+    );
+    let mut plain = scene.clone();
+    plain.characters[0].clip = None;
+    assert_ne!(
+        softwalk_tests::world_hash_after(&plain, steps, false, 1),
+        reference,
+        "the clip sets the gait"
+    );
+}

@@ -1,26 +1,12 @@
 //! Same scene, same inputs: the same world, bit for bit, with or without
 //! rendering and on any thread count (checked through the world hash).
 
-use softwalk_app::runner::{RunOptions, run};
 use softwalk_app::scene::Scene;
 
 const STEPS: u64 = 90;
 
 fn hash(scene: &Scene, render: bool, threads: usize) -> u64 {
-    let mut options = RunOptions::from_scene(scene);
-    options.steps = STEPS;
-    options.render = render;
-    options.width = 96;
-    options.height = 54;
-    options.render_every = 15;
-    options.threads = threads;
-    options.hash = true;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    let summary = pool.install(|| run(scene, &options, &mut ())).unwrap();
-    summary.world_hash.expect("a hash was asked for")
+    softwalk_tests::world_hash_after(scene, STEPS, render, threads)
 }
 
 #[test]
