@@ -115,7 +115,7 @@ impl WalkCycle {
         let paths = joint_paths(clip, skeleton, samples, dt, &chains);
         let root_travel = horizontal(paths.pelvis[samples - 1] - paths.pelvis[0]).length();
         let root_speed = root_travel / ((samples - 1) as f32 * dt);
-        if !(root_speed >= IN_PLACE_SPEED * leg_length) {
+        if root_speed.is_nan() || root_speed < IN_PLACE_SPEED * leg_length {
             return Err(WalkCycleError::InPlace {
                 speed: root_speed / leg_length,
             });
