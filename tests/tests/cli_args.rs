@@ -346,6 +346,10 @@ fn inspect_prints_a_bvh_clip_and_says_what_is_missing() {
     assert!(out.contains("BVH mocap, 2 frames at 2.0 fps"), "{out}");
     assert!(out.contains("bone names: Bvh"), "{out}");
     assert!(out.contains("right leg: hip RightUpLeg"), "{out}");
+    assert!(out.contains("not a walk clip"), "{out}");
+    let (result, out) = execute_args(&["inspect", &repo_file("assets/clips/walk.bvh")]);
+    result.unwrap();
+    assert!(out.contains("walk cycle: 1.100 s (109 steps/min)"), "{out}");
 
     let dir = tempfile::tempdir().unwrap();
     let renamed = dir.path().join("renamed.bvh");

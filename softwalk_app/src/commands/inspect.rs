@@ -1,13 +1,14 @@
 //! `softwalk inspect FILE`: what a character model (`.glb`/`.gltf`) or mocap
 //! clip (`.bvh`) holds: its rig as a tree, its mesh, its clips, the bone map
-//! detected and the leg chains and spine found through it, or what is missing.
+//! detected and the leg chains and spine found through it, or what is missing;
+//! for a clip, its walk cycle or why it is not a walk.
 
 use std::io::Write;
 use std::path::Path;
 
 use engine::anim::bvh::load_bvh;
 use engine::anim::gltf::load_gltf;
-use engine::anim::{BoneMap, Clip, RigChains, Skeleton, SkinnedMesh};
+use engine::anim::{BoneMap, Clip, RigChains, Skeleton, SkinnedMesh, WalkCycle};
 
 use crate::cli::{CliError, InspectArgs};
 
@@ -44,6 +45,7 @@ fn describe(path: &Path) -> Result<String, CliError> {
             text.push_str(&rig(&bvh.skeleton));
             text.push_str(&clips(std::slice::from_ref(&bvh.clip)));
             text.push_str(&chains(&bvh.skeleton));
+            text.push_str(&walk_cycle(&bvh.skeleton, &bvh.clip));
         }
         _ => {
             return Err(CliError::UnknownFileKind {
@@ -101,6 +103,25 @@ fn clips(clips: &[Clip]) -> String {
         ));
     }
     text
+}
+
+/// The clip read as a walk (its cycle), or why it is not one.
+fn walk_cycle(skeleton: &Skeleton, clip: &Clip) -> String {
+    match WalkCycle::analyse(clip, skeleton, &BoneMap::detect(skeleton)) {
+        Ok(c) => format!(
+            "walk cycle: {:.3} s ({:.0} steps/min), duty {:.2}, stride {:.3} ({:.2} leg lengths), \
+             speed {:.3} per s, left heel strike at {:.3} s, right at phase {:.2}\n",
+            c.period,
+            c.cadence(),
+            c.duty,
+            c.stride,
+            c.stride / c.leg_length,
+            c.speed,
+            c.left_strike,
+            c.right_phase
+        ),
+        Err(e) => format!("not a walk clip: {e}\n"),
+    }
 }
 
 /// The detected bone map, then the chains or what is missing.
