@@ -26,11 +26,17 @@ pub enum WalkCycleError {
     #[error("the clip's rig: {0}")]
     Rig(#[source] RigError),
     /// The clip has no length to analyse, or too much.
-    #[error("the clip lasts {duration} s; a walk clip needs at least two steps of each foot")]
+    #[error(
+        "the clip lasts {duration} s: a walk clip must last more than 0 s and at most {} s",
+        MAX_ANALYSIS_SAMPLES as f32 / ANALYSIS_RATE
+    )]
     Duration {
         /// Its length, seconds.
         duration: f32,
     },
+    /// The rig's legs have no length.
+    #[error("the clip's rig has legs of zero length")]
+    DegenerateLegs,
     /// The root does not travel, so feet on the ground cannot be told by their speed.
     #[error(
         "the root moves {speed:.3} leg lengths per second: a walk clip must travel forward, not walk in place"
@@ -106,11 +112,15 @@ impl WalkCycle {
         let leg_length = 0.5
             * (chains.leg_length(skeleton, &chains.left)
                 + chains.leg_length(skeleton, &chains.right));
+        if leg_length.is_nan() || leg_length <= 0.0 {
+            return Err(WalkCycleError::DegenerateLegs);
+        }
         let duration = clip.duration();
-        let samples = (duration * ANALYSIS_RATE).floor() as usize + 1;
-        if !(duration > 0.0 && leg_length > 0.0) || samples > MAX_ANALYSIS_SAMPLES {
+        let fits = duration * ANALYSIS_RATE < MAX_ANALYSIS_SAMPLES as f32;
+        if !(duration > 0.0 && fits) {
             return Err(WalkCycleError::Duration { duration });
         }
+        let samples = (duration * ANALYSIS_RATE).floor() as usize + 1;
         let dt = 1.0 / ANALYSIS_RATE;
         let paths = joint_paths(clip, skeleton, samples, dt, &chains);
         let root_travel = horizontal(paths.pelvis[samples - 1] - paths.pelvis[0]).length();
