@@ -1,0 +1,362 @@
+//! Bring your own character: models the way other tools export them, built
+//! from the built-in human by changing one thing at a time (bone names,
+//! units, up and forward axes, bind pose, extra and missing bones,
+//! proportions), written as `.glb` and loaded through a scene's `model`.
+//! Each either walks, with its leg chains found, its skinned soles on the
+//! ground in stance and the gait goals met, or is refused with a typed error
+//! naming the file and what is wrong.
+//!
+//! Set `KEEP_VARIANTS=DIR` to keep the written `.glb` files in `DIR` (to
+//! render them with `softwalk run` or read them with `softwalk inspect`).
+//! Run with `--nocapture` for the table of figures.
+
+use std::f32::consts::FRAC_PI_2;
+use std::path::{Path, PathBuf};
+
+use engine::anim::{RigPreset, Transform};
+use glam::{Quat, Vec3};
+use rayon::prelude::*;
+use softwalk_app::cli::Cli;
+use softwalk_app::commands::execute;
+use softwalk_app::scene::Scene;
+use softwalk_systems::character::{CharacterRig, ModelUnits};
+use softwalk_tests::glb_writer::RigParts;
+use softwalk_tests::sole_contact::walk_soles;
+
+/// Length of each variant's measured walk, seconds.
+const WALK_S: f64 = 5.0;
+/// Largest angle between a variant's detected facing and the expected one, degrees.
+const FACING_TOLERANCE_DEG: f32 = 5.0;
+
+/// One way a game programmer's character differs from the built-in human.
+struct Variant {
+    /// File stem and table row.
+    name: &'static str,
+    /// Builds its parts from the human's.
+    build: fn() -> RigParts,
+    /// What loading it must give.
+    expect: Expect,
+}
+
+enum Expect {
+    /// It walks: its units, the bone-name preset detected, the direction it faces in the file.
+    Walks {
+        units: ModelUnits,
+        preset: RigPreset,
+        facing: Vec3,
+    },
+    /// A scene refuses it; the error contains these words.
+    Refused(&'static str),
+}
+
+fn human() -> RigParts {
+    RigParts::human()
+}
+
+fn variants() -> Vec<Variant> {
+    let walks = |units, preset, facing| Expect::Walks {
+        units,
+        preset,
+        facing,
+    };
+    let metres = |facing| walks(ModelUnits::Metres, RigPreset::GameEngine, facing);
+    vec![
+        Variant {
+            name: "mixamo-names",
+            build: || {
+                let mut p = human();
+                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
+                p
+            },
+            expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
+        },
+        Variant {
+            name: "centimetres-armature-scale",
+            build: || {
+                let mut p = human();
+                p.in_units(100.0);
+                p.insert_root(
+                    "Armature",
+                    Transform {
+                        scale: Vec3::splat(0.01),
+                        ..Transform::IDENTITY
+                    },
+                );
+                p
+            },
+            expect: metres(Vec3::Z),
+        },
+        Variant {
+            name: "centimetres-no-scale",
+            build: || {
+                let mut p = human();
+                p.in_units(100.0);
+                p
+            },
+            expect: walks(ModelUnits::Centimetres, RigPreset::GameEngine, Vec3::Z),
+        },
+        Variant {
+            name: "decimetres",
+            build: || {
+                let mut p = human();
+                p.in_units(10.0);
+                p
+            },
+            expect: Expect::Refused("units tall"),
+        },
+        Variant {
+            name: "z-up-armature",
+            build: || {
+                let mut p = human();
+                p.turn(Quat::from_rotation_x(FRAC_PI_2));
+                p.insert_root(
+                    "Armature",
+                    Transform {
+                        rotation: Quat::from_rotation_x(-FRAC_PI_2),
+                        ..Transform::IDENTITY
+                    },
+                );
+                p
+            },
+            expect: metres(Vec3::Z),
+        },
+        Variant {
+            name: "z-up-uncorrected",
+            build: || {
+                let mut p = human();
+                p.turn(Quat::from_rotation_x(FRAC_PI_2));
+                p
+            },
+            expect: Expect::Refused("lies down"),
+        },
+        Variant {
+            name: "facing-minus-z",
+            build: || {
+                let mut p = human();
+                p.turn(Quat::from_rotation_y(std::f32::consts::PI));
+                p
+            },
+            expect: metres(Vec3::NEG_Z),
+        },
+        Variant {
+            name: "facing-plus-x",
+            build: || {
+                let mut p = human();
+                p.turn(Quat::from_rotation_y(FRAC_PI_2));
+                p
+            },
+            expect: metres(Vec3::X),
+        },
+        Variant {
+            name: "t-pose",
+            build: || {
+                let mut p = human();
+                p.aim_bone("upperarm_l", "lowerarm_l", Vec3::X);
+                p.aim_bone("upperarm_r", "lowerarm_r", Vec3::NEG_X);
+                p
+            },
+            expect: metres(Vec3::Z),
+        },
+        Variant {
+            name: "extra-bones",
+            build: extra_bones,
+            expect: metres(Vec3::Z),
+        },
+        Variant {
+            name: "missing-bones",
+            build: || {
+                let mut p = human();
+                for bone in [
+                    "ball_l",
+                    "ball_r",
+                    "clavicle_l",
+                    "clavicle_r",
+                    "spine_02",
+                    "spine_03",
+                ] {
+                    p.remove_bone(bone);
+                }
+                p
+            },
+            expect: metres(Vec3::Z),
+        },
+        Variant {
+            name: "long-legs-short-torso",
+            build: || {
+                let mut p = human();
+                let hips = p.globals()[p.joint("thigh_l")].w_axis.y;
+                p.stretch_vertically(hips, 1.15, 0.8);
+                p
+            },
+            expect: metres(Vec3::Z),
+        },
+    ]
+}
+
+/// Twist bones on the thighs and upper arms (taking the lower half of their
+/// skin), an IK bone per foot under the root (as Unreal rigs have), and a
+/// weapon bone in the right hand; the human already has a root at the
+/// ground and fingers.
+fn extra_bones() -> RigParts {
+    let mut p = human();
+    for side in ["l", "r"] {
+        for (upper, lower) in [("thigh", "calf"), ("upperarm", "lowerarm")] {
+            let (u, l) = (
+                p.joint(&format!("{upper}_{side}")),
+                p.joint(&format!("{lower}_{side}")),
+            );
+            let globals = p.globals();
+            let (a, b) = (globals[u].w_axis.truncate(), globals[l].w_axis.truncate());
+            let mid = 0.5 * (a + b);
+            let along = b - a;
+            p.add_bone(
+                &format!("{upper}_{side}"),
+                &format!("{upper}_twist_01_{side}"),
+                0.5 * p.joints[l].rest.translation,
+                move |v| (v - mid).dot(along) > 0.0,
+            );
+        }
+        let foot = p.globals()[p.joint(&format!("foot_{side}"))]
+            .w_axis
+            .truncate();
+        let root = p.globals()[p.joint("Root")].w_axis.truncate();
+        p.add_bone("Root", &format!("ik_foot_{side}"), foot - root, |_| false);
+    }
+    p.add_bone("hand_r", "weapon_r", Vec3::new(-0.05, -0.05, 0.05), |_| {
+        false
+    });
+    p
+}
+
+/// Where the variants' files go: `KEEP_VARIANTS` if set, else a temporary folder.
+fn output_dir() -> (PathBuf, Option<tempfile::TempDir>) {
+    match std::env::var_os("KEEP_VARIANTS") {
+        Some(dir) => {
+            std::fs::create_dir_all(&dir).unwrap();
+            (PathBuf::from(dir), None)
+        }
+        None => {
+            let temp = tempfile::tempdir().unwrap();
+            (temp.path().to_path_buf(), Some(temp))
+        }
+    }
+}
+
+/// Writes a variant's `.glb` into `dir`.
+fn write(variant: &Variant, dir: &Path) -> PathBuf {
+    let path = dir.join(format!("{}.glb", variant.name));
+    std::fs::write(&path, (variant.build)().to_glb()).unwrap();
+    path
+}
+
+/// The sand walk with its first character drawn as the model at `path`.
+fn scene_with(path: &Path) -> Scene {
+    let mut scene = Scene::builtin("sand-flat").unwrap();
+    scene.characters.truncate(1);
+    scene.characters[0].model = path.display().to_string();
+    scene
+}
+
+#[test]
+fn every_variant_walks_on_its_soles_or_is_refused_naming_the_file() {
+    let (dir, _temp) = output_dir();
+    let variants = variants();
+    let rows: Vec<(String, Vec<String>)> = variants
+        .par_iter()
+        .map(|v| {
+            let path = write(v, &dir);
+            let scene = scene_with(&path);
+            let mut failures = Vec::new();
+            let row = match &v.expect {
+                Expect::Refused(words) => {
+                    let e = scene.validate().unwrap_err().to_string();
+                    if !(e.contains(words) && e.contains(&path.display().to_string())) {
+                        failures.push(format!("refused without naming the file and {words:?}: {e}"));
+                    }
+                    format!("refused: {e}")
+                }
+                Expect::Walks {
+                    units,
+                    preset,
+                    facing,
+                } => {
+                    let rig = CharacterRig::load(&path, None).unwrap_or_else(|e| panic!("{e}"));
+                    if rig.units() != *units {
+                        failures.push(format!("units {} instead of {units}", rig.units()));
+                    }
+                    if rig.bone_map().preset != Some(*preset) {
+                        failures.push(format!("preset {:?} instead of {preset:?}", rig.bone_map().preset));
+                    }
+                    let off = rig.rest_frame().z_axis.angle_between(*facing).to_degrees();
+                    if off > FACING_TOLERANCE_DEG {
+                        failures.push(format!("faces {} degrees off {facing}", off));
+                    }
+                    let walk = walk_soles(&scene, WALK_S);
+                    let f = &walk.soles;
+                    if !f.met() || f.stance_steps < 100 {
+                        failures.push(format!("soles {f:?}"));
+                    }
+                    failures.extend(walk.quality.failures());
+                    format!(
+                        "loads ({}, {:?}), chains found, sole gap {:.2} cm, slide {:.2} cm over {} stance steps, gait goals {}",
+                        rig.units(),
+                        preset,
+                        100.0 * f.gap,
+                        100.0 * f.slide,
+                        f.stance_steps,
+                        if walk.quality.failures().is_empty() { "met" } else { "MISSED" }
+                    )
+                }
+            };
+            (format!("{}: {row}", v.name), failures.into_iter().map(|f| format!("{}: {f}", v.name)).collect())
+        })
+        .collect();
+    let mut failures = Vec::new();
+    for (row, f) in rows {
+        println!("{row}");
+        failures.extend(f);
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn inspect_says_the_units_the_facing_the_preset_and_what_is_optional() {
+    let (dir, _temp) = output_dir();
+    let all = variants();
+    let inspect = |name: &str| {
+        let v = all.iter().find(|v| v.name == name).unwrap();
+        let path = write(v, &dir);
+        let cli = Cli::parse_args(["softwalk", "inspect", path.to_str().unwrap()]).unwrap();
+        let mut out = Vec::new();
+        execute(cli, &mut out).unwrap();
+        String::from_utf8(out).unwrap()
+    };
+    for (name, words) in [
+        ("mixamo-names", &["bone names: Mixamo", "units metres"][..]),
+        (
+            "centimetres-armature-scale",
+            &["root Armature: scaled (0.01", "units metres"],
+        ),
+        ("centimetres-no-scale", &["units centimetres", "stands 1.67 m"]),
+        (
+            "z-up-armature",
+            &["root Armature: turned 90 degrees about (-1.00", "faces +Z"],
+        ),
+        ("facing-plus-x", &["faces +X"]),
+        ("facing-minus-z", &["faces -Z"]),
+        (
+            "missing-bones",
+            &[
+                "toe none (optional)",
+                "spine: pelvis -> spine_01 -> neck_01",
+            ],
+        ),
+        ("decimetres", &["refused as a character", "units tall"]),
+        ("z-up-uncorrected", &["refused as a character", "lies down"]),
+    ] {
+        let out = inspect(name);
+        for w in words {
+            assert!(out.contains(w), "{name}: no {w:?} in\n{out}");
+        }
+    }
+}
