@@ -3,7 +3,7 @@
 //! back what a game programmer's exporter would write.
 
 use engine::anim::Joint;
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 use serde_json::{Value, json};
 
 /// A skinned character as plain data: joints (parents first) and a mesh whose
@@ -22,6 +22,30 @@ pub struct RigParts {
     pub skin: Vec<[u16; 4]>,
     /// 4 weights per vertex.
     pub weights: Vec<[f32; 4]>,
+    /// Which glTF mesh each triangle is written to (all 0: one mesh). Every
+    /// mesh is drawn with the character's skin by a node of its own.
+    pub triangle_mesh: Vec<u8>,
+    /// Props written before the character, each a mesh drawn with a skin of
+    /// its own, bound to one joint (as exporters write a skinned weapon).
+    pub props: Vec<Prop>,
+}
+
+/// A one-triangle mesh with a skin of its own: one joint, named.
+#[derive(Debug, Clone)]
+pub struct Prop {
+    /// The joint it follows.
+    pub joint: String,
+    /// Its triangle, bind pose.
+    pub triangle: [Vec3; 3],
+}
+
+/// One mesh's vertices as accessor data.
+struct MeshData {
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    skin: Vec<[u16; 4]>,
+    weights: Vec<[f32; 4]>,
+    indices: Vec<u32>,
 }
 
 /// Buffer views and accessors over one growing binary chunk.
@@ -57,83 +81,144 @@ impl Chunks {
     }
 }
 
-impl RigParts {
-    /// The parts as `.glb` bytes.
-    pub fn to_glb(&self) -> Vec<u8> {
-        let mut c = Chunks::default();
-        let position = c.floats(
-            &self
-                .positions
-                .iter()
-                .map(|p| p.to_array())
-                .collect::<Vec<_>>(),
-            "VEC3",
-        );
-        let (lo, hi) = (self.positions.iter())
+impl Chunks {
+    /// A mesh's accessors as a glTF mesh.
+    fn mesh(&mut self, data: &MeshData) -> Value {
+        let position = self.floats(&data.positions, "VEC3");
+        let (lo, hi) = (data.positions.iter())
+            .map(|p| Vec3::from(*p))
             .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(*p), hi.max(*p))
+                (lo.min(p), hi.max(p))
             });
-        c.accessors[position]["min"] = json!(lo.to_array());
-        c.accessors[position]["max"] = json!(hi.to_array());
-        let normal = c.floats(
-            &self
-                .normals
-                .iter()
-                .map(|n| n.to_array())
-                .collect::<Vec<_>>(),
-            "VEC3",
-        );
-        let joints = c.add(
-            self.skin
+        self.accessors[position]["min"] = json!(lo.to_array());
+        self.accessors[position]["max"] = json!(hi.to_array());
+        let normal = self.floats(&data.normals, "VEC3");
+        let joints = self.add(
+            data.skin
                 .iter()
                 .flatten()
                 .flat_map(|j| j.to_le_bytes())
                 .collect(),
             5123,
-            self.skin.len(),
+            data.skin.len(),
             "VEC4",
         );
-        let weights = c.floats(&self.weights, "VEC4");
-        let indices = c.add(
-            self.indices.iter().flat_map(|i| i.to_le_bytes()).collect(),
+        let weights = self.floats(&data.weights, "VEC4");
+        let indices = self.add(
+            data.indices.iter().flat_map(|i| i.to_le_bytes()).collect(),
             5125,
-            self.indices.len(),
+            data.indices.len(),
             "SCALAR",
         );
-        let binds: Vec<[f32; 16]> = self
-            .joints
-            .iter()
-            .map(|j| j.inverse_bind.to_cols_array())
-            .collect();
-        let binds = c.floats(&binds, "MAT4");
-        let mut nodes: Vec<Value> = self.joints.iter().map(joint_node).collect();
+        json!({"primitives": [{
+            "attributes": {"POSITION": position, "NORMAL": normal, "JOINTS_0": joints, "WEIGHTS_0": weights},
+            "indices": indices
+        }]})
+    }
+
+    /// A skin over `joints` with their inverse bind matrices.
+    fn skin(&mut self, joints: Vec<usize>, binds: &[Mat4]) -> Value {
+        let binds: Vec<[f32; 16]> = binds.iter().map(Mat4::to_cols_array).collect();
+        let binds = self.floats(&binds, "MAT4");
+        json!({"joints": joints, "inverseBindMatrices": binds})
+    }
+}
+
+impl RigParts {
+    /// The parts as `.glb` bytes: the props' nodes first, then the joints'
+    /// tree, then one node per character mesh.
+    pub fn to_glb(&self) -> Vec<u8> {
+        let mut c = Chunks::default();
+        let mut nodes: Vec<Value> = Vec::new();
+        let (mut meshes, mut skins) = (Vec::new(), Vec::new());
+        let prop_count = self.props.len();
+        let first_joint = prop_count;
+        for (k, prop) in self.props.iter().enumerate() {
+            let joint = self.joint(&prop.joint);
+            meshes.push(c.mesh(&MeshData {
+                positions: prop.triangle.map(|p| p.to_array()).to_vec(),
+                normals: vec![[0.0, 0.0, 1.0]; 3],
+                skin: vec![[0; 4]; 3],
+                weights: vec![[1.0, 0.0, 0.0, 0.0]; 3],
+                indices: vec![0, 1, 2],
+            }));
+            skins.push(c.skin(
+                vec![first_joint + joint],
+                &[self.joints[joint].inverse_bind],
+            ));
+            nodes.push(json!({"name": format!("prop{k}"), "mesh": k, "skin": k}));
+        }
+        nodes.extend(self.joints.iter().map(joint_node));
         for (k, joint) in self.joints.iter().enumerate() {
             if let Some(p) = joint.parent {
-                let children = nodes[p]["children"].as_array_mut().expect("children");
-                children.push(json!(k));
+                let children = nodes[first_joint + p]["children"]
+                    .as_array_mut()
+                    .expect("children");
+                children.push(json!(first_joint + k));
             }
         }
-        let mesh_node = nodes.len();
-        nodes.push(json!({"name": "body", "mesh": 0, "skin": 0}));
-        let mut roots: Vec<usize> = (0..self.joints.len())
-            .filter(|&k| self.joints[k].parent.is_none())
-            .collect();
-        roots.push(mesh_node);
+        let binds: Vec<Mat4> = self.joints.iter().map(|j| j.inverse_bind).collect();
+        let joint_nodes = (first_joint..first_joint + self.joints.len()).collect();
+        let character_skin = skins.len();
+        skins.push(c.skin(joint_nodes, &binds));
+        let mut roots: Vec<usize> = (0..prop_count).collect();
+        roots.extend(
+            (0..self.joints.len())
+                .filter(|&k| self.joints[k].parent.is_none())
+                .map(|k| first_joint + k),
+        );
+        let mesh_count = self
+            .triangle_mesh
+            .iter()
+            .copied()
+            .max()
+            .map_or(1, |m| m + 1);
+        for m in 0..mesh_count {
+            let data = self.mesh_data(m);
+            roots.push(nodes.len());
+            nodes.push(
+                json!({"name": format!("body{m}"), "mesh": meshes.len(), "skin": character_skin}),
+            );
+            meshes.push(c.mesh(&data));
+        }
         let document = json!({
             "asset": {"version": "2.0", "generator": "softwalk tests"},
             "scene": 0,
             "scenes": [{"nodes": roots}],
             "nodes": nodes,
-            "meshes": [{"primitives": [{
-                "attributes": {"POSITION": position, "NORMAL": normal, "JOINTS_0": joints, "WEIGHTS_0": weights},
-                "indices": indices
-            }]}],
-            "skins": [{"joints": (0..self.joints.len()).collect::<Vec<_>>(), "inverseBindMatrices": binds}],
+            "meshes": meshes,
+            "skins": skins,
             "bufferViews": c.views,
             "accessors": c.accessors,
             "buffers": [{"byteLength": c.bin.len()}],
         });
         glb(serde_json::to_vec(&document).expect("JSON"), c.bin)
+    }
+
+    /// The vertices and triangles of character mesh `m`, renumbered.
+    fn mesh_data(&self, m: u8) -> MeshData {
+        let mut new_index = vec![u32::MAX; self.positions.len()];
+        let mut used = Vec::new();
+        let mut indices = Vec::new();
+        for (t, corners) in self.indices.chunks_exact(3).enumerate() {
+            if self.triangle_mesh.get(t).copied().unwrap_or(0) != m {
+                continue;
+            }
+            for &v in corners {
+                if new_index[v as usize] == u32::MAX {
+                    new_index[v as usize] = used.len() as u32;
+                    used.push(v as usize);
+                }
+                indices.push(new_index[v as usize]);
+            }
+        }
+        MeshData {
+            positions: used.iter().map(|&v| self.positions[v].to_array()).collect(),
+            normals: used.iter().map(|&v| self.normals[v].to_array()).collect(),
+            skin: used.iter().map(|&v| self.skin[v]).collect(),
+            weights: used.iter().map(|&v| self.weights[v]).collect(),
+            indices,
+        }
     }
 }
 

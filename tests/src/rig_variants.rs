@@ -22,6 +22,8 @@ impl RigParts {
             indices: mesh.indices().to_vec(),
             skin: mesh.joints().to_vec(),
             weights: mesh.weights().to_vec(),
+            triangle_mesh: vec![0; mesh.triangle_count()],
+            props: Vec::new(),
         }
     }
 

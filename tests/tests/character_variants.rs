@@ -20,7 +20,7 @@ use softwalk_app::cli::Cli;
 use softwalk_app::commands::execute;
 use softwalk_app::scene::Scene;
 use softwalk_systems::character::{CharacterRig, ModelUnits};
-use softwalk_tests::glb_writer::RigParts;
+use softwalk_tests::glb_writer::{Prop, RigParts};
 use softwalk_tests::sole_contact::walk_soles;
 
 /// Length of each variant's measured walk, seconds.
@@ -181,6 +181,11 @@ fn variants() -> Vec<Variant> {
             expect: metres(Vec3::Z),
         },
         Variant {
+            name: "several-meshes-and-a-prop",
+            build: several_meshes_and_a_prop,
+            expect: metres(Vec3::Z),
+        },
+        Variant {
             name: "long-legs-short-torso",
             build: || {
                 let mut p = human();
@@ -224,6 +229,39 @@ fn extra_bones() -> RigParts {
     }
     p.add_bone("hand_r", "weapon_r", Vec3::new(-0.05, -0.05, 0.05), |_| {
         false
+    });
+    p
+}
+
+/// The body in three meshes drawn with the character's skin (head, feet,
+/// the rest), after a sword triangle drawn with a skin of its own (the hand).
+fn several_meshes_and_a_prop() -> RigParts {
+    let mut p = human();
+    let neck = p.globals()[p.joint("neck_01")].w_axis.y;
+    let triangles: Vec<[u32; 3]> = (p.indices.chunks_exact(3))
+        .map(|t| [t[0], t[1], t[2]])
+        .collect();
+    p.triangle_mesh = triangles
+        .iter()
+        .map(|t| {
+            let y = t.map(|v| p.positions[v as usize].y);
+            if y.iter().all(|&y| y > neck) {
+                1
+            } else if y.iter().all(|&y| y < 0.15) {
+                2
+            } else {
+                0
+            }
+        })
+        .collect();
+    let hand = p.globals()[p.joint("hand_r")].w_axis.truncate();
+    p.props.push(Prop {
+        joint: "hand_r".to_string(),
+        triangle: [
+            hand,
+            hand + Vec3::new(0.0, -0.9, 0.0),
+            hand + Vec3::new(0.0, -0.9, 0.05),
+        ],
     });
     p
 }
@@ -281,6 +319,13 @@ fn every_variant_walks_on_its_soles_or_is_refused_naming_the_file() {
                     facing,
                 } => {
                     let rig = CharacterRig::load(&path, None).unwrap_or_else(|e| panic!("{e}"));
+                    let triangles = (v.build)().indices.len() / 3;
+                    if rig.model().mesh.triangle_count() != triangles {
+                        failures.push(format!(
+                            "{} of {triangles} triangles loaded",
+                            rig.model().mesh.triangle_count()
+                        ));
+                    }
                     if rig.units() != *units {
                         failures.push(format!("units {} instead of {units}", rig.units()));
                     }
@@ -337,7 +382,10 @@ fn inspect_says_the_units_the_facing_the_preset_and_what_is_optional() {
             "centimetres-armature-scale",
             &["root Armature: scaled (0.01", "units metres"],
         ),
-        ("centimetres-no-scale", &["units centimetres", "stands 1.67 m"]),
+        (
+            "centimetres-no-scale",
+            &["units centimetres", "stands 1.67 m"],
+        ),
         (
             "z-up-armature",
             &["root Armature: turned 90 degrees about (-1.00", "faces +Z"],
