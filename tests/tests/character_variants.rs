@@ -71,6 +71,25 @@ fn variants() -> Vec<Variant> {
             expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
         },
         Variant {
+            name: "mixamo-export",
+            build: || {
+                let mut p = human();
+                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
+                p.turn(Quat::from_rotation_x(FRAC_PI_2));
+                p.in_units(100.0);
+                p.insert_root(
+                    "Armature",
+                    Transform {
+                        rotation: Quat::from_rotation_x(-FRAC_PI_2),
+                        scale: Vec3::splat(0.01),
+                        ..Transform::IDENTITY
+                    },
+                );
+                p
+            },
+            expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
+        },
+        Variant {
             name: "centimetres-armature-scale",
             build: || {
                 let mut p = human();
@@ -378,6 +397,14 @@ fn inspect_says_the_units_the_facing_the_preset_and_what_is_optional() {
     };
     for (name, words) in [
         ("mixamo-names", &["bone names: Mixamo", "units metres"][..]),
+        (
+            "mixamo-export",
+            &[
+                "bone names: Mixamo",
+                "root Armature: turned 90 degrees about (-1.00",
+                "scaled (0.01",
+            ],
+        ),
         (
             "centimetres-armature-scale",
             &["root Armature: scaled (0.01", "units metres"],
