@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use softwalk_app::cli::Cli;
 use softwalk_app::commands::execute;
 use softwalk_app::scene::Scene;
-use softwalk_systems::character::{CharacterRig, ModelUnits};
+use softwalk_systems::character::{CharacterRig, ModelError, ModelUnits};
 use softwalk_tests::glb_writer::{Prop, RigParts};
 use softwalk_tests::sole_contact::walk_soles;
 
@@ -45,8 +45,12 @@ enum Expect {
         preset: RigPreset,
         facing: Vec3,
     },
-    /// A scene refuses it; the error contains these words.
-    Refused(&'static str),
+    /// Refused: `CharacterRig::load` gives the error `typed` accepts, and a
+    /// scene's error names the file and contains `words`.
+    Refused {
+        typed: fn(&ModelError) -> bool,
+        words: &'static str,
+    },
 }
 
 fn human() -> RigParts {
@@ -121,7 +125,10 @@ fn variants() -> Vec<Variant> {
                 p.in_units(10.0);
                 p
             },
-            expect: Expect::Refused("units tall"),
+            expect: Expect::Refused {
+                typed: |e| matches!(e, ModelError::Units { .. }),
+                words: "units tall",
+            },
         },
         Variant {
             name: "z-up-armature",
@@ -146,7 +153,10 @@ fn variants() -> Vec<Variant> {
                 p.turn(Quat::from_rotation_x(FRAC_PI_2));
                 p
             },
-            expect: Expect::Refused("lies down"),
+            expect: Expect::Refused {
+                typed: |e| matches!(e, ModelError::LyingDown { .. }),
+                words: "lies down",
+            },
         },
         Variant {
             name: "facing-minus-z",
@@ -165,6 +175,16 @@ fn variants() -> Vec<Variant> {
                 p
             },
             expect: metres(Vec3::X),
+        },
+        Variant {
+            name: "origin-at-the-hips",
+            build: || {
+                let mut p = human();
+                let hips = p.globals()[p.joint("pelvis")].w_axis.truncate();
+                p.insert_root("Armature", Transform::from_translation(-hips));
+                p
+            },
+            expect: metres(Vec3::Z),
         },
         Variant {
             name: "t-pose",
@@ -325,7 +345,12 @@ fn every_variant_walks_on_its_soles_or_is_refused_naming_the_file() {
             let scene = scene_with(&path);
             let mut failures = Vec::new();
             let row = match &v.expect {
-                Expect::Refused(words) => {
+                Expect::Refused { typed, words } => {
+                    match CharacterRig::load(&path, None) {
+                        Err(e) if typed(&e) => {}
+                        Err(e) => failures.push(format!("refused with another error: {e}")),
+                        Ok(_) => failures.push("loaded".to_string()),
+                    }
                     let e = scene.validate().unwrap_err().to_string();
                     if !(e.contains(words) && e.contains(&path.display().to_string())) {
                         failures.push(format!("refused without naming the file and {words:?}: {e}"));
