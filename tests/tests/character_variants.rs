@@ -75,6 +75,26 @@ fn variants() -> Vec<Variant> {
             expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
         },
         Variant {
+            name: "mixamo-underscore-names",
+            build: || {
+                let mut p = human();
+                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
+                p.rename(|n| n.replace("mixamorig:", "mixamorig_"));
+                p
+            },
+            expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
+        },
+        Variant {
+            name: "humanik-names",
+            build: || {
+                let mut p = human();
+                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
+                p.rename(|n| n.replace("mixamorig:", "Character1_"));
+                p
+            },
+            expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
+        },
+        Variant {
             name: "mixamo-export",
             build: || {
                 let mut p = human();
