@@ -120,6 +120,44 @@ impl RigParts {
         self.rebind(locals);
     }
 
+    /// Gives every joint the global rotation `frame(joint, rest positions)`
+    /// without moving any joint or vertex (as Blender orients each bone's Y
+    /// axis along it): local transforms and inverse binds change, the bind
+    /// pose does not. Joint scales must be 1.
+    pub fn reorient(&mut self, frame: impl Fn(usize, &[Vec3]) -> Quat) {
+        let at: Vec<Vec3> = self.globals().iter().map(|g| g.w_axis.truncate()).collect();
+        let globals: Vec<Mat4> = (0..at.len())
+            .map(|j| Mat4::from_rotation_translation(frame(j, &at), at[j]))
+            .collect();
+        for (j, global) in globals.iter().enumerate() {
+            let local = match self.joints[j].parent {
+                Some(p) => globals[p].inverse() * *global,
+                None => *global,
+            };
+            let (_, rotation, translation) = local.to_scale_rotation_translation();
+            self.joints[j].rest = Transform {
+                translation,
+                rotation,
+                scale: Vec3::ONE,
+            };
+            self.joints[j].inverse_bind = global.inverse();
+        }
+    }
+
+    /// The rotation turning +Y along the bone from joint `j` to its first
+    /// child (a leaf keeps its parent's), rolled by `roll` radians about it.
+    pub fn along_bone(&self, j: usize, at: &[Vec3], roll: f32) -> Quat {
+        let child = (self.joints.iter()).position(|c| c.parent == Some(j));
+        match (child, self.joints[j].parent) {
+            (Some(c), _) => {
+                let along = (at[c] - at[j]).normalize_or(Vec3::Y);
+                Quat::from_rotation_arc(Vec3::Y, along) * Quat::from_rotation_y(roll)
+            }
+            (None, Some(p)) => self.along_bone(p, at, roll),
+            (None, None) => Quat::IDENTITY,
+        }
+    }
+
     /// Puts a new root joint `name` with rest transform `rest` above every
     /// current root; the bind pose does not change, so the figure moves by `rest`.
     pub fn insert_root(&mut self, name: &str, rest: Transform) {

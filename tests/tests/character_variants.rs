@@ -207,6 +207,21 @@ fn variants() -> Vec<Variant> {
             expect: metres(Vec3::Z),
         },
         Variant {
+            name: "bones-along-their-y-axis",
+            build: || {
+                let mut p = human();
+                let frames: Vec<Quat> = {
+                    let at: Vec<Vec3> = p.globals().iter().map(|g| g.w_axis.truncate()).collect();
+                    (0..p.joints.len())
+                        .map(|j| p.along_bone(j, &at, 0.3 * j as f32))
+                        .collect()
+                };
+                p.reorient(|j, _| frames[j]);
+                p
+            },
+            expect: metres(Vec3::Z),
+        },
+        Variant {
             name: "t-pose",
             build: || {
                 let mut p = human();
