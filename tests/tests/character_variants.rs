@@ -32,10 +32,19 @@ const FACING_TOLERANCE_DEG: f32 = 5.0;
 struct Variant {
     /// File stem and table row.
     name: &'static str,
-    /// Builds its parts from the human's.
-    build: fn() -> RigParts,
+    /// Edits the human's parts into it.
+    edit: fn(&mut RigParts),
     /// What loading it must give.
     expect: Expect,
+}
+
+impl Variant {
+    /// The human's parts with this variant's edit.
+    fn parts(&self) -> RigParts {
+        let mut parts = RigParts::human();
+        (self.edit)(&mut parts);
+        parts
+    }
 }
 
 enum Expect {
@@ -53,10 +62,6 @@ enum Expect {
     },
 }
 
-fn human() -> RigParts {
-    RigParts::human()
-}
-
 fn variants() -> Vec<Variant> {
     let walks = |units, preset, facing| Expect::Walks {
         units,
@@ -67,38 +72,23 @@ fn variants() -> Vec<Variant> {
     vec![
         Variant {
             name: "mixamo-names",
-            build: || {
-                let mut p = human();
-                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
-                p
-            },
+            edit: |p| mixamo_named(p, "mixamorig:"),
             expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
         },
         Variant {
             name: "mixamo-underscore-names",
-            build: || {
-                let mut p = human();
-                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
-                p.rename(|n| n.replace("mixamorig:", "mixamorig_"));
-                p
-            },
+            edit: |p| mixamo_named(p, "mixamorig_"),
             expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
         },
         Variant {
             name: "humanik-names",
-            build: || {
-                let mut p = human();
-                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
-                p.rename(|n| n.replace("mixamorig:", "Character1_"));
-                p
-            },
+            edit: |p| mixamo_named(p, "Character1_"),
             expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
         },
         Variant {
             name: "mixamo-export",
-            build: || {
-                let mut p = human();
-                p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
+            edit: |p| {
+                mixamo_named(p, "mixamorig:");
                 p.turn(Quat::from_rotation_x(FRAC_PI_2));
                 p.in_units(100.0);
                 p.insert_root(
@@ -109,14 +99,12 @@ fn variants() -> Vec<Variant> {
                         ..Transform::IDENTITY
                     },
                 );
-                p
             },
             expect: walks(ModelUnits::Metres, RigPreset::Mixamo, Vec3::Z),
         },
         Variant {
             name: "centimetres-armature-scale",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.in_units(100.0);
                 p.insert_root(
                     "Armature",
@@ -125,25 +113,20 @@ fn variants() -> Vec<Variant> {
                         ..Transform::IDENTITY
                     },
                 );
-                p
             },
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "centimetres-no-scale",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.in_units(100.0);
-                p
             },
             expect: walks(ModelUnits::Centimetres, RigPreset::GameEngine, Vec3::Z),
         },
         Variant {
             name: "decimetres",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.in_units(10.0);
-                p
             },
             expect: Expect::Refused {
                 typed: |e| matches!(e, ModelError::Units { .. }),
@@ -152,8 +135,7 @@ fn variants() -> Vec<Variant> {
         },
         Variant {
             name: "z-up-armature",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.turn(Quat::from_rotation_x(FRAC_PI_2));
                 p.insert_root(
                     "Armature",
@@ -162,16 +144,13 @@ fn variants() -> Vec<Variant> {
                         ..Transform::IDENTITY
                     },
                 );
-                p
             },
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "z-up-uncorrected",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.turn(Quat::from_rotation_x(FRAC_PI_2));
-                p
             },
             expect: Expect::Refused {
                 typed: |e| matches!(e, ModelError::LyingDown { .. }),
@@ -180,36 +159,29 @@ fn variants() -> Vec<Variant> {
         },
         Variant {
             name: "facing-minus-z",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.turn(Quat::from_rotation_y(std::f32::consts::PI));
-                p
             },
             expect: metres(Vec3::NEG_Z),
         },
         Variant {
             name: "facing-plus-x",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.turn(Quat::from_rotation_y(FRAC_PI_2));
-                p
             },
             expect: metres(Vec3::X),
         },
         Variant {
             name: "origin-at-the-hips",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 let hips = p.globals()[p.joint("pelvis")].w_axis.truncate();
                 p.insert_root("Armature", Transform::from_translation(-hips));
-                p
             },
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "bones-along-their-y-axis",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 let frames: Vec<Quat> = {
                     let at: Vec<Vec3> = p.globals().iter().map(|g| g.w_axis.truncate()).collect();
                     (0..p.joints.len())
@@ -217,29 +189,25 @@ fn variants() -> Vec<Variant> {
                         .collect()
                 };
                 p.reorient(|j, _| frames[j]);
-                p
             },
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "t-pose",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 p.aim_bone("upperarm_l", "lowerarm_l", Vec3::X);
                 p.aim_bone("upperarm_r", "lowerarm_r", Vec3::NEG_X);
-                p
             },
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "extra-bones",
-            build: extra_bones,
+            edit: extra_bones,
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "missing-bones",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 for bone in [
                     "ball_l",
                     "ball_r",
@@ -250,34 +218,37 @@ fn variants() -> Vec<Variant> {
                 ] {
                     p.remove_bone(bone);
                 }
-                p
             },
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "several-meshes-and-a-prop",
-            build: several_meshes_and_a_prop,
+            edit: several_meshes_and_a_prop,
             expect: metres(Vec3::Z),
         },
         Variant {
             name: "long-legs-short-torso",
-            build: || {
-                let mut p = human();
+            edit: |p| {
                 let hips = p.globals()[p.joint("thigh_l")].w_axis.y;
                 p.stretch_vertically(hips, 1.15, 0.8);
-                p
             },
             expect: metres(Vec3::Z),
         },
     ]
 }
 
+/// Mixamo's bone names after `namespace` (`mixamorig:`, `mixamorig_`, or
+/// Maya HumanIK's `Character1_`), on every joint.
+fn mixamo_named(p: &mut RigParts, namespace: &str) {
+    p.rename_to_preset(RigPreset::Mixamo, "mixamorig:");
+    p.rename(|n| n.replace("mixamorig:", namespace));
+}
+
 /// Twist bones on the thighs and upper arms (taking the lower half of their
 /// skin), an IK bone per foot under the root (as Unreal rigs have), and a
 /// weapon bone in the right hand; the human already has a root at the
 /// ground and fingers.
-fn extra_bones() -> RigParts {
-    let mut p = human();
+fn extra_bones(p: &mut RigParts) {
     for side in ["l", "r"] {
         for (upper, lower) in [("thigh", "calf"), ("upperarm", "lowerarm")] {
             let (u, l) = (
@@ -304,13 +275,11 @@ fn extra_bones() -> RigParts {
     p.add_bone("hand_r", "weapon_r", Vec3::new(-0.05, -0.05, 0.05), |_| {
         false
     });
-    p
 }
 
 /// The body in three meshes drawn with the character's skin (head, feet,
 /// the rest), after a sword triangle drawn with a skin of its own (the hand).
-fn several_meshes_and_a_prop() -> RigParts {
-    let mut p = human();
+fn several_meshes_and_a_prop(p: &mut RigParts) {
     let neck = p.globals()[p.joint("neck_01")].w_axis.y;
     let triangles: Vec<[u32; 3]> = (p.indices.chunks_exact(3))
         .map(|t| [t[0], t[1], t[2]])
@@ -337,7 +306,6 @@ fn several_meshes_and_a_prop() -> RigParts {
             hand + Vec3::new(0.0, -0.9, 0.05),
         ],
     });
-    p
 }
 
 /// Where the variants' files go: `KEEP_VARIANTS` if set, else a temporary folder.
@@ -357,7 +325,7 @@ fn output_dir() -> (PathBuf, Option<tempfile::TempDir>) {
 /// Writes a variant's `.glb` into `dir`.
 fn write(variant: &Variant, dir: &Path) -> PathBuf {
     let path = dir.join(format!("{}.glb", variant.name));
-    std::fs::write(&path, (variant.build)().to_glb()).unwrap();
+    std::fs::write(&path, variant.parts().to_glb()).unwrap();
     path
 }
 
@@ -398,7 +366,7 @@ fn every_variant_walks_on_its_soles_or_is_refused_naming_the_file() {
                     facing,
                 } => {
                     let rig = CharacterRig::load(&path, None).unwrap_or_else(|e| panic!("{e}"));
-                    let triangles = (v.build)().indices.len() / 3;
+                    let triangles = v.parts().indices.len() / 3;
                     if rig.model().mesh.triangle_count() != triangles {
                         failures.push(format!(
                             "{} of {triangles} triangles loaded",
