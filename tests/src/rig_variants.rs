@@ -224,6 +224,29 @@ impl RigParts {
         }
     }
 
+    /// Adds a tetrahedron on `corners`, skinned wholly to joint `name` (a
+    /// tail, a scabbard, the hem of a cloak); its faces point outwards.
+    pub fn add_tetrahedron(&mut self, name: &str, corners: [Vec3; 4]) {
+        let j = self.joint(name) as u16;
+        let centre = corners.iter().sum::<Vec3>() / 4.0;
+        for face in [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]] {
+            let [a, b, c] = face.map(|k| corners[k]);
+            let normal = (b - a).cross(c - a).normalize();
+            let (b, c, normal) = if normal.dot(a - centre) < 0.0 {
+                (c, b, -normal)
+            } else {
+                (b, c, normal)
+            };
+            let first = self.positions.len() as u32;
+            self.positions.extend([a, b, c]);
+            self.normals.extend([normal; 3]);
+            self.skin.extend([[j, 0, 0, 0]; 3]);
+            self.weights.extend([[1.0, 0.0, 0.0, 0.0]; 3]);
+            self.indices.extend([first, first + 1, first + 2]);
+            self.triangle_mesh.push(0);
+        }
+    }
+
     /// Removes joint `name`: its children hang from its parent (their rest
     /// transforms composed with its own) and its vertex weights go to its parent.
     pub fn remove_bone(&mut self, name: &str) {

@@ -193,6 +193,19 @@ fn variants() -> Vec<Variant> {
             expect: metres(Vec3::Z),
         },
         Variant {
+            name: "tail-below-the-soles",
+            edit: |p| {
+                let tip = Vec3::new(0.0, -0.1, -0.35);
+                let base = [
+                    Vec3::new(-0.05, 0.9, -0.1),
+                    Vec3::new(0.05, 0.9, -0.1),
+                    Vec3::new(0.0, 0.95, -0.15),
+                ];
+                p.add_tetrahedron("pelvis", [base[0], base[1], base[2], tip]);
+            },
+            expect: metres(Vec3::Z),
+        },
+        Variant {
             name: "t-pose",
             edit: |p| {
                 p.aim_bone("upperarm_l", "lowerarm_l", Vec3::X);
@@ -308,12 +321,14 @@ fn several_meshes_and_a_prop(p: &mut RigParts) {
     });
 }
 
-/// Where the variants' files go: `KEEP_VARIANTS` if set, else a temporary folder.
-fn output_dir() -> (PathBuf, Option<tempfile::TempDir>) {
+/// Where a test writes the variants' files: `KEEP_VARIANTS/test` if set
+/// (one folder per test, as tests run at once), else a temporary folder.
+fn output_dir(test: &str) -> (PathBuf, Option<tempfile::TempDir>) {
     match std::env::var_os("KEEP_VARIANTS") {
         Some(dir) => {
+            let dir = PathBuf::from(dir).join(test);
             std::fs::create_dir_all(&dir).unwrap();
-            (PathBuf::from(dir), None)
+            (dir, None)
         }
         None => {
             let temp = tempfile::tempdir().unwrap();
@@ -339,7 +354,7 @@ fn scene_with(path: &Path) -> Scene {
 
 #[test]
 fn every_variant_walks_on_its_soles_or_is_refused_naming_the_file() {
-    let (dir, _temp) = output_dir();
+    let (dir, _temp) = output_dir("walks");
     let variants = variants();
     let rows: Vec<(String, Vec<String>)> = variants
         .par_iter()
@@ -413,7 +428,7 @@ fn every_variant_walks_on_its_soles_or_is_refused_naming_the_file() {
 
 #[test]
 fn inspect_says_the_units_the_facing_the_preset_and_what_is_optional() {
-    let (dir, _temp) = output_dir();
+    let (dir, _temp) = output_dir("inspect");
     let all = variants();
     let inspect = |name: &str| {
         let v = all.iter().find(|v| v.name == name).unwrap();

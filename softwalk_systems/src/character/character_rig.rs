@@ -17,7 +17,7 @@ use super::model_units::ModelUnits;
 /// The default character, a CC0 MakeHuman body with a game-engine rig
 /// (`assets/characters/human.glb`; see the README beside it), built in.
 const HUMAN_GLB: &[u8] = include_bytes!("../../../assets/characters/human.glb");
-/// How far above the lowest bind-pose vertex a foot vertex still counts as sole, metres.
+/// How far above the lowest rest-pose foot vertex a foot vertex still counts as sole, metres.
 const SOLE_BAND: f32 = 0.012;
 /// Smallest share of a vertex's weight on a foot's bones for it to be part of that sole.
 const SOLE_WEIGHT: f32 = 0.5;
@@ -40,7 +40,7 @@ pub struct ArmChain {
 ///
 /// Rest-pose figures are in the model's bind space after its rest transforms,
 /// in metres (a model in centimetres or millimetres is converted): Y up, the
-/// soles on the lowest vertex.
+/// soles on the lowest foot vertex.
 #[derive(Debug, Clone)]
 pub struct CharacterRig {
     data: Arc<RigData>,
@@ -109,10 +109,17 @@ impl CharacterRig {
         let rest_globals = model.skeleton.rest_globals();
         let rest_positions: Vec<Vec3> = rest_globals.iter().map(|m| m.w_axis.truncate()).collect();
         let rest_vertices = rest_mesh(&model, &rest_globals)?;
-        let ground = rest_vertices
-            .positions
-            .iter()
-            .map(|p| p.y)
+        let feet = [&chains.left, &chains.right].map(|leg| foot_vertices(&model, leg));
+        if let Some(k) = feet.iter().position(Vec::is_empty) {
+            return Err(ModelError::Shape {
+                reason: format!(
+                    "no vertex is weighted mostly to the {} foot (its ankle joint and below)",
+                    ["left", "right"][k]
+                ),
+            });
+        }
+        let ground = (feet.iter().flatten())
+            .map(|&v| rest_vertices.positions[v as usize].y)
             .fold(f32::INFINITY, f32::min);
         let at = |j: usize| rest_positions[j];
         let hip_mid = 0.5 * (at(chains.left.hip) + at(chains.right.hip));
@@ -120,7 +127,7 @@ impl CharacterRig {
         if hip_height.is_nan() || hip_height <= 1e-3 {
             return Err(ModelError::Shape {
                 reason: format!(
-                    "the hips stand {hip_height:.3} m above the lowest vertex; they must be above it"
+                    "the hips stand {hip_height:.3} m above the soles; they must be above them"
                 ),
             });
         }
@@ -128,8 +135,11 @@ impl CharacterRig {
             .map(|p| p.y)
             .fold(f32::NEG_INFINITY, f32::max)
             - ground;
-        let soles = [&chains.left, &chains.right]
-            .map(|leg| sole_vertices(&model, &rest_vertices, leg, ground));
+        let soles = feet.map(|foot| {
+            (foot.into_iter())
+                .filter(|&v| rest_vertices.positions[v as usize].y <= ground + SOLE_BAND)
+                .collect::<Vec<u32>>()
+        });
         for (k, sole) in soles.iter().enumerate() {
             if sole.is_empty() {
                 return Err(ModelError::Shape {
@@ -222,7 +232,7 @@ impl CharacterRig {
         &self.data.rest_positions
     }
 
-    /// Height of the lowest rest-pose vertex (the soles).
+    /// Height of the lowest rest-pose foot vertex (the soles).
     pub fn ground(&self) -> f32 {
         self.data.ground
     }
@@ -242,7 +252,7 @@ impl CharacterRig {
         self.data.frame
     }
 
-    /// The vertices of each sole (left first): foot vertices near the lowest vertex.
+    /// The vertices of each sole (left first): foot vertices near the lowest foot vertex.
     pub fn sole_vertices(&self) -> &[Vec<u32>; 2] {
         &self.data.soles
     }
@@ -355,23 +365,22 @@ fn foot_direction(foot: &FootRest, rest: &[Vec3], positions: &[Vec3]) -> Vec3 {
     Vec3::new(axis.x, 0.0, axis.y)
 }
 
-/// The rest vertices weighted mostly to `leg`'s foot (its ankle joint and
-/// every joint below it: toes) that lie within [`SOLE_BAND`] of the ground.
-fn sole_vertices(model: &Model, rest: &SkinnedVertices, leg: &LegChain, ground: f32) -> Vec<u32> {
+/// The vertices weighted mostly to `leg`'s foot: its ankle joint and every
+/// joint below it (toes).
+fn foot_vertices(model: &Model, leg: &LegChain) -> Vec<u32> {
     let mesh = &model.mesh;
     let skeleton = &model.skeleton;
     let foot: Vec<bool> = (0..skeleton.len())
         .map(|j| skeleton.is_ancestor(leg.ankle, j))
         .collect();
     (mesh.joints().iter().zip(mesh.weights()))
-        .zip(&rest.positions)
         .enumerate()
-        .filter(|(_, ((js, ws), p))| {
+        .filter(|(_, (js, ws))| {
             let on_foot: f32 = (js.iter().zip(ws.iter()))
                 .filter(|(j, _)| foot.get(**j as usize).copied().unwrap_or(false))
                 .map(|(_, w)| w)
                 .sum();
-            on_foot >= SOLE_WEIGHT && p.y <= ground + SOLE_BAND
+            on_foot >= SOLE_WEIGHT
         })
         .map(|(k, _)| k as u32)
         .collect()
