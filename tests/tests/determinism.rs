@@ -71,12 +71,16 @@ fn a_crowd_gives_the_same_world_on_one_two_and_four_threads() {
 }
 
 #[test]
-fn the_character_model_is_a_view_and_never_changes_the_world() {
+fn the_model_sets_the_body_mass_and_drawing_it_never_changes_the_world() {
     let human = Scene::builtin("grass-small").unwrap();
     assert_eq!(human.characters[0].model, softwalk_app::scene::HUMAN_MODEL);
     let mut mannequin = human.clone();
     for c in &mut mannequin.characters {
         c.model = softwalk_app::scene::MANNEQUIN_MODEL.to_string();
     }
-    assert_eq!(hash(&human, true, 2), hash(&mannequin, true, 2));
+    let headless = hash(&human, false, 1);
+    assert_eq!(hash(&human, true, 2), headless, "drawing the human");
+    // The human's skinned volume, not the capsules, gives its body its
+    // centre of mass and inertia.
+    assert_ne!(hash(&mannequin, false, 1), headless);
 }

@@ -14,11 +14,11 @@ use softwalk_app::scene::Scene;
 const STEPS: u64 = 600;
 /// The world the recorded walk ends in. Changes only when the simulation
 /// is meant to change: update it deliberately, and say so.
-const REPLAY_HASH: u64 = 0x2531_ca97_49ef_61d7;
+const REPLAY_HASH: u64 = 0x5155_5cce_86ea_be64;
 /// Steps of the recorded walk stepping back on sand (8 s at 60 Hz).
 const BACK_STEPS: u64 = 480;
 /// The world the walk stepping back ends in (same rule as [`REPLAY_HASH`]).
-const BACK_HASH: u64 = 0xb8ab_6bd6_255e_0d68;
+const BACK_HASH: u64 = 0xca8f_7468_fce7_f4aa;
 
 fn script() -> InputScript {
     load("turns_stop_snow.toml")
@@ -55,6 +55,10 @@ fn a_recorded_walk_replays_to_a_known_world_meeting_the_gait_goals() {
     let walked = &run.walkers[0];
     let stopped = walked[330..380].iter().all(|m| m.velocity.length() == 0.0);
     assert!(stopped, "the walker did not stop");
+    let standing = walked[340..380]
+        .iter()
+        .all(|m| m.character.contact == [true, true]);
+    assert!(standing, "a foot in the air at rest");
     let last = walked.last().unwrap().character.com;
     assert!(
         last.z < 2.9 && last.x > 6.0,
@@ -71,6 +75,24 @@ fn a_recorded_walk_stepping_back_replays_to_a_known_world() {
     let backward = walked.iter().filter(|m| m.velocity.x < -0.2).count();
     assert!(backward > 60, "stepped back for {backward} steps only");
     assert_eq!(hash, BACK_HASH, "the replayed world changed");
+}
+
+/// Steps of the recorded walk stepping back aslant and hurried (9 s at 60 Hz).
+const ASLANT_STEPS: u64 = 540;
+/// The world the walk stepping back aslant ends in (same rule as [`REPLAY_HASH`]).
+const ASLANT_HASH: u64 = 0x46dd_b27d_d21a_91c7;
+
+#[test]
+fn a_recorded_walk_stepping_back_aslant_and_hurried_replays_to_a_known_world() {
+    let scene = Scene::builtin("sand-flat").unwrap();
+    let inputs = load("steps_back_aslant_sand.toml");
+    let (run, hash) = replay_twice(&scene, &inputs, ASLANT_STEPS);
+    let walked = &run.walkers[0];
+    let aslant = walked.iter().filter(|m| m.velocity.z < -0.1).count();
+    let hurried = walked.iter().filter(|m| m.velocity.x < -0.7).count();
+    assert!(aslant > 60, "stepped back aslant for {aslant} steps only");
+    assert!(hurried > 30, "hurried back for {hurried} steps only");
+    assert_eq!(hash, ASLANT_HASH, "the replayed world changed");
 }
 
 /// Counts frames; draws nothing else.

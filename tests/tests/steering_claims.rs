@@ -8,13 +8,14 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 use softwalk_app::inputs::InputScript;
 use softwalk_app::paper::gait_quality::GaitQuality;
-use softwalk_app::paper::recorded_run::record_run_with_inputs;
+use softwalk_app::paper::recorded_run::{RecordedRun, record_run_with_inputs};
 use softwalk_app::scene::Scene;
 use softwalk_systems::character::{
-    Character, CharacterDesc, GaitModifiers, GaitParams, Joint, Steering, WalkPath, steer_stage,
-    step_character,
+    Character, CharacterBody, CharacterDesc, GaitModifiers, GaitParams, Joint, MAX_BACKWARD_ASLANT,
+    Steering, SteeringSettings, WalkPath, braking, steer_stage, step_character,
 };
 use softwalk_systems::ground::FlatGround;
+use softwalk_systems::sim::WalkerMetrics;
 
 const DT: f32 = 1.0 / 60.0;
 /// The foot-slide goal: a planted heel or toe moves at most this far per stance, metres.
@@ -53,6 +54,7 @@ impl Steered {
                 let c = &mut self.character;
                 let scale = steer_stage(&mut self.steering, &c.gait, &c.body, &mut self.path, DT);
                 c.modifiers.speed_scale = scale;
+                c.modifiers.braking = braking(&self.steering, &c.gait, &self.path);
                 step_character(c, &self.path, &self.ground, DT);
                 let m = &c.metrics;
                 [0, 1].map(|k| (m.contact[k], [m.soles[k].heel, m.soles[k].toe]))
@@ -91,18 +93,28 @@ fn worst_slide(samples: &[SoleSample]) -> f32 {
 
 #[test]
 fn turning_on_the_spot_keeps_planted_feet_still() {
-    let mut s = Steered::new();
-    // A hurried wish straight behind turns on the spot before walking off.
-    let samples = s.walk(Vec2::new(0.0, -1.5), 3.0);
-    let slide = worst_slide(&samples);
-    let heading = s.character.gait.pelvis.heading;
-    let travelled = s.character.gait.pelvis.position.length();
-    println!(
-        "turn on the spot: slide {:.2} cm, heading {heading:?}, pelvis moved {travelled:.2} m",
-        slide * 100.0
-    );
-    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
-    assert!(heading.y < -0.9, "did not turn round: {heading:?}");
+    // A wish 110° round (past `pivot_start`, short of stepping back), and
+    // one straight behind faster than `backward_max_speed`, turn on the spot
+    // before walking off.
+    let fastest_back = SteeringSettings::default().backward_max_speed;
+    for (degrees, speed) in [(110f32, 1.2), (180.0, fastest_back + 0.3)] {
+        let mut s = Steered::new();
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let samples = s.walk(Vec2::new(sin, cos) * speed, 3.0);
+        let slide = worst_slide(&samples);
+        let heading = s.character.gait.pelvis.heading;
+        let travelled = s.character.gait.pelvis.position.length();
+        println!(
+            "turn on the spot by {degrees}° at {speed} m/s: slide {:.2} cm, heading {heading:?}, \
+             pelvis moved {travelled:.2} m",
+            slide * 100.0
+        );
+        assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
+        assert!(
+            (heading - Vec2::new(sin, cos)).length() < 0.1,
+            "did not turn round: {heading:?}"
+        );
+    }
 }
 
 #[test]
@@ -138,12 +150,16 @@ const BACK_STEPS: u64 = 480;
 /// starts at step 120, the walker stops, then steps back until step 280).
 const STEPPING_BACK: std::ops::Range<usize> = 150..300;
 
-#[test]
-fn a_slow_wish_behind_steps_back_on_sand_facing_forward() {
+/// A recorded walk on sand-flat from `tests/inputs/<name>`, `steps` long:
+/// the run, each step's soles against the ground under them, and whether
+/// the toes always stayed ahead of the heels along +x (facing forward).
+fn recorded_on_sand(name: &str, steps: u64) -> (RecordedRun, Vec<SoleSample>, bool) {
     let scene = Scene::builtin("sand-flat").unwrap();
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs/steps_back_sand.toml");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("inputs")
+        .join(name);
     let inputs = InputScript::load(&file).unwrap();
-    let run = record_run_with_inputs(&scene, BACK_STEPS, Some(&inputs)).unwrap();
+    let run = record_run_with_inputs(&scene, steps, Some(&inputs)).unwrap();
     let walked = &run.walkers[0];
     let samples: Vec<SoleSample> = walked
         .iter()
@@ -158,15 +174,27 @@ fn a_slow_wish_behind_steps_back_on_sand_facing_forward() {
             })
         })
         .collect();
-    let back = &walked[STEPPING_BACK];
-    let landings = (1..back.len())
-        .flat_map(|s| [0, 1].map(|k| (s, k)))
-        .filter(|&(s, k)| back[s].character.contact[k] && !back[s - 1].character.contact[k])
-        .count();
-    let moved = back[back.len() - 1].character.com - back[0].character.com;
     let facing_forward = walked
         .iter()
         .all(|m| m.character.soles.iter().all(|s| s.toe.x > s.heel.x));
+    (run, samples, facing_forward)
+}
+
+/// Feet landing over `walked` (a foot in contact that was not the step before).
+fn landings(walked: &[WalkerMetrics]) -> usize {
+    (1..walked.len())
+        .flat_map(|s| [0, 1].map(|k| (s, k)))
+        .filter(|&(s, k)| walked[s].character.contact[k] && !walked[s - 1].character.contact[k])
+        .count()
+}
+
+#[test]
+fn a_slow_wish_behind_steps_back_on_sand_facing_forward() {
+    let (run, samples, facing_forward) = recorded_on_sand("steps_back_sand.toml", BACK_STEPS);
+    let walked = &run.walkers[0];
+    let back = &walked[STEPPING_BACK];
+    let landings = landings(back);
+    let moved = back[back.len() - 1].character.com - back[0].character.com;
     let slide = worst_slide(&samples);
     let whole = run.quality(0);
     let stepping_back = GaitQuality::measure(back, run.dt);
@@ -181,6 +209,124 @@ fn a_slow_wish_behind_steps_back_on_sand_facing_forward() {
     assert!(facing_forward, "the feet turned round");
     assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
     assert!(stepping_back.passes(), "{:?}", stepping_back.failures());
+    assert!(whole.passes(), "{:?}", whole.failures());
+}
+
+/// Steps of the walk stepping back aslant and hurried (9 s at 60 Hz).
+const ASLANT_STEPS: u64 = 540;
+/// Its steps stepping back aslant (S with A from step 120, after a stop).
+const ASLANT: std::ops::Range<usize> = 180..280;
+/// Its steps stepping back hurried (Shift with S from step 340).
+const HURRIED: std::ops::Range<usize> = 360..460;
+
+#[test]
+fn back_with_a_side_key_steps_back_aslant_and_shift_hurries_in_short_steps() {
+    let (run, samples, facing_forward) =
+        recorded_on_sand("steps_back_aslant_sand.toml", ASLANT_STEPS);
+    let walked = &run.walkers[0];
+    let moved = |range: std::ops::Range<usize>| {
+        walked[range.end].character.com - walked[range.start].character.com
+    };
+    let (aslant, hurried) = (moved(ASLANT), moved(HURRIED));
+    let seconds = |range: std::ops::Range<usize>| range.len() as f32 * run.dt;
+    let (slow, fast) = (
+        Vec2::new(aslant.x, aslant.z).length() / seconds(ASLANT),
+        -hurried.x / seconds(HURRIED),
+    );
+    let stride = |range: std::ops::Range<usize>| {
+        2.0 * moved(range.clone()).x.abs() / landings(&walked[range]).max(1) as f32
+    };
+    let hurried_steps = landings(&walked[HURRIED]);
+    let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+    let forward = GaitParams::new(&body, &GaitModifiers::default()).stride;
+    let stride = stride(HURRIED);
+    let slide = worst_slide(&samples);
+    let whole = run.quality(0);
+    let off_behind = aslant.z.atan2(-aslant.x).to_degrees();
+    let most = MAX_BACKWARD_ASLANT.to_degrees();
+    println!(
+        "aslant: moved ({:.2}, {:.2}) m ({off_behind:.1}° off behind) at {slow:.2} m/s; hurried: {:.2} m at {fast:.2} m/s, \
+         {hurried_steps} steps (stride {stride:.2} m, forward {forward:.2} m); slide {:.2} cm\n\
+         whole walk: {whole}",
+        aslant.x,
+        aslant.z,
+        hurried.x,
+        slide * 100.0
+    );
+    assert!(aslant.x < -0.3, "did not step back: {aslant}");
+    assert!(
+        (-most - 5.0..=-most + 5.0).contains(&off_behind),
+        "{off_behind}° off straight behind, not aslant to the left: {aslant}"
+    );
+    assert!(
+        fast > 1.3 * slow,
+        "Shift did not hurry: {fast} against {slow} m/s"
+    );
+    let top = SteeringSettings::default().backward_top_speed;
+    assert!(fast <= top + 0.05, "faster than the top speed: {fast} m/s");
+    assert!(stride < 0.85 * forward, "long steps back: {stride} m");
+    assert!(facing_forward, "the feet turned round");
+    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
+    assert!(whole.passes(), "{:?}", whole.failures());
+}
+
+/// Steps of the walk that stops on sand (5 s at 60 Hz).
+const STOP_STEPS: u64 = 300;
+/// The step before which every key is released.
+const STOP_AT: usize = 150;
+/// The slowest the walker moves before it rests, m/s (the braking floor).
+const LAST_SPEED_M_S: f32 = 0.3;
+
+#[test]
+fn a_stop_brakes_at_once_leans_back_and_rests_between_the_feet() {
+    let (run, samples, _) = recorded_on_sand("stop_sand.toml", STOP_STEPS);
+    let walked = &run.walkers[0];
+    let speed: Vec<f32> = walked.iter().map(|m| m.velocity.length()).collect();
+    let rest = STOP_AT + speed[STOP_AT..].iter().position(|&v| v == 0.0).unwrap();
+    let profile: Vec<String> = (STOP_AT - 1..=rest)
+        .step_by(3)
+        .map(|s| format!("{:.2}", speed[s]))
+        .collect();
+    let tilt = |s: usize| walked[s].character.tilt.to_degrees();
+    let walking_tilt = (STOP_AT - 60..STOP_AT).map(tilt).sum::<f32>() / 60.0;
+    let braking_tilt = (STOP_AT..rest).map(tilt).fold(f32::INFINITY, f32::min);
+    let travelled = walked[rest].character.com.x - walked[STOP_AT - 1].character.com.x;
+    let seconds = (rest + 1 - STOP_AT) as f32 * run.dt;
+    let at_rest = &walked[STOP_STEPS as usize - 1].character;
+    let feet = at_rest.feet.map(|f| f.x - at_rest.com.x);
+    let slide = worst_slide(&samples);
+    let whole = run.quality(0);
+    println!(
+        "stop on sand: pelvis speed every 3 steps from the key (m/s) {}\n\
+         rests after {seconds:.2} s and {travelled:.2} m; tilt {walking_tilt:.2}° walking, \
+         {braking_tilt:.2}° at most braking; feet {:.2} m and {:.2} m from the COM along x; \
+         slide {:.2} cm\nwhole walk: {whole}",
+        profile.join(" "),
+        feet[0],
+        feet[1],
+        slide * 100.0
+    );
+    assert!(speed[STOP_AT] < speed[STOP_AT - 1], "did not slow at once");
+    let slowing = speed[STOP_AT - 1..=rest]
+        .windows(2)
+        .all(|w| w[1] <= w[0] + 1e-4);
+    assert!(slowing, "sped up while stopping: {profile:?}");
+    assert!(
+        speed[rest - 1] <= LAST_SPEED_M_S,
+        "halted from {} m/s",
+        speed[rest - 1]
+    );
+    assert!((0.3..=1.2).contains(&seconds), "stopped in {seconds} s");
+    assert!(
+        braking_tilt < walking_tilt - 2.0,
+        "no lean back: {braking_tilt}°"
+    );
+    assert!(
+        feet[0].min(feet[1]) < 0.05 && feet[0].max(feet[1]) > -0.05,
+        "rests beside its feet, not between them: {feet:?}"
+    );
+    assert_eq!(at_rest.contact, [true, true], "a foot in the air at rest");
+    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
     assert!(whole.passes(), "{:?}", whole.failures());
 }
 

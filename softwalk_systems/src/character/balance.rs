@@ -44,6 +44,11 @@
 //! turning left): the lean that puts the resultant of gravity and the
 //! centripetal force through the feet. On a straight path `omega` is 0 and
 //! so is the lean; in a turn of radius `r` it is `atan(v² / (g r))`.
+//!
+//! Its sagittal counterpart leans the body back while the walk brakes for
+//! a stop: the posture's target lean falls by [`brake_lean`] of the
+//! deceleration `a` the gait is asked for, `atan(a / g)` up to
+//! [`MAX_BRAKE_LEAN`] (controller on; nothing at a steady speed).
 
 use glam::{Mat3, Quat, Vec2, Vec3};
 
@@ -92,6 +97,9 @@ pub const DEFAULT_LATERAL_STIFFNESS: f32 = 60.0;
 pub const DEFAULT_LATERAL_DAMPING: f32 = 15.0;
 /// The largest lean into a turn, radians (30°).
 pub const MAX_TURN_LEAN: f32 = 0.52;
+/// The largest lean back while braking, radians (3°): the legs do most of
+/// the braking, the trunk leans back slightly.
+pub const MAX_BRAKE_LEAN: f32 = 0.052;
 /// Gravity, m/s², for the turn lean.
 const GRAVITY: f32 = 9.81;
 
@@ -271,11 +279,14 @@ pub fn balance_stage(
     if dt > 0.0 {
         let follow = 1.0 - (-dt / balance.lean_time_constant.max(dt)).exp();
         proxy.slow_offset += (offset - proxy.slow_offset) * follow;
-        let lean = if balance.enabled && balance.lean_stiffness > 0.0 {
+        let mut lean = if balance.enabled && balance.lean_stiffness > 0.0 {
             balance.alpha * proxy.slow_offset / balance.lean_stiffness
         } else {
             0.0
         };
+        if balance.enabled && gait.params.braking > 0.0 {
+            lean -= brake_lean(gait.params.braking);
+        }
         let inertia = proxy.pitch_inertia;
         let drive = torque - balance.posture_stiffness * (proxy.tilt - lean);
         proxy.tilt_rate = (proxy.tilt_rate + dt * drive / inertia)
@@ -299,6 +310,12 @@ impl RigidProxy {
             Quat::from_axis_angle(forward, -self.lean) * pitch
         }
     }
+}
+
+/// How far the body leans back braking at `deceleration` m/s²:
+/// `atan(a / g)`, within [0, [`MAX_BRAKE_LEAN`]].
+pub fn brake_lean(deceleration: f32) -> f32 {
+    (deceleration.max(0.0) / GRAVITY).atan().min(MAX_BRAKE_LEAN)
 }
 
 /// The lean that balances a turn at `speed` (m/s) turning at `rate` (rad/s,

@@ -99,6 +99,9 @@ pub struct GaitModifiers {
     /// over run, negative downhill; non-finite reads as 0): steps shorten
     /// downhill, as people's do.
     pub grade: f32,
+    /// Deceleration of the walk along its path, m/s² (0 at a steady speed;
+    /// steering sets it while braking for a stop; clamped to `[0, 10]`).
+    pub braking: f32,
 }
 
 impl GaitModifiers {
@@ -118,6 +121,7 @@ impl Default for GaitModifiers {
             step_length_scale: 1.0,
             extra_clearance: 0.0,
             grade: 0.0,
+            braking: 0.0,
         }
     }
 }
@@ -160,6 +164,8 @@ pub struct GaitParams {
     pub sway_amplitude: f32,
     /// Arm swing amplitude at the shoulder, radians.
     pub arm_amplitude: f32,
+    /// Deceleration along the path, m/s² (see [`GaitModifiers::braking`]).
+    pub braking: f32,
 }
 
 impl GaitParams {
@@ -184,6 +190,7 @@ impl GaitParams {
             bob_amplitude: 0.015 * rv * ht,
             sway_amplitude: 0.032 * ht,
             arm_amplitude: (9.88 * rv).to_radians(),
+            braking: sane(modifiers.braking, 0.0, 10.0, 0.0),
         }
     }
 
@@ -334,14 +341,10 @@ impl Gait {
         (self.phase + 0.5 * foot as f32).fract()
     }
 
-    /// The unit direction of travel (x, z): the facing direction, or its
-    /// opposite while walking backward.
+    /// The unit direction of travel (x, z): the facing direction, or (while
+    /// walking backward) away from it.
     pub fn travel_heading(&self) -> Vec2 {
-        if self.backward {
-            -self.pelvis.heading
-        } else {
-            self.pelvis.heading
-        }
+        self.pelvis.travel
     }
 
     /// True while both feet are in stance.

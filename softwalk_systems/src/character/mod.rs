@@ -56,8 +56,8 @@ mod support;
 
 pub use balance::{
     Balance, DEFAULT_LATERAL_DAMPING, DEFAULT_LATERAL_STIFFNESS, DEFAULT_LEAN_STIFFNESS,
-    DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, MAX_TURN_LEAN,
-    RigidProxy, animated_com, balance_stage, turn_lean,
+    DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, MAX_BRAKE_LEAN,
+    MAX_TURN_LEAN, RigidProxy, animated_com, balance_stage, brake_lean, turn_lean,
 };
 pub use body::{BodyMass, CharacterBody};
 pub use character_rig::{ArmChain, CharacterRig};
@@ -73,11 +73,14 @@ pub use mesh::{capsule, character_mesh};
 pub use metrics::CharacterMetrics;
 pub use model_error::ModelError;
 pub use model_units::{ModelUnits, STANDING_HEIGHT_M};
-pub use path::{PathPoint, PathSegment, WalkPath};
+pub use path::{MAX_BACKWARD_ASLANT, PathPoint, PathSegment, WalkPath};
 pub use pose::Pose;
 pub use rays::{FootRays, GroundKey, foot_raycast_stage};
 pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
-pub use steering::{Steering, SteeringSettings, curve_radius, steer_stage, turn_angle};
+pub use steering::{
+    Brake, Steering, SteeringSettings, braking, curve_radius, steer_stage, stop_distance,
+    turn_angle,
+};
 pub use step::{Character, step_character};
 pub use support::{FootSupport, RIM_CLEARANCE, SupportPoint};

@@ -60,9 +60,12 @@ impl PathSegment {
 pub struct PathPoint {
     /// Position (x, z).
     pub position: Vec2,
-    /// Unit facing direction (x, z): the walking direction, or its opposite
-    /// on a path walked backward.
+    /// Unit facing direction (x, z): the walking direction, or (on a path
+    /// walked backward) turned away from it.
     pub heading: Vec2,
+    /// Unit direction of travel (x, z): the heading, except on a path
+    /// walked backward.
+    pub travel: Vec2,
 }
 
 impl PathPoint {
@@ -87,7 +90,10 @@ impl PathPoint {
 ///
 /// A path [walked backward](WalkPath::walked_backward) is laid out from its
 /// start along the opposite of the facing direction; its points face against
-/// the direction of travel.
+/// the direction of travel. One [stepped back](WalkPath::stepped_back) aslant
+/// is laid out along a travel direction up to [`MAX_BACKWARD_ASLANT`] off
+/// straight behind, and its points face that much turned from the opposite
+/// of the travel, so the walker keeps facing where it faced.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WalkPath {
     segments: Vec<PathSegment>,
@@ -97,7 +103,18 @@ pub struct WalkPath {
     looped: bool,
     origin: f32,
     backward: bool,
+    /// On a path walked backward: the facing's turn from the opposite of
+    /// the travel, as `(cos, sin)` of the angle (positive left); `None`
+    /// for straight behind.
+    aslant: Option<Vec2>,
 }
+
+/// The largest angle between the travel of a path stepped back and straight
+/// behind the walker, radians (35°): further aslant, a foot lifting off
+/// drags its sole sideways through the wall of its own print on loose ground.
+pub const MAX_BACKWARD_ASLANT: f32 = 0.61;
+/// A travel within this of straight behind (radians) is straight behind.
+const STRAIGHT_BEHIND: f32 = 1.0e-6;
 
 impl WalkPath {
     /// A path from `start` (its y is ignored) heading along `direction` (horizontal part used).
@@ -123,6 +140,7 @@ impl WalkPath {
         let mut here = PathPoint {
             position: Vec2::new(start.x, start.z),
             heading,
+            travel: heading,
         };
         let mut starts = Vec::with_capacity(segments.len());
         let mut start_distance = Vec::with_capacity(segments.len());
@@ -144,6 +162,7 @@ impl WalkPath {
             looped,
             origin: 0.0,
             backward: false,
+            aslant: None,
         })
     }
 
@@ -157,6 +176,36 @@ impl WalkPath {
     ) -> Result<Self, CharacterError> {
         let mut path = Self::new(start, -facing, segments, false)?;
         path.backward = true;
+        Ok(path)
+    }
+
+    /// A path from `start` (y ignored) stepped back by a walker facing
+    /// `facing` towards `travel` (horizontal parts used): `segments` are laid
+    /// out along `travel` turned to within [`MAX_BACKWARD_ASLANT`] of
+    /// `-facing`, and every point keeps the walker's facing relative to its
+    /// travel. Straight behind it is [`WalkPath::walked_backward`].
+    pub fn stepped_back(
+        start: Vec3,
+        facing: Vec3,
+        travel: Vec3,
+        segments: Vec<PathSegment>,
+    ) -> Result<Self, CharacterError> {
+        let flat = |v: Vec3| Vec2::new(v.x, v.z).try_normalize();
+        let (Some(face), Some(go)) = (flat(facing), flat(travel)) else {
+            return Self::walked_backward(start, facing, segments);
+        };
+        let behind = -face;
+        let left = Vec2::new(behind.y, -behind.x);
+        let angle = go.dot(left).atan2(go.dot(behind));
+        if angle.abs() < STRAIGHT_BEHIND {
+            return Self::walked_backward(start, facing, segments);
+        }
+        let angle = angle.clamp(-MAX_BACKWARD_ASLANT, MAX_BACKWARD_ASLANT);
+        let (s, c) = angle.sin_cos();
+        let along = behind * c + left * s;
+        let mut path = Self::new(start, Vec3::new(along.x, 0.0, along.y), segments, false)?;
+        path.backward = true;
+        path.aslant = Some(Vec2::new(c, -s));
         Ok(path)
     }
 
@@ -221,13 +270,17 @@ impl WalkPath {
     /// Position and facing after walking `distance` metres.
     pub fn point_at(&self, distance: f32) -> PathPoint {
         let p = self.travel_point_at(distance);
-        if self.backward {
-            PathPoint {
-                position: p.position,
-                heading: -p.heading,
-            }
-        } else {
-            p
+        if !self.backward {
+            return p;
+        }
+        let heading = match self.aslant {
+            None => -p.heading,
+            Some(turn) => turn_by(-p.heading, turn),
+        };
+        PathPoint {
+            position: p.position,
+            heading,
+            travel: p.heading,
         }
     }
 
@@ -243,7 +296,7 @@ impl WalkPath {
             let p = self.starts[0];
             return PathPoint {
                 position: p.position + p.heading * s,
-                heading: p.heading,
+                ..p
             };
         }
         let k = self.start_distance.partition_point(|&d| d <= s).max(1) - 1;
@@ -260,28 +313,38 @@ fn advance(from: PathPoint, seg: &PathSegment, along: f32) -> PathPoint {
     match *seg {
         PathSegment::Straight { .. } => PathPoint {
             position: from.position + from.heading * along,
-            heading: from.heading,
+            ..from
         },
         PathSegment::Arc { radius, angle } => {
             // Left of heading (x, z) seen from above with Y up is (z, -x).
             let left = Vec2::new(from.heading.y, -from.heading.x) * angle.signum();
             let turn = along / radius;
             let (s, c) = turn.sin_cos();
+            let heading = (from.heading * c + left * s).normalize();
             PathPoint {
                 position: from.position + (from.heading * s + left * (1.0 - c)) * radius,
-                heading: (from.heading * c + left * s).normalize(),
+                heading,
+                travel: heading,
             }
         }
         PathSegment::Pivot { reach, angle } => {
             let turn = along / reach * angle.signum();
             let left = Vec2::new(from.heading.y, -from.heading.x);
             let (s, c) = turn.sin_cos();
+            let heading = (from.heading * c + left * s).normalize();
             PathPoint {
                 position: from.position,
-                heading: (from.heading * c + left * s).normalize(),
+                heading,
+                travel: heading,
             }
         }
     }
+}
+
+/// `v` (x, z) turned by the angle whose `(cos, sin)` is `turn`, positive left.
+fn turn_by(v: Vec2, turn: Vec2) -> Vec2 {
+    let left = Vec2::new(v.y, -v.x);
+    v * turn.x + left * turn.y
 }
 
 #[cfg(test)]
@@ -341,6 +404,29 @@ mod tests {
                 .unwrap()
                 .is_backward()
         );
+    }
+
+    #[test]
+    fn a_path_stepped_back_aslant_keeps_the_facing_within_its_bound() {
+        let run = || vec![PathSegment::Straight { length: 2.0 }];
+        let behind = Vec3::new(0.0, 0.0, -1.0);
+        let straight = WalkPath::stepped_back(Vec3::ZERO, Vec3::Z, behind, run()).unwrap();
+        let plain = WalkPath::walked_backward(Vec3::ZERO, Vec3::Z, run()).unwrap();
+        assert_eq!(straight, plain, "straight behind is walked backward");
+        // 30° off straight behind, to the walker's left (+x).
+        let (sin, cos) = 30f32.to_radians().sin_cos();
+        let aslant = Vec3::new(sin, 0.0, -cos);
+        let p = WalkPath::stepped_back(Vec3::ZERO, Vec3::Z, aslant, run()).unwrap();
+        let end = p.point_at(1.0);
+        assert!((end.position - Vec2::new(sin, -cos)).length() < 1e-6);
+        assert!((end.heading - Vec2::Y).length() < 1e-6, "{end:?}");
+        assert!((end.travel - Vec2::new(sin, -cos)).length() < 1e-6);
+        // Straight to the side: stepped back at the bound.
+        let p = WalkPath::stepped_back(Vec3::ZERO, Vec3::Z, Vec3::NEG_X, run()).unwrap();
+        let (sin, cos) = MAX_BACKWARD_ASLANT.sin_cos();
+        let end = p.point_at(1.0);
+        assert!((end.position - Vec2::new(-sin, -cos)).length() < 1e-6);
+        assert!((end.heading - Vec2::Y).length() < 1e-6);
     }
 
     #[test]

@@ -8,13 +8,17 @@
 //!   `min_radius`) and then a straight run;
 //! - a direction further round turns on the spot first (a
 //!   [`PathSegment::Pivot`]) until the heading is within `pivot_end`;
-//! - a slow wish (up to `backward_max_speed`) further than `backward_start`
+//! - a wish (up to `backward_max_speed`) further than `backward_start`
 //!   from the heading steps backward: the walker keeps facing forward and
-//!   walks a path [walked backward](WalkPath::walked_backward), slower
-//!   (`backward_speed_factor`) and in the gait's short backward steps;
-//! - a speed below `stop_speed` fixes a stop a short way ahead; the gait
-//!   halts there with both feet planted, and starts again on the next
-//!   desired velocity.
+//!   walks a path [stepped back](WalkPath::stepped_back) towards the wish
+//!   (straight behind or aslant, so S with A or D steps back diagonally),
+//!   slower (`backward_speed_factor`, at most `backward_top_speed`) and in
+//!   the gait's short backward steps;
+//! - a speed below `stop_speed` brakes: a stop is placed where the walker
+//!   can come to rest ([`stop_distance`]: from its speed and the step it
+//!   is in) and the walking speed falls from the first step, at a constant
+//!   deceleration, to the stop (a [`Brake`]); the gait halts there with
+//!   both feet planted, and starts again on the next desired velocity.
 //!
 //! Switching between walking forward and backward goes through a stop:
 //! the walker halts, its feet roll flat, and then it walks the other way.
@@ -50,8 +54,20 @@ pub struct SteeringSettings {
     /// Length of the straight run after the turn, metres (beyond the
     /// farthest foothold the gait plans).
     pub lookahead: f32,
-    /// How far beyond the pelvis a stop is placed, metres.
-    pub stop_ahead: f32,
+    /// The deceleration a stop asks for, m/s²: sets the shortest distance
+    /// to a stop, `v² / (2 a)` at speed `v`.
+    pub stop_deceleration: f32,
+    /// The shortest distance to a stop, metres.
+    pub stop_min_distance: f32,
+    /// The smallest speed scale while braking.
+    pub stop_speed_floor: f32,
+    /// How fast the speed scale returns to where braking began while the
+    /// walker, at its stop, closes its last step, per second: the pelvis no
+    /// longer moves, and the last foot closes at a walking cadence (the bob,
+    /// which scales with speed, changes by under 2 mm a step at 60 Hz). Once
+    /// both feet are planted the scale holds (the stance fraction, which
+    /// follows the speed, must not move a planted foot into a swing).
+    pub stop_close_rate: f32,
     /// Desired speeds below this stop the walk, m/s.
     pub stop_speed: f32,
     /// How fast the speed scale follows the wish, per second (a sudden
@@ -64,6 +80,8 @@ pub struct SteeringSettings {
     pub backward_max_speed: f32,
     /// Backward walking speed as a fraction of the wished speed.
     pub backward_speed_factor: f32,
+    /// The fastest backward walk, m/s (a hurried step back stays short).
+    pub backward_top_speed: f32,
 }
 
 impl Default for SteeringSettings {
@@ -76,12 +94,16 @@ impl Default for SteeringSettings {
             pivot_reach: 0.9,
             pivot_min_speed_scale: 0.7,
             lookahead: 5.0,
-            stop_ahead: 0.2,
+            stop_deceleration: 2.0,
+            stop_min_distance: 0.05,
+            stop_speed_floor: 0.25,
+            stop_close_rate: 3.0,
             stop_speed: 0.05,
             speed_change_rate: 1.0,
-            backward_start: 135f32.to_radians(),
-            backward_max_speed: 1.3,
+            backward_start: 120f32.to_radians(),
+            backward_max_speed: 2.0,
             backward_speed_factor: 0.5,
+            backward_top_speed: 0.9,
         }
     }
 }
@@ -92,6 +114,7 @@ pub struct Steering {
     desired: Vec2,
     pivoting: bool,
     stopping: bool,
+    brake: Option<Brake>,
     speed_scale: f32,
     /// How the paths are shaped.
     pub settings: SteeringSettings,
@@ -103,6 +126,7 @@ impl Default for Steering {
             desired: Vec2::ZERO,
             pivoting: false,
             stopping: false,
+            brake: None,
             speed_scale: 1.0,
             settings: SteeringSettings::default(),
         }
@@ -137,6 +161,51 @@ impl Steering {
     pub fn is_pivoting(&self) -> bool {
         self.pivoting
     }
+
+    /// The stop being braked for, if any.
+    pub fn brake(&self) -> Option<&Brake> {
+        self.brake.as_ref()
+    }
+}
+
+/// A stop being braked for: the walking speed falls from `from_scale` at
+/// `distance` metres before the stop, with its square proportional to the
+/// distance left (a constant deceleration), to the settings' floor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Brake {
+    /// The speed scale when the stop was asked for.
+    pub from_scale: f32,
+    /// The distance to the stop when it was asked for, metres.
+    pub distance: f32,
+    /// The deceleration, m/s² (the walking speed then over `2 · distance`).
+    pub deceleration: f32,
+}
+
+impl Brake {
+    /// The speed scale `left` metres before the stop, at least `floor`.
+    pub fn scale_at(&self, left: f32, floor: f32) -> f32 {
+        let share = (left / self.distance).clamp(0.0, 1.0);
+        (self.from_scale * share.sqrt()).max(floor.min(self.from_scale))
+    }
+}
+
+/// How far ahead a walker at `speed` m/s comes to rest, metres: at least
+/// `speed² / (2 stop_deceleration)`; while a foot swings, as far as the
+/// middle between the planted foot and the swing foot's landing when that
+/// is no more than twice as far, so the walker comes to rest between its
+/// feet after the step it is taking.
+pub fn stop_distance(settings: &SteeringSettings, gait: &Gait, speed: f32) -> f32 {
+    let braking = (speed * speed / (2.0 * settings.stop_deceleration.max(1.0e-3)))
+        .max(settings.stop_min_distance);
+    let travel = gait.travel_heading();
+    let ahead = |at: glam::Vec2| (at - gait.pelvis.position).dot(travel);
+    let [a, b] = gait.feet.each_ref().map(|f| f.foothold);
+    let between = 0.5 * (ahead(a) + ahead(b));
+    if !gait.double_support() && (braking..=2.0 * braking).contains(&between) {
+        between
+    } else {
+        braking
+    }
 }
 
 /// The signed angle from `heading` to `direction`, radians, positive to the left.
@@ -154,7 +223,7 @@ pub fn curve_radius(settings: &SteeringSettings, speed: f32) -> f32 {
 /// Updates `path` from `steering` for a walker in state `gait`, and returns
 /// the factor the walking speed must be scaled by this step of `dt` seconds
 /// (multiply it into [`GaitModifiers::speed_scale`]); the factor follows the
-/// wish at [`SteeringSettings::speed_change_rate`].
+/// wish at [`SteeringSettings::speed_change_rate`], or the [`Brake`] of a stop.
 pub fn steer_stage(
     steering: &mut Steering,
     gait: &Gait,
@@ -163,10 +232,34 @@ pub fn steer_stage(
     dt: f32,
 ) -> f32 {
     let target = plan_path(steering, gait, body, path);
-    let most = steering.settings.speed_change_rate.max(0.0) * clamp_dt(dt);
     let scale = &mut steering.speed_scale;
+    let dt = clamp_dt(dt);
+    if let Some(brake) = &steering.brake {
+        let s = &steering.settings;
+        *scale = if gait.stopped {
+            *scale
+        } else if path.is_finished(gait.distance) {
+            let most = s.stop_close_rate.max(0.0) * dt;
+            *scale + (brake.from_scale - *scale).clamp(-most, most)
+        } else {
+            let moved = gait.velocity.length() * dt;
+            let left = path.end_distance() - gait.distance - moved;
+            brake.scale_at(left, s.stop_speed_floor)
+        };
+        return *scale;
+    }
+    let most = steering.settings.speed_change_rate.max(0.0) * dt;
     *scale += (target - *scale).clamp(-most, most);
     *scale
+}
+
+/// The deceleration `steering` brakes at this step, m/s² (0 when not
+/// braking, or once at the stop).
+pub fn braking(steering: &Steering, gait: &Gait, path: &WalkPath) -> f32 {
+    match &steering.brake {
+        Some(b) if !path.is_finished(gait.distance) => b.deceleration,
+        _ => 0.0,
+    }
 }
 
 /// Updates `path` from `steering` and returns the speed scale it wishes for.
@@ -179,11 +272,7 @@ fn plan_path(
     let s = steering.settings;
     let speed = steering.desired.length();
     if speed < s.stop_speed {
-        steering.pivoting = false;
-        if !steering.stopping {
-            steering.stopping = true;
-            hold_stop(path, gait, s.stop_ahead);
-        }
+        stop(steering, gait, path);
         return steering.speed_scale;
     }
     let natural = GaitParams::new(body, &GaitModifiers::default()).speed;
@@ -192,22 +281,19 @@ fn plan_path(
     let backward = angle.abs() > s.backward_start && speed <= s.backward_max_speed;
     if backward != path.is_backward() {
         if !(gait.stopped && gait.roll == 0.0) {
-            steering.pivoting = false;
-            if !steering.stopping {
-                steering.stopping = true;
-                hold_stop(path, gait, s.stop_ahead);
-            }
+            stop(steering, gait, path);
             return steering.speed_scale;
         }
         steering.speed_scale = wished_scale(steering, speed, natural, backward);
     }
     steering.stopping = false;
+    steering.brake = None;
     if backward {
         steering.pivoting = false;
         let straight = PathSegment::Straight {
             length: s.lookahead.max(1.0e-3),
         };
-        replace_path(path, gait, &[straight], true);
+        replace_path(path, gait, direction, &[straight], true);
         return wished_scale(steering, speed, natural, true);
     }
     if angle.abs() > s.pivot_start {
@@ -232,18 +318,19 @@ fn plan_path(
         })
     };
     let segments: Vec<PathSegment> = turn.into_iter().chain([straight]).collect();
-    replace_path(path, gait, &segments, false);
+    replace_path(path, gait, gait.pelvis.heading, &segments, false);
     wished_scale(steering, speed, natural, false)
 }
 
 /// The speed scale a wish of `speed` m/s asks of a walk whose natural speed
-/// is `natural`: slower backward, and never below the pivot's minimum while
-/// turning on the spot.
+/// is `natural`: slower backward (and no faster than its top speed), and
+/// never below the pivot's minimum while turning on the spot.
 fn wished_scale(steering: &Steering, speed: f32, natural: f32, backward: bool) -> f32 {
     let s = &steering.settings;
-    let scale = speed / natural.max(1.0e-3);
+    let natural = natural.max(1.0e-3);
+    let scale = speed / natural;
     if backward {
-        scale * s.backward_speed_factor
+        (scale * s.backward_speed_factor).min(s.backward_top_speed / natural)
     } else if steering.pivoting {
         scale.max(s.pivot_min_speed_scale)
     } else {
@@ -251,61 +338,91 @@ fn wished_scale(steering: &Steering, speed: f32, natural: f32, backward: bool) -
     }
 }
 
-/// Replaces `path` by a stop `ahead` metres beyond the pelvis, or at the
-/// pelvis when the walker is already at rest; the stop keeps the path's
-/// direction of travel.
-fn hold_stop(path: &mut WalkPath, gait: &Gait, ahead: f32) {
-    const AT_REST_M: f32 = 1.0e-3;
-    let backward = path.is_backward();
-    if gait.velocity == Vec2::ZERO {
-        let travel = if backward {
-            -gait.pelvis.heading
-        } else {
-            gait.pelvis.heading
-        };
-        let back = gait.pelvis.position - travel * AT_REST_M;
-        let rest = [PathSegment::Straight { length: AT_REST_M }];
-        if let Ok(p) = walk_path(back, gait.pelvis.heading, &rest, backward) {
-            *path = p.with_origin(gait.distance - AT_REST_M);
-        }
+/// Starts a stop, once: braking to where the walker comes to rest.
+fn stop(steering: &mut Steering, gait: &Gait, path: &mut WalkPath) {
+    steering.pivoting = false;
+    if steering.stopping {
         return;
     }
-    let stop = [PathSegment::Straight {
-        length: ahead.max(AT_REST_M),
-    }];
-    replace_path(path, gait, &stop, backward);
+    steering.stopping = true;
+    steering.brake = hold_stop(path, gait, &steering.settings, steering.speed_scale);
+}
+
+/// Replaces `path` by a stop [`stop_distance`] beyond the pelvis, braked
+/// for from `scale`, or at the pelvis when the walker is already at rest
+/// (no brake); the stop keeps the path's direction of travel.
+fn hold_stop(
+    path: &mut WalkPath,
+    gait: &Gait,
+    settings: &SteeringSettings,
+    scale: f32,
+) -> Option<Brake> {
+    const AT_REST_M: f32 = 1.0e-3;
+    let backward = path.is_backward();
+    let travel = gait.travel_heading();
+    let speed = gait.velocity.length();
+    if speed == 0.0 {
+        let back = gait.pelvis.position - travel * AT_REST_M;
+        let rest = [PathSegment::Straight { length: AT_REST_M }];
+        let facing = gait.pelvis.heading;
+        if let Ok(p) = walk_path(back, facing, travel, &rest, backward) {
+            *path = p.with_origin(gait.distance - AT_REST_M);
+        }
+        return None;
+    }
+    let distance = stop_distance(settings, gait, speed).max(AT_REST_M);
+    replace_path(
+        path,
+        gait,
+        travel,
+        &[PathSegment::Straight { length: distance }],
+        backward,
+    );
+    Some(Brake {
+        from_scale: scale,
+        distance,
+        deceleration: speed * speed / (2.0 * distance),
+    })
 }
 
 /// Replaces `path` by `segments` from the pelvis, continuing the gait's
-/// distance, walked forward or `backward` with the walker's facing.
-fn replace_path(path: &mut WalkPath, gait: &Gait, segments: &[PathSegment], backward: bool) {
+/// distance, walked forward (along the facing) or `backward` towards
+/// `travel` with the walker's facing.
+fn replace_path(
+    path: &mut WalkPath,
+    gait: &Gait,
+    travel: Vec2,
+    segments: &[PathSegment],
+    backward: bool,
+) {
     let (at, facing) = (gait.pelvis.position, gait.pelvis.heading);
-    if let Ok(p) = walk_path(at, facing, segments, backward) {
+    if let Ok(p) = walk_path(at, facing, travel, segments, backward) {
         *path = p.with_origin(gait.distance);
     }
 }
 
 /// A path of `segments` from `at` (x, z) for a walker facing `facing`
-/// (x, z), walked forward or `backward`.
+/// (x, z), walked forward or `backward` towards `travel` (x, z).
 fn walk_path(
     at: Vec2,
     facing: Vec2,
+    travel: Vec2,
     segments: &[PathSegment],
     backward: bool,
 ) -> Result<WalkPath, CharacterError> {
-    let start = Vec3::new(at.x, 0.0, at.y);
-    let facing = Vec3::new(facing.x, 0.0, facing.y);
+    let flat = |v: Vec2| Vec3::new(v.x, 0.0, v.y);
+    let start = flat(at);
     if backward {
-        WalkPath::walked_backward(start, facing, segments.to_vec())
+        WalkPath::stepped_back(start, flat(facing), flat(travel), segments.to_vec())
     } else {
-        WalkPath::new(start, facing, segments.to_vec(), false)
+        WalkPath::new(start, flat(facing), segments.to_vec(), false)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::character::CharacterDesc;
+    use crate::character::{CharacterDesc, MAX_BACKWARD_ASLANT};
 
     const DT: f32 = 1.0 / 60.0;
 
@@ -331,8 +448,20 @@ mod tests {
         assert!((curve_radius(&s, 2.5) - 2.5).abs() < 1e-5);
     }
 
+    /// The wish `degrees` left of facing +z (x, z), at `speed` m/s.
+    fn wish(degrees: f32, speed: f32) -> Vec2 {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        Vec2::new(sin, cos) * speed
+    }
+
+    /// `gait` stopped with its feet rolled flat.
+    fn at_rest(gait: &mut Gait) {
+        gait.stopped = true;
+        gait.roll = 0.0;
+    }
+
     #[test]
-    fn a_sideways_wish_curves_and_a_fast_backward_one_pivots() {
+    fn a_sideways_wish_curves_and_a_wish_further_round_pivots() {
         let (body, gait, mut path) = standing();
         let mut steering = Steering::new();
         steering.set_desired_velocity(Vec2::new(1.2, 0.0)).unwrap();
@@ -343,27 +472,31 @@ mod tests {
         assert!((far.heading - Vec2::X).length() < 1e-4);
         assert!(far.position.x > 4.0, "{far:?}");
 
-        steering.set_desired_velocity(Vec2::new(0.0, -1.8)).unwrap();
+        // Past `pivot_start` but short of `backward_start`: turns on the spot.
+        steering.set_desired_velocity(wish(110.0, 1.2)).unwrap();
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(steering.is_pivoting());
         let mid = path.point_at(path.origin() + 0.5);
         assert_eq!(mid.position, gait.pelvis.position);
+        // Behind, but faster than `backward_max_speed`: turns round too.
+        steering.set_desired_velocity(wish(180.0, 2.4)).unwrap();
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(steering.is_pivoting() && !path.is_backward());
     }
 
     #[test]
-    fn a_slow_backward_wish_stops_then_steps_back_facing_forward() {
+    fn a_backward_wish_stops_then_steps_back_facing_forward() {
         let (body, mut gait, mut path) = standing();
         let mut steering = Steering::new();
-        steering.set_desired_velocity(Vec2::new(0.2, -1.2)).unwrap();
+        steering.set_desired_velocity(Vec2::new(0.0, -1.2)).unwrap();
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(!path.is_backward(), "not yet stopped: holds a stop first");
         assert!(!steering.is_pivoting());
-        gait.stopped = true;
-        gait.roll = 0.0;
+        at_rest(&mut gait);
         let scale = steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(path.is_backward());
         let natural = GaitParams::new(&body, &GaitModifiers::default()).speed;
-        let wished = 0.5 * Vec2::new(0.2, -1.2).length() / natural;
+        let wished = 0.5 * 1.2 / natural;
         assert!(
             (scale - wished).abs() < 1e-5,
             "starts at the backward speed: {scale}"
@@ -373,15 +506,136 @@ mod tests {
         assert_eq!(back.heading, Vec2::Y, "keeps facing forward");
 
         steering.set_desired_velocity(Vec2::ZERO).unwrap();
+        gait.stopped = false;
+        gait.pelvis = path.point_at(gait.distance);
         gait.velocity = Vec2::new(0.0, -0.6);
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(path.is_backward(), "a stop keeps stepping back");
         let stop = path.point_at(path.end_distance()).position;
-        assert!((stop - Vec2::new(0.0, -0.2)).length() < 1e-5, "{stop}");
+        let braking = stop_distance(&steering.settings, &gait, 0.6);
+        assert!((stop - Vec2::new(0.0, -braking)).length() < 1e-5, "{stop}");
         steering = Steering::new();
         gait.velocity = Vec2::ZERO;
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert!(path.is_backward() && path.is_finished(gait.distance));
+    }
+
+    #[test]
+    fn back_with_a_side_key_steps_back_aslant_facing_forward() {
+        let (body, mut gait, mut path) = standing();
+        at_rest(&mut gait);
+        let mut steering = Steering::new();
+        // S with A, camera behind: back and to the walker's left (+x), as
+        // far aslant as a step back goes.
+        steering.set_desired_velocity(wish(135.0, 1.2)).unwrap();
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        assert!(path.is_backward() && !steering.is_pivoting());
+        let aslant = 180.0 - MAX_BACKWARD_ASLANT.to_degrees();
+        let back = path.point_at(path.origin() + 1.0);
+        let expected = wish(aslant, 1.0);
+        assert!((back.position - expected).length() < 1e-5, "{back:?}");
+        assert!((back.heading - Vec2::Y).length() < 1e-6, "keeps facing +z");
+        assert!((back.travel - expected).length() < 1e-5);
+        // To the right, and within the bound: as wished.
+        steering.set_desired_velocity(wish(-150.0, 1.2)).unwrap();
+        steer_stage(&mut steering, &gait, &body, &mut path, DT);
+        let back = path.point_at(path.origin() + 1.0);
+        assert!(
+            (back.position - wish(-150.0, 1.0)).length() < 1e-5,
+            "{back:?}"
+        );
+        assert!((back.heading - Vec2::Y).length() < 1e-6);
+    }
+
+    #[test]
+    fn a_hurried_step_back_is_faster_but_bounded() {
+        let (body, mut gait, path) = standing();
+        at_rest(&mut gait);
+        let natural = GaitParams::new(&body, &GaitModifiers::default()).speed;
+        let mut scales = Vec::new();
+        for speed in [1.2, 1.8, 1.95] {
+            let mut path = path.clone();
+            let mut steering = Steering::new();
+            steering.set_desired_velocity(wish(180.0, speed)).unwrap();
+            scales.push(steer_stage(&mut steering, &gait, &body, &mut path, DT));
+            assert!(path.is_backward() && !steering.is_pivoting());
+        }
+        let top = SteeringSettings::default().backward_top_speed / natural;
+        assert!(scales[1] > scales[0], "Shift steps back faster: {scales:?}");
+        assert!((scales[1] - top).abs() < 1e-6 && (scales[2] - top).abs() < 1e-6);
+        let backward = GaitParams::new(
+            &body,
+            &GaitModifiers {
+                speed_scale: top,
+                step_length_scale: crate::character::gait::BACKWARD_STEP_SCALE,
+                ..GaitModifiers::default()
+            },
+        );
+        let forward = GaitParams::new(&body, &GaitModifiers::default());
+        assert!(
+            backward.stride < 0.85 * forward.stride,
+            "short steps: {} m against {} m",
+            backward.stride,
+            forward.stride
+        );
+    }
+
+    /// A walker at full speed along +z at cycle phase `phase`, its
+    /// footholds planned by the gait.
+    fn walking_at(phase: f32) -> (CharacterBody, Gait, WalkPath) {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 20.0).unwrap();
+        let mods = GaitModifiers::default();
+        let mut gait = Gait::new(&body, &path, &mods);
+        while gait.distance < 3.0 || (gait.phase - phase).abs() > 0.01 {
+            crate::character::gait_stage(&mut gait, &body, &path, &mods, DT);
+        }
+        (body, gait, path)
+    }
+
+    #[test]
+    fn a_stop_brakes_from_the_first_step_to_where_the_walker_can_rest() {
+        let s = SteeringSettings::default();
+        for phase in [0.05, 0.2, 0.4, 0.7] {
+            let (body, mut gait, mut path) = walking_at(phase);
+            let speed = gait.velocity.length();
+            let shortest = speed * speed / (2.0 * s.stop_deceleration);
+            let distance = stop_distance(&s, &gait, speed);
+            assert!(
+                (shortest..=2.0 * shortest + 1e-6).contains(&distance),
+                "phase {phase}: {distance} m"
+            );
+            let mut steering = Steering::new();
+            steering.set_desired_velocity(Vec2::ZERO).unwrap();
+            let mut speeds = vec![speed];
+            let mods = GaitModifiers::default();
+            for _ in 0..240 {
+                let scale = steer_stage(&mut steering, &gait, &body, &mut path, DT);
+                let braked = braking(&steering, &gait, &path);
+                let m = GaitModifiers {
+                    speed_scale: scale,
+                    braking: braked,
+                    ..mods
+                };
+                crate::character::gait_stage(&mut gait, &body, &path, &m, DT);
+                speeds.push(gait.velocity.length());
+            }
+            assert!(speeds[1] < speeds[0], "phase {phase}: slows at once");
+            assert!(gait.stopped && gait.double_support(), "phase {phase}");
+            let rested = (gait.pelvis.position.y - path.point_at(path.origin()).position.y).abs();
+            assert!(
+                (rested - distance).abs() < 1e-4,
+                "phase {phase}: {rested} m"
+            );
+            let floor = s.stop_speed_floor * speed;
+            let slowing = speeds.windows(2).all(|w| w[1] <= w[0] + 1e-4);
+            let last_moving = speeds.iter().rev().find(|&&v| v > 0.0).unwrap();
+            assert!(slowing, "phase {phase}: {speeds:?}");
+            assert!(
+                *last_moving <= floor + 1e-3,
+                "phase {phase}: {last_moving} m/s"
+            );
+        }
     }
 
     #[test]
@@ -393,13 +647,16 @@ mod tests {
             path.is_finished(gait.distance),
             "at rest: stop where it stands"
         );
+        assert!(steering.brake().is_none());
         steering.set_desired_velocity(Vec2::Y).unwrap();
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         steering.set_desired_velocity(Vec2::ZERO).unwrap();
         gait.velocity = Vec2::Y;
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         let stop = path.clone();
-        assert!((stop.end_distance() - gait.distance - 0.2).abs() < 1e-6);
+        let brake = *steering.brake().unwrap();
+        assert!((stop.end_distance() - gait.distance - brake.distance).abs() < 1e-6);
+        assert!((brake.deceleration - 1.0 / (2.0 * brake.distance)).abs() < 1e-5);
         steer_stage(&mut steering, &gait, &body, &mut path, DT);
         assert_eq!(path, stop, "a held stop is not moved");
         let e = steering.set_desired_velocity(Vec2::NAN).unwrap_err();

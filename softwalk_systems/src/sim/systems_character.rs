@@ -9,8 +9,8 @@ use super::labels;
 use super::sole_ground::SoleGround;
 use crate::character::{
     Balance, CharacterBody, CharacterMetrics, FootIK, FootRays, Gait, GaitModifiers, Pose,
-    RigidProxy, Steering, WalkPath, balance_stage, foot_ik_stage, foot_raycast_stage, gait_stage,
-    steer_stage,
+    RigidProxy, Steering, WalkPath, balance_stage, braking, foot_ik_stage, foot_raycast_stage,
+    gait_stage, steer_stage,
 };
 use crate::terrain::GaitResponse;
 use crate::vegetation::{GrassPatch, PlatformSettings, VegetationFriction};
@@ -78,7 +78,7 @@ pub fn ground_response_system(world: &mut World) {
             speed_scale: response.speed_scale,
             step_length_scale: response.step_length_scale,
             extra_clearance: response.extra_clearance,
-            grade: 0.0,
+            ..GaitModifiers::default()
         }
         .on_ground(rays.body.normal, gait.travel_heading());
         let h = sensed_vegetation(&patches, p.x, p.y);
@@ -104,7 +104,8 @@ fn report_fault(fault: &std::sync::Mutex<Option<String>>, message: String) {
 }
 
 /// System `steer`: each character with a [`Steering`] gets its path from
-/// its desired velocity, and its walking speed scaled to match.
+/// its desired velocity, and its walking speed scaled to match (and, while
+/// braking for a stop, the deceleration its balance leans back against).
 pub fn steer_system(world: &mut World) {
     let dt = step_dt(world);
     world
@@ -119,6 +120,7 @@ pub fn steer_system(world: &mut World) {
             CHARACTER_BATCH,
             |(steering, gait, body, path, modifiers)| {
                 modifiers.speed_scale *= steer_stage(steering, gait, body, path, dt);
+                modifiers.braking = braking(steering, gait, path);
             },
         );
 }
