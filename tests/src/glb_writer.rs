@@ -25,6 +25,9 @@ pub struct RigParts {
     /// Which glTF mesh each triangle is written to (all 0: one mesh). Every
     /// mesh is drawn with the character's skin by a node of its own.
     pub triangle_mesh: Vec<u8>,
+    /// Joints written as plain nodes, outside the skin's joint list (an
+    /// armature node above the bones); no vertex may use them.
+    pub outside_skin: Vec<String>,
     /// Props written before the character, each a mesh drawn with a skin of
     /// its own, bound to one joint (as exporters write a skinned weapon).
     pub props: Vec<Prop>,
@@ -157,8 +160,12 @@ impl RigParts {
                 children.push(json!(first_joint + k));
             }
         }
-        let binds: Vec<Mat4> = self.joints.iter().map(|j| j.inverse_bind).collect();
-        let joint_nodes = (first_joint..first_joint + self.joints.len()).collect();
+        let in_skin = self.skin_joints();
+        let binds: Vec<Mat4> = in_skin
+            .iter()
+            .map(|&j| self.joints[j].inverse_bind)
+            .collect();
+        let joint_nodes = in_skin.iter().map(|&j| first_joint + j).collect();
         let character_skin = skins.len();
         skins.push(c.skin(joint_nodes, &binds));
         let mut roots: Vec<usize> = (0..prop_count).collect();
@@ -195,8 +202,17 @@ impl RigParts {
         glb(serde_json::to_vec(&document).expect("JSON"), c.bin)
     }
 
-    /// The vertices and triangles of character mesh `m`, renumbered.
+    /// The joints in the skin's joint list, in order.
+    fn skin_joints(&self) -> Vec<usize> {
+        (0..self.joints.len())
+            .filter(|&j| !self.outside_skin.contains(&self.joints[j].name))
+            .collect()
+    }
+
+    /// The vertices and triangles of character mesh `m`, renumbered, their
+    /// joints numbered in the skin's joint list.
     fn mesh_data(&self, m: u8) -> MeshData {
+        let in_skin = self.skin_joints();
         let mut new_index = vec![u32::MAX; self.positions.len()];
         let mut used = Vec::new();
         let mut indices = Vec::new();
@@ -215,7 +231,15 @@ impl RigParts {
         MeshData {
             positions: used.iter().map(|&v| self.positions[v].to_array()).collect(),
             normals: used.iter().map(|&v| self.normals[v].to_array()).collect(),
-            skin: used.iter().map(|&v| self.skin[v]).collect(),
+            skin: used
+                .iter()
+                .map(|&v| {
+                    self.skin[v].map(|j| {
+                        let k = in_skin.iter().position(|&s| s == j as usize);
+                        k.expect("a vertex uses a joint outside the skin") as u16
+                    })
+                })
+                .collect(),
             weights: used.iter().map(|&v| self.weights[v]).collect(),
             indices,
         }

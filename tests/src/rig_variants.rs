@@ -23,6 +23,7 @@ impl RigParts {
             skin: mesh.joints().to_vec(),
             weights: mesh.weights().to_vec(),
             triangle_mesh: vec![0; mesh.triangle_count()],
+            outside_skin: Vec::new(),
             props: Vec::new(),
         }
     }
@@ -158,8 +159,9 @@ impl RigParts {
         }
     }
 
-    /// Puts a new root joint `name` with rest transform `rest` above every
-    /// current root; the bind pose does not change, so the figure moves by `rest`.
+    /// Puts a new root node `name` with rest transform `rest` above every
+    /// current root, outside the skin (as exporters write an armature); the
+    /// bind pose does not change, so the figure moves by `rest`.
     pub fn insert_root(&mut self, name: &str, rest: Transform) {
         for joint in &mut self.joints {
             joint.parent = Some(joint.parent.map_or(0, |p| p + 1));
@@ -173,6 +175,7 @@ impl RigParts {
                 inverse_bind: rest.to_mat4().inverse(),
             },
         );
+        self.outside_skin.push(name.to_string());
         for joints in &mut self.skin {
             for j in joints.iter_mut() {
                 *j += 1;

@@ -10,10 +10,12 @@
 //! 1.3 m walkers up 20° of rigid ground, whose stance knee averages 25–27°
 //! (goal 25°: a stair-like climb).
 
-use softwalk_app::paper::recorded_run::record_run;
-use softwalk_app::paper::variants::{RIGID, along_x, builtin, checked, walker, with_material, with_slope};
-use softwalk_app::scene::Scene;
 use rayon::prelude::*;
+use softwalk_app::paper::recorded_run::record_run;
+use softwalk_app::paper::variants::{
+    RIGID, along_x, builtin, checked, walker, with_material, with_slope,
+};
+use softwalk_app::scene::Scene;
 use softwalk_systems::character::CharacterDesc;
 
 /// Length of each measured walk, seconds.
