@@ -109,18 +109,7 @@ impl CharacterRig {
         let rest_globals = model.skeleton.rest_globals();
         let rest_positions: Vec<Vec3> = rest_globals.iter().map(|m| m.w_axis.truncate()).collect();
         let rest_vertices = rest_mesh(&model, &rest_globals)?;
-        let feet = [&chains.left, &chains.right].map(|leg| foot_vertices(&model, leg));
-        if let Some(k) = feet.iter().position(Vec::is_empty) {
-            return Err(ModelError::Shape {
-                reason: format!(
-                    "no vertex is weighted mostly to the {} foot (its ankle joint and below)",
-                    ["left", "right"][k]
-                ),
-            });
-        }
-        let ground = (feet.iter().flatten())
-            .map(|&v| rest_vertices.positions[v as usize].y)
-            .fold(f32::INFINITY, f32::min);
+        let (soles, ground) = soles(&model, &chains, &rest_vertices.positions)?;
         let at = |j: usize| rest_positions[j];
         let hip_mid = 0.5 * (at(chains.left.hip) + at(chains.right.hip));
         let hip_height = hip_mid.y - ground;
@@ -135,21 +124,6 @@ impl CharacterRig {
             .map(|p| p.y)
             .fold(f32::NEG_INFINITY, f32::max)
             - ground;
-        let soles = feet.map(|foot| {
-            (foot.into_iter())
-                .filter(|&v| rest_vertices.positions[v as usize].y <= ground + SOLE_BAND)
-                .collect::<Vec<u32>>()
-        });
-        for (k, sole) in soles.iter().enumerate() {
-            if sole.is_empty() {
-                return Err(ModelError::Shape {
-                    reason: format!(
-                        "no vertex of the {} foot lies within {SOLE_BAND} m of the soles",
-                        ["left", "right"][k]
-                    ),
-                });
-            }
-        }
         let sole_centres = [0, 1].map(|k| sole_centre(&rest_vertices.positions, &soles[k]));
         let legs = [&chains.left, &chains.right];
         let feet = [0, 1].map(|k| FootRest {
@@ -363,6 +337,43 @@ fn foot_direction(foot: &FootRest, rest: &[Vec3], positions: &[Vec3]) -> Vec3 {
         -axis
     };
     Vec3::new(axis.x, 0.0, axis.y)
+}
+
+/// Each sole's vertices (left first) and the height of the lowest: the
+/// foot vertices within [`SOLE_BAND`] of the lowest foot vertex. Refused
+/// when a foot has no vertex there.
+fn soles(
+    model: &Model,
+    chains: &RigChains,
+    positions: &[Vec3],
+) -> Result<([Vec<u32>; 2], f32), ModelError> {
+    let side = |k: usize| ["left", "right"][k];
+    let feet = [&chains.left, &chains.right].map(|leg| foot_vertices(model, leg));
+    if let Some(k) = feet.iter().position(Vec::is_empty) {
+        return Err(ModelError::Shape {
+            reason: format!(
+                "no vertex is weighted mostly to the {} foot (its ankle joint and below)",
+                side(k)
+            ),
+        });
+    }
+    let ground = (feet.iter().flatten())
+        .map(|&v| positions[v as usize].y)
+        .fold(f32::INFINITY, f32::min);
+    let soles = feet.map(|foot| {
+        (foot.into_iter())
+            .filter(|&v| positions[v as usize].y <= ground + SOLE_BAND)
+            .collect::<Vec<u32>>()
+    });
+    if let Some(k) = soles.iter().position(Vec::is_empty) {
+        return Err(ModelError::Shape {
+            reason: format!(
+                "no vertex of the {} foot lies within {SOLE_BAND} m of the soles",
+                side(k)
+            ),
+        });
+    }
+    Ok((soles, ground))
 }
 
 /// The vertices weighted mostly to `leg`'s foot: its ankle joint and every
