@@ -27,7 +27,7 @@ pub enum ModelError {
     /// The standing figure's height fits no length unit (metres, centimetres,
     /// millimetres) for a 0.5 to 3 m tall character.
     #[error(
-        "the model stands {height} units tall: not 0.5-3 m in metres, centimetres or millimetres; \
+        "the model stands {height:.2} units tall: not 0.5-3 m in metres, centimetres or millimetres; \
          scale it to metres (or put a scale on its armature's root node)"
     )]
     Units {
@@ -37,7 +37,7 @@ pub enum ModelError {
     /// The rest pose lies down: wider than tall, as a Z-up model whose root
     /// does not turn it to Y up.
     #[error(
-        "the rest pose lies down ({width} wide, {height} tall along +Y): glTF is Y-up; \
+        "the rest pose lies down ({width:.2} wide, {height:.2} tall along +Y): glTF is Y-up; \
          rotate the armature's root node -90 degrees about X if the model is Z-up"
     )]
     LyingDown {
