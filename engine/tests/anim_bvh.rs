@@ -32,7 +32,10 @@ fn small_bvh_loads_with_its_hierarchy_and_frames() {
     let map = BoneMap::detect(&bvh.skeleton);
     assert_eq!(map.preset, Some(RigPreset::Bvh));
     let chains = RigChains::find(&bvh.skeleton, &map).unwrap();
-    assert_eq!(bvh.skeleton.joints()[chains.left.toe].name, "LeftToeBase");
+    assert_eq!(
+        bvh.skeleton.joints()[chains.left.toe.unwrap()].name,
+        "LeftToeBase"
+    );
     assert_eq!(chains.spine.len(), 3);
     // Frame 1 turns LeftUpLeg -90 degrees about x: the knee swings forward (+z).
     let pose = bvh.clip.pose_at(0.5, Playback::Once, &bvh.skeleton);
@@ -96,7 +99,7 @@ fn bvh_retargets_onto_the_default_human_by_bone_name() {
 #[test]
 fn missing_leg_bones_are_listed() {
     let text = walk_text()
-        .replace("LeftToeBase", "LeftToeTip")
+        .replace("LeftFoot", "LeftPaw")
         .replace("RightLeg", "RightShin");
     let bvh = load_bvh_from_str(&text, Path::new("renamed.bvh")).unwrap();
     let map = BoneMap::from_preset(&bvh.skeleton, RigPreset::Bvh);
@@ -105,10 +108,10 @@ fn missing_leg_bones_are_listed() {
         panic!("{error}");
     };
     let roles: Vec<BoneRole> = missing.iter().map(|(r, _)| *r).collect();
-    assert_eq!(roles, [BoneRole::ToeL, BoneRole::CalfR]);
+    assert_eq!(roles, [BoneRole::FootL, BoneRole::CalfR]);
     let text = error.to_string();
     assert!(
-        text.contains("ToeL") && text.contains("LeftToeBase"),
+        text.contains("FootL") && text.contains("LeftFoot"),
         "{text}"
     );
     let human = load_gltf(&anim_support::human_path()).unwrap();

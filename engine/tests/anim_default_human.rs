@@ -37,12 +37,12 @@ fn default_human_loads_with_a_game_engine_rig() {
             chains.left.hip,
             chains.left.knee,
             chains.left.ankle,
-            chains.left.toe
+            chains.left.toe.unwrap()
         ]
         .map(name),
         ["thigh_l", "calf_l", "foot_l", "ball_l"]
     );
-    assert_eq!(name(chains.right.toe), "ball_r");
+    assert_eq!(name(chains.right.toe.unwrap()), "ball_r");
     assert_eq!(name(chains.pelvis), "pelvis");
     let spine: Vec<&str> = chains.spine.iter().map(|&j| name(j)).collect();
     assert_eq!(

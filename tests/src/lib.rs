@@ -2,6 +2,10 @@
 //! built on the full pipeline (`softwalk_systems::sim`), walked and measured.
 //! It also compiles the Rust blocks of the README and the tutorial as doctests.
 
+pub mod glb_writer;
+pub mod rig_variants;
+pub mod sole_contact;
+
 use engine::schedule::App;
 use glam::{Vec2, Vec3};
 use softwalk_systems::character::{CharacterDesc, WalkPath};

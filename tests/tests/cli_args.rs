@@ -355,12 +355,12 @@ fn inspect_prints_a_bvh_clip_and_says_what_is_missing() {
     let renamed = dir.path().join("renamed.bvh");
     let text = fs::read_to_string(&file)
         .unwrap()
-        .replace("LeftToeBase", "LeftToeTip");
+        .replace("LeftFoot", "LeftPaw");
     fs::write(&renamed, text).unwrap();
     let (result, out) = execute_args(&["inspect", renamed.to_str().unwrap()]);
     result.unwrap();
     assert!(out.contains("leg chains not found"), "{out}");
-    assert!(out.contains("ToeL (looked for LeftToeBase"), "{out}");
+    assert!(out.contains("FootL (looked for LeftFoot"), "{out}");
 }
 
 #[test]

@@ -323,17 +323,62 @@ impl BoneMap {
     }
 }
 
-/// The joint named `name`: exactly, else ignoring case and namespaces (`a:b` ~ `b`).
+/// The joint named `name`: exactly, else ignoring case and namespaces (`a:b` ~ `b`),
+/// else, for a name without underscores (`LeftUpLeg`), after a prefix ending in
+/// the first underscore (`mixamorig_LeftUpLeg`, Maya HumanIK's `Character1_LeftUpLeg`).
 fn find_joint(skeleton: &Skeleton, name: &str) -> Option<usize> {
-    skeleton.find(name).or_else(|| {
-        let wanted = bare(name);
-        skeleton
-            .joints()
-            .iter()
-            .position(|j| bare(&j.name).eq_ignore_ascii_case(wanted))
-    })
+    let wanted = bare(name);
+    let joints = skeleton.joints();
+    skeleton
+        .find(name)
+        .or_else(|| (joints.iter()).position(|j| bare(&j.name).eq_ignore_ascii_case(wanted)))
+        .or_else(|| {
+            if wanted.contains('_') {
+                return None;
+            }
+            joints.iter().position(|j| {
+                bare(&j.name)
+                    .split_once('_')
+                    .is_some_and(|(_, rest)| rest.eq_ignore_ascii_case(wanted))
+            })
+        })
 }
 
 fn bare(name: &str) -> &str {
     name.rsplit(':').next().unwrap_or(name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::anim::{Joint, Transform};
+    use glam::Mat4;
+
+    fn skeleton(names: &[&str]) -> Skeleton {
+        let joints = (names.iter().enumerate())
+            .map(|(k, name)| Joint {
+                name: name.to_string(),
+                parent: k.checked_sub(1),
+                rest: Transform::IDENTITY,
+                inverse_bind: Mat4::IDENTITY,
+            })
+            .collect();
+        Skeleton::new(joints).unwrap()
+    }
+
+    #[test]
+    fn names_match_through_namespaces_and_underscore_prefixes_only_when_unambiguous() {
+        let s = skeleton(&[
+            "Armature:Character1_Hips",
+            "mixamorig_LeftUpLeg",
+            "ik_foot_l",
+            "LeftLeg",
+        ]);
+        assert_eq!(find_joint(&s, "Hips"), Some(0));
+        assert_eq!(find_joint(&s, "LeftUpLeg"), Some(1));
+        // An exact name wins over a prefixed one.
+        assert_eq!(find_joint(&s, "LeftLeg"), Some(3));
+        // Names with underscores match only whole: `ik_foot_l` is not `foot_l`.
+        assert_eq!(find_joint(&s, "foot_l"), None);
+    }
 }

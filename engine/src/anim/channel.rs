@@ -87,6 +87,18 @@ impl Channel {
         &self.times
     }
 
+    /// The channel with its values multiplied by `factor` if it animates a
+    /// translation (a change of length unit); unchanged otherwise.
+    pub fn with_lengths_scaled(&self, factor: f32) -> Channel {
+        let mut out = self.clone();
+        if self.property == Property::Translation {
+            for v in &mut out.values {
+                *v *= factor;
+            }
+        }
+        out
+    }
+
     /// The time of the last key.
     pub fn end(&self) -> f32 {
         self.times.last().copied().unwrap_or(0.0)

@@ -27,6 +27,7 @@ mod error;
 pub mod gltf;
 mod interpolation;
 mod model;
+mod model_scale;
 mod pose;
 mod retarget;
 mod rig;

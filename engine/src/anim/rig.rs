@@ -11,8 +11,8 @@ pub struct LegChain {
     pub knee: usize,
     /// Ankle joint (the foot bone's joint).
     pub ankle: usize,
-    /// Toe joint (the ball of the foot).
-    pub toe: usize,
+    /// Toe joint (the ball of the foot), if the rig has one.
+    pub toe: Option<usize>,
 }
 
 /// The joints the paper's layers drive: both legs and the spine.
@@ -69,24 +69,23 @@ fn list_missing(missing: &[(BoneRole, Vec<String>)]) -> String {
         .join("; ")
 }
 
-/// Roles the chains need.
-const REQUIRED: [BoneRole; 10] = [
+/// Roles the chains need (toes are optional).
+const REQUIRED: [BoneRole; 8] = [
     BoneRole::Pelvis,
     BoneRole::ThighL,
     BoneRole::CalfL,
     BoneRole::FootL,
-    BoneRole::ToeL,
     BoneRole::ThighR,
     BoneRole::CalfR,
     BoneRole::FootR,
-    BoneRole::ToeR,
     BoneRole::Head,
 ];
 
 impl RigChains {
     /// The legs and spine of `skeleton` through `map`: every required role must
     /// be mapped (the error lists all that are not, with the names looked for),
-    /// and each leg joint and the head must descend from the one above.
+    /// and each leg joint and the head must descend from the one above. Toes
+    /// are optional; a mapped toe must descend from its foot.
     pub fn find(skeleton: &Skeleton, map: &BoneMap) -> Result<RigChains, RigError> {
         if let Some(&(_, joint)) = map.pairs().iter().find(|(_, j)| *j >= skeleton.len()) {
             return Err(RigError::ForeignMap {
@@ -120,7 +119,9 @@ impl RigChains {
             [FootR, ToeR],
             [Pelvis, Head],
         ] {
-            check_descends(skeleton, map, pair[0], pair[1])?;
+            if map.joint(pair[1]).is_some() {
+                check_descends(skeleton, map, pair[0], pair[1])?;
+            }
         }
         let pelvis = joint(Pelvis);
         let mut spine = Vec::new();
@@ -134,7 +135,7 @@ impl RigChains {
             hip: joint(hip),
             knee: joint(knee),
             ankle: joint(ankle),
-            toe: joint(toe),
+            toe: map.joint(toe),
         };
         Ok(RigChains {
             pelvis,

@@ -187,7 +187,8 @@ impl WalkCycle {
     }
 }
 
-/// World positions of the pelvis and of both feet's ankle and toe joints,
+/// World positions of the pelvis and of both feet's ankle and toe joints (the
+/// ankle for a foot without a toe joint),
 /// sample by sample.
 struct JointPaths {
     pelvis: Vec<Vec3>,
@@ -217,7 +218,7 @@ fn joint_paths(
         paths.pelvis.push(at(&globals, chains.pelvis));
         for (side, leg) in legs.iter().enumerate() {
             paths.ankles[side].push(at(&globals, leg.ankle));
-            paths.toes[side].push(at(&globals, leg.toe));
+            paths.toes[side].push(at(&globals, leg.toe.unwrap_or(leg.ankle)));
         }
     }
     paths
@@ -227,8 +228,8 @@ fn horizontal(v: Vec3) -> Vec3 {
     Vec3::new(v.x, 0.0, v.z)
 }
 
-/// A foot's contact per sample: its ankle (heel down) or its toe joint
-/// (heel up) low and slower than `slow`.
+/// A foot's contact per sample: its ankle (heel down) or its toe joint (heel up;
+/// the ankle again on a rig without toes) low and slower than `slow`.
 fn foot_track(name: &'static str, ankle: &[Vec3], toe: &[Vec3], slow: f32, dt: f32) -> FootTrack {
     let (ankle_rests, toe_rests) = (resting(ankle, slow, dt), resting(toe, slow, dt));
     let contact = ankle_rests

@@ -1,14 +1,17 @@
 //! `softwalk inspect FILE`: what a character model (`.glb`/`.gltf`) or mocap
 //! clip (`.bvh`) holds: its rig as a tree, its mesh, its clips, the bone map
 //! detected and the leg chains and spine found through it, or what is missing;
-//! for a clip, its walk cycle or why it is not a walk.
+//! for a model, also how it would stand as a character (units, facing, sizes)
+//! or why it would be refused; for a clip, its walk cycle or why it is not a walk.
 
 use std::io::Write;
 use std::path::Path;
 
 use engine::anim::bvh::load_bvh;
 use engine::anim::gltf::load_gltf;
-use engine::anim::{BoneMap, Clip, RigChains, Skeleton, SkinnedMesh, WalkCycle};
+use engine::anim::{BoneMap, Clip, Model, RigChains, Skeleton, SkinnedMesh, Transform, WalkCycle};
+use glam::Vec3;
+use softwalk_systems::character::CharacterRig;
 
 use crate::cli::{CliError, InspectArgs};
 
@@ -33,6 +36,7 @@ fn describe(path: &Path) -> Result<String, CliError> {
             text.push_str(&mesh(&model.mesh));
             text.push_str(&clips(&model.clips));
             text.push_str(&chains(&model.skeleton));
+            text.push_str(&as_character(path, model));
         }
         Some("bvh") => {
             let bvh = load_bvh(path).map_err(|e| CliError::Inspect(Box::new(e)))?;
@@ -140,7 +144,7 @@ fn chains(skeleton: &Skeleton) -> String {
                     name(leg.hip),
                     name(leg.knee),
                     name(leg.ankle),
-                    name(leg.toe),
+                    leg.toe.map_or("none (optional)", name),
                     c.leg_length(skeleton, &leg)
                 ));
             }
@@ -154,4 +158,75 @@ fn chains(skeleton: &Skeleton) -> String {
         Err(e) => text.push_str(&format!("leg chains not found: {e}\n")),
     }
     text
+}
+
+/// How the model stands as a character: the armature root's turn and scale,
+/// the units told from its height, where it faces, its sizes in metres; or
+/// why a scene would refuse it.
+fn as_character(path: &Path, model: Model) -> String {
+    let mut text = root_transform(&model.skeleton);
+    let map = BoneMap::detect(&model.skeleton);
+    match CharacterRig::new(&path.display().to_string(), model, map) {
+        Ok(rig) => {
+            let forward = rig.rest_frame().z_axis;
+            text.push_str(&format!(
+                "as a character: units {} (stands {:.2} m, hips {:.2} m), faces {}, Y up, \
+                 {} + {} sole vertices; scaled to the scene's height when it walks\n",
+                rig.units(),
+                rig.height(),
+                rig.hip_height(),
+                facing(forward),
+                rig.sole_vertices()[0].len(),
+                rig.sole_vertices()[1].len(),
+            ));
+        }
+        Err(e) => text.push_str(&format!("refused as a character: {e}\n")),
+    }
+    text
+}
+
+/// The root joint's rest rotation and scale when they are not the identity
+/// (an armature turned from Z up, or scaled from centimetres).
+fn root_transform(skeleton: &Skeleton) -> String {
+    let Some(root) = skeleton.joints().first() else {
+        return String::new();
+    };
+    let Transform {
+        rotation, scale, ..
+    } = root.rest;
+    let mut parts = Vec::new();
+    let (axis, angle) = rotation.to_axis_angle();
+    if angle.abs() > 1e-3 {
+        parts.push(format!(
+            "turned {:.0} degrees about ({:.2}, {:.2}, {:.2})",
+            angle.to_degrees(),
+            axis.x,
+            axis.y,
+            axis.z
+        ));
+    }
+    if !scale.abs_diff_eq(Vec3::ONE, 1e-4) {
+        parts.push(format!("scaled ({}, {}, {})", scale.x, scale.y, scale.z));
+    }
+    if parts.is_empty() {
+        return String::new();
+    }
+    format!("root {}: {}\n", root.name, parts.join(", "))
+}
+
+/// The axis a rest-pose forward direction is nearest, with its angle off it.
+fn facing(forward: Vec3) -> String {
+    let axes = [
+        ("+Z", Vec3::Z),
+        ("-Z", Vec3::NEG_Z),
+        ("+X", Vec3::X),
+        ("-X", Vec3::NEG_X),
+    ];
+    let (name, axis) = axes
+        .iter()
+        .max_by(|a, b| forward.dot(a.1).total_cmp(&forward.dot(b.1)))
+        .copied()
+        .unwrap_or(axes[0]);
+    let off = forward.angle_between(axis).to_degrees();
+    format!("{name} ({off:.0} degrees off)")
 }

@@ -31,13 +31,12 @@ pub const LOOP_FLOAT_LIMIT: f32 = 0.075;
 /// On level ground and up to 10° a foot on the ground touches it (1 cm).
 /// Down a slope, and up a steep one, the pelvis, which moves at a bounded
 /// speed, reaches the height a foot needs a little after the foot arrives:
-/// the landing foot, which a straight leg cannot reach, is held above the
-/// ground where it lands rather than dragged (it never slides) for a few
-/// steps, at most about 4 cm down 10°, 5.5 cm up 20° and 9 cm down 20° (a
-/// known limit of the bounded pelvis, recorded on issue 19).
+/// a foot a straight leg cannot reach is held above the ground rather than
+/// dragged (it never slides) for a few steps, at most about 4 cm down 10°
+/// and 5.5 cm up or down 20° (a known limit of the bounded pelvis).
 pub fn float_limit(angle_deg: f32) -> f32 {
     if angle_deg <= -15.0 {
-        0.09
+        0.06
     } else if !(-5.0..15.0).contains(&angle_deg) {
         0.055
     } else {
@@ -310,7 +309,7 @@ pub fn long_walk_claim(options: &PaperOptions) -> Result<Claim, PaperError> {
                     "finite {finite}, max tilt {:.2}°, drift {drift:.4} m, gap {gap:.4} m, final COM {last:.2} m above ground",
                     max_tilt.to_degrees()
                 ),
-                "finite, tilt < 20°, drift ≤ 0.01 m, gap ≤ 0.065 m, COM in (0.3 h, h)",
+                format!("finite, tilt < 20°, drift ≤ 0.01 m, gap ≤ {LOOP_FLOAT_LIMIT} m, COM in (0.3 h, h)"),
                 ok,
             )
         })

@@ -84,7 +84,8 @@ pub fn load_character_rig(
         })
 }
 
-/// The best-matching preset's map with the table's entries put over it.
+/// The best-matching preset's map (as it is, naming its preset, without a
+/// table), with the table's entries put over it.
 fn bone_map(
     field: &str,
     model: &Model,
@@ -92,6 +93,9 @@ fn bone_map(
 ) -> Result<BoneMap, SceneError> {
     let skeleton = &model.skeleton;
     let detected = BoneMap::detect(skeleton);
+    if bones.is_empty() {
+        return Ok(detected);
+    }
     let mut names: Vec<(BoneRole, String)> = Vec::new();
     for (key, bone) in bones {
         let entry = format!("{field}.bones.{key}");

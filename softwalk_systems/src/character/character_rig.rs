@@ -12,14 +12,18 @@ use engine::anim::{
 use glam::{Mat3, Mat4, Quat, Vec3};
 
 use super::model_error::ModelError;
+use super::model_units::ModelUnits;
 
 /// The default character, a CC0 MakeHuman body with a game-engine rig
 /// (`assets/characters/human.glb`; see the README beside it), built in.
 const HUMAN_GLB: &[u8] = include_bytes!("../../../assets/characters/human.glb");
-/// How far above the lowest bind-pose vertex a foot vertex still counts as sole, metres.
+/// How far above the lowest rest-pose foot vertex a foot vertex still counts as sole, metres.
 const SOLE_BAND: f32 = 0.012;
 /// Smallest share of a vertex's weight on a foot's bones for it to be part of that sole.
 const SOLE_WEIGHT: f32 = 0.5;
+/// Widest rest pose, as a multiple of its height, still taken as standing
+/// (a T-pose's arm span is about its height; a lying figure is several times it).
+const MAX_WIDTH_PER_HEIGHT: f32 = 1.5;
 
 /// An arm's joints: shoulder (upper arm bone), elbow (forearm bone), wrist (hand bone).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -34,8 +38,9 @@ pub struct ArmChain {
 
 /// A loaded model with everything the driver needs, shared (cloning is cheap).
 ///
-/// Rest-pose figures are in the model's bind space after its rest transforms:
-/// Y up, the soles on the lowest vertex.
+/// Rest-pose figures are in the model's bind space after its rest transforms,
+/// in metres (a model in centimetres or millimetres is converted): Y up, the
+/// soles on the lowest foot vertex.
 #[derive(Debug, Clone)]
 pub struct CharacterRig {
     data: Arc<RigData>,
@@ -45,6 +50,7 @@ pub struct CharacterRig {
 struct RigData {
     name: String,
     model: Model,
+    units: ModelUnits,
     map: BoneMap,
     chains: RigChains,
     arms: [Option<ArmChain>; 2],
@@ -93,25 +99,24 @@ impl CharacterRig {
     }
 
     /// Prepares `model`, its bones named by `map`: the legs, spine and
-    /// head must be mapped (arms are optional), each foot must have sole
+    /// head must be mapped (arms and toes are optional), the rest pose must
+    /// stand (Y up, 0.5 to 3 m tall in metres, centimetres or millimetres;
+    /// other units are converted to metres), each foot must have sole
     /// vertices, and the hips must stand above the soles.
     pub fn new(name: &str, model: Model, map: BoneMap) -> Result<CharacterRig, ModelError> {
         let chains = RigChains::find(&model.skeleton, &map)?;
+        let (model, units) = in_metres(model)?;
         let rest_globals = model.skeleton.rest_globals();
         let rest_positions: Vec<Vec3> = rest_globals.iter().map(|m| m.w_axis.truncate()).collect();
         let rest_vertices = rest_mesh(&model, &rest_globals)?;
-        let ground = rest_vertices
-            .positions
-            .iter()
-            .map(|p| p.y)
-            .fold(f32::INFINITY, f32::min);
+        let (soles, ground) = soles(&model, &chains, &rest_vertices.positions)?;
         let at = |j: usize| rest_positions[j];
         let hip_mid = 0.5 * (at(chains.left.hip) + at(chains.right.hip));
         let hip_height = hip_mid.y - ground;
         if hip_height.is_nan() || hip_height <= 1e-3 {
             return Err(ModelError::Shape {
                 reason: format!(
-                    "the hips stand {hip_height:.3} m above the lowest vertex; they must be above it"
+                    "the hips stand {hip_height:.3} m above the soles; they must be above them"
                 ),
             });
         }
@@ -119,20 +124,14 @@ impl CharacterRig {
             .map(|p| p.y)
             .fold(f32::NEG_INFINITY, f32::max)
             - ground;
-        let frame = rest_frame(&chains, &rest_positions)?;
-        let soles = [&chains.left, &chains.right]
-            .map(|leg| sole_vertices(&model, &rest_vertices, leg, ground));
-        for (k, sole) in soles.iter().enumerate() {
-            if sole.is_empty() {
-                return Err(ModelError::Shape {
-                    reason: format!(
-                        "no vertex of the {} foot lies within {SOLE_BAND} m of the soles",
-                        ["left", "right"][k]
-                    ),
-                });
-            }
-        }
         let sole_centres = [0, 1].map(|k| sole_centre(&rest_vertices.positions, &soles[k]));
+        let legs = [&chains.left, &chains.right];
+        let feet = [0, 1].map(|k| FootRest {
+            leg: legs[k],
+            centre: sole_centres[k],
+            sole: &soles[k],
+        });
+        let frame = rest_frame(&chains, &rest_positions, &rest_vertices.positions, &feet)?;
         let sole_lengths = [0, 1].map(|k| sole_length(&rest_vertices.positions, &soles[k], frame));
         let arm = |upper, lower, hand| {
             Some(ArmChain {
@@ -150,6 +149,7 @@ impl CharacterRig {
             data: Arc::new(RigData {
                 name: name.to_string(),
                 model,
+                units,
                 map,
                 chains,
                 arms,
@@ -174,6 +174,11 @@ impl CharacterRig {
     /// The model: skeleton, skinned mesh and clips.
     pub fn model(&self) -> &Model {
         &self.data.model
+    }
+
+    /// The length unit the model's file uses (its figures here are in metres).
+    pub fn units(&self) -> ModelUnits {
+        self.data.units
     }
 
     /// The bone map its chains were found through.
@@ -201,7 +206,7 @@ impl CharacterRig {
         &self.data.rest_positions
     }
 
-    /// Height of the lowest rest-pose vertex (the soles).
+    /// Height of the lowest rest-pose foot vertex (the soles).
     pub fn ground(&self) -> f32 {
         self.data.ground
     }
@@ -221,7 +226,7 @@ impl CharacterRig {
         self.data.frame
     }
 
-    /// The vertices of each sole (left first): foot vertices near the lowest vertex.
+    /// The vertices of each sole (left first): foot vertices near the lowest foot vertex.
     pub fn sole_vertices(&self) -> &[Vec<u32>; 2] {
         &self.data.soles
     }
@@ -246,11 +251,46 @@ fn rest_mesh(model: &Model, rest_globals: &[Mat4]) -> Result<SkinnedVertices, Mo
     Ok(out)
 }
 
-/// Right, up and forward of the rest pose: forward from the heels to the
-/// toes, right across it and the vertical.
-fn rest_frame(chains: &RigChains, rest: &[Vec3]) -> Result<Mat3, ModelError> {
-    let along = |leg: &LegChain| rest[leg.toe] - rest[leg.ankle];
-    let forward = (along(&chains.left) + along(&chains.right)) * Vec3::new(1.0, 0.0, 1.0);
+/// A model converted to metres, and the unit its file uses: told from the
+/// rest pose's standing height, once it is known to stand rather than lie.
+fn in_metres(model: Model) -> Result<(Model, ModelUnits), ModelError> {
+    let rest = rest_mesh(&model, &model.skeleton.rest_globals())?;
+    let (lo, hi) = (rest.positions.iter())
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let extent = hi - lo;
+    let (width, height) = (extent.x.max(extent.z), extent.y);
+    if width > MAX_WIDTH_PER_HEIGHT * height {
+        return Err(ModelError::LyingDown { width, height });
+    }
+    let units = ModelUnits::of_standing_height(height)?;
+    match units {
+        ModelUnits::Metres => Ok((model, units)),
+        _ => Ok((model.scaled(units.metres())?, units)),
+    }
+}
+
+/// One foot in the rest pose: its leg, the centre of its sole and the sole's vertices.
+struct FootRest<'a> {
+    leg: &'a LegChain,
+    centre: Vec3,
+    sole: &'a [u32],
+}
+
+/// Right, up and forward of the rest pose: forward along the feet (see
+/// [`foot_direction`]), right across it and the vertical.
+fn rest_frame(
+    chains: &RigChains,
+    rest: &[Vec3],
+    positions: &[Vec3],
+    feet: &[FootRest; 2],
+) -> Result<Mat3, ModelError> {
+    let forward = feet
+        .iter()
+        .map(|foot| foot_direction(foot, rest, positions))
+        .sum::<Vec3>()
+        * Vec3::new(1.0, 0.0, 1.0);
     let Some(forward) = forward.try_normalize() else {
         return Err(ModelError::Shape {
             reason: "the toes are straight above or below the ankles; the feet point nowhere"
@@ -268,19 +308,90 @@ fn rest_frame(chains: &RigChains, rest: &[Vec3]) -> Result<Mat3, ModelError> {
     Ok(Mat3::from_cols(right, Vec3::Y, forward))
 }
 
-/// The rest vertices weighted mostly to `leg`'s foot and toe that lie within
-/// [`SOLE_BAND`] of the ground.
-fn sole_vertices(model: &Model, rest: &SkinnedVertices, leg: &LegChain, ground: f32) -> Vec<u32> {
+/// Where a foot points in the rest pose: from the ankle to the toe joint;
+/// without a toe joint, along the sole's longest horizontal axis, towards
+/// the side of the ankle the sole reaches further (the toes).
+fn foot_direction(foot: &FootRest, rest: &[Vec3], positions: &[Vec3]) -> Vec3 {
+    let ankle = rest[foot.leg.ankle];
+    if let Some(toe) = foot.leg.toe {
+        return rest[toe] - ankle;
+    }
+    let flat = |p: Vec3| glam::Vec2::new(p.x, p.z);
+    let centre = flat(foot.centre);
+    let (mut xx, mut xz, mut zz) = (0.0, 0.0, 0.0);
+    for &v in foot.sole {
+        let d = flat(positions[v as usize]) - centre;
+        (xx, xz, zz) = (xx + d.x * d.x, xz + d.x * d.y, zz + d.y * d.y);
+    }
+    // The major eigenvector of the 2x2 covariance [[xx, xz], [xz, zz]].
+    let angle = 0.5 * (2.0 * xz).atan2(xx - zz);
+    let axis = glam::Vec2::from_angle(angle);
+    let reach = |sign: f32| {
+        (foot.sole.iter())
+            .map(|&v| sign * (flat(positions[v as usize]) - flat(ankle)).dot(axis))
+            .fold(0.0, f32::max)
+    };
+    let axis = if reach(1.0) >= reach(-1.0) {
+        axis
+    } else {
+        -axis
+    };
+    Vec3::new(axis.x, 0.0, axis.y)
+}
+
+/// Each sole's vertices (left first) and the height of the lowest: the
+/// foot vertices within [`SOLE_BAND`] of the lowest foot vertex. Refused
+/// when a foot has no vertex there.
+fn soles(
+    model: &Model,
+    chains: &RigChains,
+    positions: &[Vec3],
+) -> Result<([Vec<u32>; 2], f32), ModelError> {
+    let side = |k: usize| ["left", "right"][k];
+    let feet = [&chains.left, &chains.right].map(|leg| foot_vertices(model, leg));
+    if let Some(k) = feet.iter().position(Vec::is_empty) {
+        return Err(ModelError::Shape {
+            reason: format!(
+                "no vertex is weighted mostly to the {} foot (its ankle joint and below)",
+                side(k)
+            ),
+        });
+    }
+    let ground = (feet.iter().flatten())
+        .map(|&v| positions[v as usize].y)
+        .fold(f32::INFINITY, f32::min);
+    let soles = feet.map(|foot| {
+        (foot.into_iter())
+            .filter(|&v| positions[v as usize].y <= ground + SOLE_BAND)
+            .collect::<Vec<u32>>()
+    });
+    if let Some(k) = soles.iter().position(Vec::is_empty) {
+        return Err(ModelError::Shape {
+            reason: format!(
+                "no vertex of the {} foot lies within {SOLE_BAND} m of the soles",
+                side(k)
+            ),
+        });
+    }
+    Ok((soles, ground))
+}
+
+/// The vertices weighted mostly to `leg`'s foot: its ankle joint and every
+/// joint below it (toes).
+fn foot_vertices(model: &Model, leg: &LegChain) -> Vec<u32> {
     let mesh = &model.mesh;
+    let skeleton = &model.skeleton;
+    let foot: Vec<bool> = (0..skeleton.len())
+        .map(|j| skeleton.is_ancestor(leg.ankle, j))
+        .collect();
     (mesh.joints().iter().zip(mesh.weights()))
-        .zip(&rest.positions)
         .enumerate()
-        .filter(|(_, ((js, ws), p))| {
+        .filter(|(_, (js, ws))| {
             let on_foot: f32 = (js.iter().zip(ws.iter()))
-                .filter(|(j, _)| [leg.ankle, leg.toe].contains(&(**j as usize)))
+                .filter(|(j, _)| foot.get(**j as usize).copied().unwrap_or(false))
                 .map(|(_, w)| w)
                 .sum();
-            on_foot >= SOLE_WEIGHT && p.y <= ground + SOLE_BAND
+            on_foot >= SOLE_WEIGHT
         })
         .map(|(k, _)| k as u32)
         .collect()

@@ -81,7 +81,7 @@ const MAX_PLANTED_PITCH_RATE: f32 = 3.0;
 const STANDING_LEG: f32 = 0.985;
 /// The most the pelvis rises above its walking height for bent planted legs,
 /// a fraction of the leg reach.
-const MAX_PELVIS_RAISE: f32 = 0.04;
+const MAX_PELVIS_RAISE: f32 = 0.12;
 /// The most a knee bends while walking, radians (about 117°: high stepping
 /// out of deep snow reaches 100–110°).
 pub const MAX_KNEE_FLEXION: f32 = 2.05;

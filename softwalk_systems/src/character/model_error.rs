@@ -24,6 +24,28 @@ pub enum ModelError {
     /// The rest pose could not be skinned.
     #[error("the rest pose: {0}")]
     Skin(#[from] AnimError),
+    /// The standing figure's height fits no length unit (metres, centimetres,
+    /// millimetres) for a 0.5 to 3 m tall character.
+    #[error(
+        "the model stands {height:.2} units tall: not 0.5-3 m in metres, centimetres or millimetres; \
+         scale it to metres (or put a scale on its armature's root node)"
+    )]
+    Units {
+        /// The rest pose's height in file units.
+        height: f32,
+    },
+    /// The rest pose lies down: wider than tall, as a Z-up model whose root
+    /// does not turn it to Y up.
+    #[error(
+        "the rest pose lies down ({width:.2} wide, {height:.2} tall along +Y): glTF is Y-up; \
+         rotate the armature's root node -90 degrees about X if the model is Z-up"
+    )]
+    LyingDown {
+        /// The rest pose's largest horizontal extent, file units.
+        width: f32,
+        /// The rest pose's vertical extent, file units.
+        height: f32,
+    },
     /// The rest pose is not a standing character (e.g. hips below the soles).
     #[error("the rest pose is not a standing character: {reason}")]
     Shape {

@@ -209,14 +209,66 @@ impl FootSupport {
     /// into one, the foot rises early and clears the higher of the print's
     /// rim and the landing surface by at least [`RIM_CLEARANCE`] (the way a
     /// leg steps out of deep snow: with the hip, not by dragging the foot).
+    /// A landing below the rim (down a slope) lowers the rim to clear as the
+    /// foot travels towards it, so the foot goes down with the ground rather
+    /// than being held at the height it left and dropped at the end, faster
+    /// than a knee straightens.
     fn swing_height(&self, u: f32, clearance: f32) -> f32 {
         let u = u.clamp(0.0, 1.0);
         let (from, to) = (self.left.point.y, self.landing.point.y);
-        let rim = self.left_rim.max(to);
-        let base = from + (to - from) * smoothstep(u);
+        let eased = smoothstep(u);
+        // A landing below the print's rim is cleared from above as the foot
+        // goes down to it; a landing above it, all the way.
+        let rim = (self.left_rim + (to - self.left_rim).min(0.0) * eased).max(to);
+        let base = from + (to - from) * eased;
         let apex = (from.min(to) + clearance).max(rim + RIM_CLEARANCE);
         let top = apex - clearance;
         let held = smoothstep(u.min(1.0 - u) / STEP_OUT_TIME);
         base + (top - base).max(0.0) * held + clearance * (PI * u).sin()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn support(left_floor: f32, left_rim: f32, landing: f32) -> FootSupport {
+        let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::Y * landing));
+        s.left = SupportPoint::rigid(Vec3::Y * left_floor);
+        s.left_rim = left_rim;
+        s
+    }
+
+    #[test]
+    fn a_lower_landing_is_approached_going_down_not_held_at_the_start() {
+        // Down a rigid slope: left at 0.2 m, landing at 0 m, clearance 7 cm.
+        let s = support(0.2, 0.2, 0.0);
+        let c = 0.07;
+        let heights: Vec<f32> = (0..=20)
+            .map(|i| s.swing_height(i as f32 / 20.0, c))
+            .collect();
+        // Never above the start plus the lift, and no steep drop at the end:
+        // the last fifth of the swing goes down no more than the first fifth
+        // of the way up plus the slope's share.
+        assert!(heights.iter().all(|&h| h <= 0.2 + c + 1e-6), "{heights:?}");
+        let end_drop = heights[16] - heights[20];
+        assert!(
+            end_drop < 0.12,
+            "drops {end_drop} m in the last fifth: {heights:?}"
+        );
+        assert!((heights[20] - 0.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_print_rim_and_a_higher_landing_are_still_cleared() {
+        let c = 0.07;
+        // Out of a 0.2 m print onto level snow: the foot is above the rim
+        // by mid-swing, having risen early (more than half-way at 0.3).
+        let s = support(-0.2, 0.0, 0.0);
+        assert!(s.swing_height(0.5, c) >= RIM_CLEARANCE - 1e-6);
+        assert!(s.swing_height(0.3, c) > -0.1);
+        // Up onto a 0.15 m step: mid-swing the foot is above the step.
+        let s = support(0.0, 0.0, 0.15);
+        assert!(s.swing_height(0.5, c) >= 0.15 + RIM_CLEARANCE - 1e-6);
     }
 }

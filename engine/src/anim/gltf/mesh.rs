@@ -8,22 +8,28 @@ use super::GltfError;
 use super::accessor::AccessorReader;
 use crate::anim::SkinnedMesh;
 
-/// The primitives of `mesh`, merged into one [`SkinnedMesh`] whose joint indices
+/// The primitives of `meshes`, merged into one [`SkinnedMesh`] whose joint indices
 /// are skeleton joints (`skin_to_joint` maps the skin's joint list onto them).
 /// Normals missing from a primitive are computed (area-weighted smooth normals).
 pub(super) fn skinned_mesh(
-    mesh: &gltf::Mesh,
+    meshes: &[gltf::Mesh],
     skin_to_joint: &[usize],
     joint_count: usize,
     reader: &AccessorReader,
 ) -> Result<SkinnedMesh, GltfError> {
     let path = reader.path;
     let mut merged = Merged::default();
-    for primitive in mesh.primitives() {
-        let part = format!("mesh {} primitive {}", mesh.index(), primitive.index());
-        merged.append(&primitive, &part, skin_to_joint, reader)?;
+    for mesh in meshes {
+        for primitive in mesh.primitives() {
+            let part = format!("mesh {} primitive {}", mesh.index(), primitive.index());
+            merged.append(&primitive, &part, skin_to_joint, reader)?;
+        }
     }
-    let part = format!("mesh {}", mesh.index());
+    let indices: Vec<String> = meshes.iter().map(|m| m.index().to_string()).collect();
+    let part = match indices.len() {
+        1 => format!("mesh {}", indices[0]),
+        _ => format!("meshes {}", indices.join(", ")),
+    };
     SkinnedMesh::new(
         merged.positions,
         merged.normals,

@@ -24,8 +24,10 @@ use accessor::AccessorReader;
 /// The largest glTF file, or buffer file, the loader reads (512 MiB).
 pub const MAX_FILE_BYTES: u64 = 512 << 20;
 
-/// Loads the first skinned mesh of a `.gltf` or `.glb` file (the first node with
-/// both a mesh and a skin), its skeleton and every animation clip.
+/// Loads the character of a `.gltf` or `.glb` file: the skin with the most
+/// joints (the first of those on a tie) and every mesh a node draws with it,
+/// merged into one (a body, its clothes, hair and eyes), its skeleton and
+/// every animation clip. Meshes drawn with other skins (props) are left out.
 pub fn load_gltf(path: &Path) -> Result<Model, GltfError> {
     let bytes = read_limited(path)?;
     load_gltf_from_slice(&bytes, path)
@@ -48,16 +50,13 @@ pub fn load_gltf_from_slice(bytes: &[u8], path: &Path) -> Result<Model, GltfErro
         path,
         buffers: &buffers,
     };
-    let (mesh, skin) = document
-        .nodes()
-        .find_map(|n| Some((n.mesh()?, n.skin()?)))
-        .ok_or_else(|| GltfError::MissingSkin {
-            path: path.to_path_buf(),
-            reason: "no node has both a mesh and a skin".to_string(),
-        })?;
+    let (meshes, skin) = character_meshes(&document).ok_or_else(|| GltfError::MissingSkin {
+        path: path.to_path_buf(),
+        reason: "no node has both a mesh and a skin".to_string(),
+    })?;
     let rig = skeleton::skin_skeleton(&document, &skin, &reader)?;
     let joint_count = rig.skeleton.len();
-    let mesh = mesh::skinned_mesh(&mesh, &rig.skin_to_joint, joint_count, &reader)?;
+    let mesh = mesh::skinned_mesh(&meshes, &rig.skin_to_joint, joint_count, &reader)?;
     let clips = document
         .animations()
         .map(|a| {
@@ -75,6 +74,29 @@ pub fn load_gltf_from_slice(bytes: &[u8], path: &Path) -> Result<Model, GltfErro
         mesh,
         clips,
     })
+}
+
+/// The character's skin (the one with the most joints, the first on a tie)
+/// and each distinct mesh drawn with it, in node order; `None` without any
+/// skinned node.
+fn character_meshes(document: &gltf::Document) -> Option<(Vec<gltf::Mesh<'_>>, gltf::Skin<'_>)> {
+    let skinned: Vec<(gltf::Mesh, gltf::Skin)> = document
+        .nodes()
+        .filter_map(|n| Some((n.mesh()?, n.skin()?)))
+        .collect();
+    let skin = skinned
+        .iter()
+        .map(|(_, s)| s)
+        .rev()
+        .max_by_key(|s| s.joints().count())?
+        .clone();
+    let mut meshes: Vec<gltf::Mesh> = Vec::new();
+    for (mesh, s) in &skinned {
+        if s.index() == skin.index() && meshes.iter().all(|m| m.index() != mesh.index()) {
+            meshes.push(mesh.clone());
+        }
+    }
+    Some((meshes, skin))
 }
 
 /// Checks what the `gltf` crate's own validation indexes without checking
