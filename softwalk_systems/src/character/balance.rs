@@ -53,6 +53,7 @@
 use glam::{Mat3, Quat, Vec2, Vec3};
 
 use super::body::CharacterBody;
+use super::desc::DEFAULT_PASSIVE_DAMPING;
 use super::error::{CharacterError, check_range};
 use super::gait::{Gait, clamp_dt};
 use super::rays::FootRays;
@@ -84,8 +85,6 @@ pub struct Balance {
 /// Default posture stiffness, N·m/rad: keeps every morphology's natural
 /// frequency above its step frequency.
 pub const DEFAULT_POSTURE_STIFFNESS: f32 = 300.0;
-/// Default passive damping, N·m·s/rad (above the paper's largest beta, 6).
-pub const DEFAULT_PASSIVE_DAMPING: f32 = 12.0;
 /// Default stiffness of the sustained lean, N·m/rad (a visible 7–8° at a 20° slope).
 pub const DEFAULT_LEAN_STIFFNESS: f32 = 100.0;
 /// Default time constant of the slow COM offset, seconds (about one step).

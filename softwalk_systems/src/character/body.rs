@@ -6,7 +6,6 @@ use glam::{Mat3, Vec3};
 
 use super::desc::CharacterDesc;
 use super::error::CharacterError;
-use super::gait::{GaitModifiers, GaitParams};
 use super::skeleton::{Bone, JOINT_COUNT, Joint};
 
 /// Mass fractions (Dempster/Winter): trunk, head+neck, upper arm, forearm+hand, thigh, shank, foot.
@@ -101,19 +100,6 @@ impl CharacterBody {
         let (com, inertia) = body.mass_properties();
         body.com_height = com.y;
         body.inertia = inertia;
-        let gait = GaitParams::new(&body, &GaitModifiers::default());
-        let farthest = gait.duty * gait.stride / 2.0 + 0.25 * body.foot_length;
-        if farthest > 0.9 * body.leg_reach() {
-            return Err(CharacterError::InvalidField {
-                field: "froude",
-                reason: format!(
-                    "the stride ({:.2} m) needs the legs to reach {farthest:.2} m ahead, \
-                     more than they can ({:.2} m)",
-                    gait.stride,
-                    body.leg_reach()
-                ),
-            });
-        }
         Ok(body)
     }
 

@@ -2,8 +2,6 @@
 
 use engine::anim::WalkCycle;
 
-use super::CharacterBody;
-
 /// Standard gravity, m/s².
 const GRAVITY: f32 = 9.81;
 /// Walking Froude numbers (v² / (g · hip height)) a clip's speed is kept within,
@@ -49,14 +47,14 @@ impl ClipGait {
         }
     }
 
-    /// The walk on `body`: the stride scaled by its legs (hip to ankle), the
+    /// The walk on a body whose legs are `leg` long (hip to ankle) with its
+    /// hips `hip_height` high: the stride scaled by the legs, the
     /// speed one stride per period, each kept within the gait's valid
     /// ranges (stride 0.5 to 2.5 leg lengths, Froude number 0.02 to 0.5,
     /// duty 0.55 to 0.7; a non-finite value reads as the range's middle).
-    pub fn timing(&self, body: &CharacterBody) -> ClipTiming {
-        let leg = body.thigh + body.shank;
+    pub fn timing(&self, leg: f32, hip_height: f32) -> ClipTiming {
         let stride = within(self.relative_stride, RELATIVE_STRIDE_RANGE) * leg;
-        let froude_speed = |fr: f32| (fr * GRAVITY * body.hip_height).sqrt();
+        let froude_speed = |fr: f32| (fr * GRAVITY * hip_height).sqrt();
         let speed_range = (froude_speed(FROUDE_RANGE.0), froude_speed(FROUDE_RANGE.1));
         let speed = within(stride / self.period, speed_range);
         ClipTiming {
@@ -79,6 +77,11 @@ fn within(value: f32, range: (f32, f32)) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::character::CharacterBody;
+
+    fn timing_on(gait: &ClipGait, body: &CharacterBody) -> ClipTiming {
+        gait.timing(body.thigh + body.shank, body.hip_height)
+    }
     use crate::character::CharacterDesc;
 
     #[test]
@@ -90,7 +93,7 @@ mod tests {
         };
         let adult = CharacterBody::new(CharacterDesc::adult()).unwrap();
         let tall = CharacterBody::new(CharacterDesc::tall()).unwrap();
-        let (a, t) = (gait.timing(&adult), gait.timing(&tall));
+        let (a, t) = (timing_on(&gait, &adult), timing_on(&gait, &tall));
         let leg = |b: &CharacterBody| b.thigh + b.shank;
         assert!((a.stride - 1.6 * leg(&adult)).abs() < 1e-5);
         assert!((t.stride / a.stride - leg(&tall) / leg(&adult)).abs() < 1e-5);
@@ -107,7 +110,7 @@ mod tests {
             relative_stride: 9.0,
             duty: 0.3,
         };
-        let t = sprint.timing(&adult);
+        let t = timing_on(&sprint, &adult);
         assert!((t.stride - 2.5 * (adult.thigh + adult.shank)).abs() < 1e-5);
         let froude = t.speed * t.speed / (GRAVITY * adult.hip_height);
         assert!((froude - 0.5).abs() < 1e-4, "{froude}");
@@ -117,7 +120,7 @@ mod tests {
             relative_stride: f32::NAN,
             duty: f32::INFINITY,
         };
-        let t = broken.timing(&adult);
+        let t = timing_on(&broken, &adult);
         assert!(t.speed.is_finite() && t.stride.is_finite() && t.duty.is_finite());
     }
 }

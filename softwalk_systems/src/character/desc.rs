@@ -2,9 +2,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::balance::DEFAULT_PASSIVE_DAMPING;
 use super::clip_gait::ClipGait;
 use super::error::{CharacterError, check_range};
+
+/// Default passive damping, N·m·s/rad (above the paper's largest beta, 6).
+pub const DEFAULT_PASSIVE_DAMPING: f32 = 12.0;
 
 /// What a scene file says about a character; [`super::CharacterBody::new`] turns it into a body.
 ///

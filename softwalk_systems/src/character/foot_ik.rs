@@ -12,6 +12,7 @@ use super::pelvis::PelvisFollower;
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
+use super::support::sole_direction;
 use crate::foot::{FootPhase, FootSole, FootState, Side};
 use crate::ground::rise_along;
 
@@ -242,15 +243,6 @@ fn unroll_to_length(
         .frame
         .pitch_where(body, foot.pitch, 0.0, |placed| distance(placed) >= length);
     foot.frame.place(body, pitch)
-}
-
-/// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
-/// unit `normal`: the heading projected into the ground's tangent plane.
-pub(crate) fn sole_direction(heading: Vec2, normal: Vec3) -> Vec3 {
-    let heading = Vec3::new(heading.x, 0.0, heading.y);
-    (heading - normal * heading.dot(normal))
-        .try_normalize()
-        .unwrap_or(heading)
 }
 
 /// Stage 5: builds the final pose and returns each foot's state (left first).

@@ -7,6 +7,7 @@ use std::f32::consts::{PI, TAU};
 use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
+use super::error::CharacterError;
 use super::path::{PathPoint, WalkPath};
 use crate::foot::{FootPhase, Side};
 use crate::ground::rise_along;
@@ -169,6 +170,25 @@ pub struct GaitParams {
 }
 
 impl GaitParams {
+    /// Refuses a body whose legs cannot reach where its level walk lands a
+    /// foot: half a stance's travel ahead of the hip, plus a quarter foot.
+    pub fn check_reach(body: &CharacterBody) -> Result<(), CharacterError> {
+        let gait = GaitParams::new(body, &GaitModifiers::default());
+        let farthest = gait.duty * gait.stride / 2.0 + 0.25 * body.foot_length;
+        if farthest > 0.9 * body.leg_reach() {
+            return Err(CharacterError::InvalidField {
+                field: "froude",
+                reason: format!(
+                    "the stride ({:.2} m) needs the legs to reach {farthest:.2} m ahead, \
+                     more than they can ({:.2} m)",
+                    gait.stride,
+                    body.leg_reach()
+                ),
+            });
+        }
+        Ok(())
+    }
+
     /// Boulic's walk for this body: v = sqrt(Fr g Ht), RV = v / Ht,
     /// stride = 1.346 sqrt(RV) Ht, support time 0.752 Dc - 0.143; or, when
     /// its description has a [`super::ClipGait`], the clip's walk scaled to it.
@@ -181,7 +201,7 @@ impl GaitParams {
         let slope_scale = 1.0 / (1.0 + DOWNHILL_STEP_SHORTENING * (-grade).max(0.0));
         let (speed, stride, duty) = match body.desc.clip_gait {
             Some(clip) => {
-                let walk = clip.timing(body);
+                let walk = clip.timing(body.thigh + body.shank, body.hip_height);
                 let stride = walk.stride * length_scale * slope_scale;
                 (walk.speed * speed_scale, stride, walk.duty)
             }

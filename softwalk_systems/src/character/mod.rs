@@ -58,14 +58,14 @@ mod support;
 
 pub use balance::{
     Balance, DEFAULT_LATERAL_DAMPING, DEFAULT_LATERAL_STIFFNESS, DEFAULT_LEAN_STIFFNESS,
-    DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_PASSIVE_DAMPING, DEFAULT_POSTURE_STIFFNESS, MAX_BRAKE_LEAN,
-    MAX_TURN_LEAN, RigidProxy, animated_com, balance_stage, brake_lean, turn_lean,
+    DEFAULT_LEAN_TIME_CONSTANT, DEFAULT_POSTURE_STIFFNESS, MAX_BRAKE_LEAN, MAX_TURN_LEAN,
+    RigidProxy, animated_com, balance_stage, brake_lean, turn_lean,
 };
 pub use body::{BodyMass, CharacterBody};
 pub use character_rig::{ArmChain, CharacterRig};
 pub use clip_gait::{CLIP_DUTY_RANGE, ClipGait, ClipTiming};
 pub use clip_walk::ClipWalk;
-pub use desc::CharacterDesc;
+pub use desc::{CharacterDesc, DEFAULT_PASSIVE_DAMPING};
 pub use error::CharacterError;
 pub use foot_ik::{FootIK, foot_ik_stage};
 pub use gait::{

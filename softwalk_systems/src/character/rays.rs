@@ -4,10 +4,9 @@
 use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
-use super::foot_ik::sole_direction;
 use super::gait::Gait;
 use super::ground_cross::GroundCross;
-use super::support::{FootSupport, SupportPoint};
+use super::support::{FootSupport, SupportPoint, sole_direction};
 use crate::ground::Ground;
 
 /// Height above everything a character could stand on, used for the very first rays.

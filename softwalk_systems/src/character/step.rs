@@ -8,7 +8,7 @@ use super::body::CharacterBody;
 use super::desc::CharacterDesc;
 use super::error::CharacterError;
 use super::foot_ik::{FootIK, foot_ik_stage};
-use super::gait::{Gait, GaitModifiers, gait_stage};
+use super::gait::{Gait, GaitModifiers, GaitParams, gait_stage};
 use super::metrics::CharacterMetrics;
 use super::path::WalkPath;
 use super::pose::Pose;
@@ -49,6 +49,7 @@ impl Character {
         ground: &dyn Ground,
     ) -> Result<Self, CharacterError> {
         let body = CharacterBody::new(desc)?;
+        GaitParams::check_reach(&body)?;
         let balance = Balance::new(desc.alpha, desc.beta)?;
         let modifiers = GaitModifiers::default();
         let gait = Gait::new(&body, path, &modifiers);

@@ -228,6 +228,15 @@ impl FootSupport {
     }
 }
 
+/// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
+/// unit `normal`: the heading projected into the ground's tangent plane.
+pub(crate) fn sole_direction(heading: Vec2, normal: Vec3) -> Vec3 {
+    let heading = Vec3::new(heading.x, 0.0, heading.y);
+    (heading - normal * heading.dot(normal))
+        .try_normalize()
+        .unwrap_or(heading)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
