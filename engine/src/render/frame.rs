@@ -213,7 +213,9 @@ impl Renderer {
                     .iter()
                     .flat_map(|m| m.world_triangles())
                     .collect();
-                ShadowMap::build(&casters, scene.blades, scene.lighting.sun.direction, camera)
+                let ground_low = scene.terrain.map(TerrainRenderer::lowest_height);
+                let sun = scene.lighting.sun.direction;
+                ShadowMap::build(&casters, scene.blades, sun, camera, ground_low)
             })
             .flatten();
         let view = FrameView::new(camera, &scene.lighting, shadows.as_ref(), vp);
@@ -247,7 +249,7 @@ impl Renderer {
                         y1,
                     };
                     for batch in &batches {
-                        batch.draw_band(b as i32, &mut band);
+                        batch.draw_band(b as i32, &mut band, view.pixel_shadow.as_ref());
                     }
                     grass.draw_band(b as i32, &mut band);
                 });

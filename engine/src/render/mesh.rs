@@ -140,12 +140,13 @@ impl<'a> MeshInstance<'a> {
                     let normal = mesh.normals.get(k).copied().unwrap_or(Vec3::Y);
                     let n = (normal_matrix * normal).normalize_or(Vec3::Y);
                     let sky = 0.65 + 0.35 * n.y;
-                    let sun = view.sun_past_casters(world);
+                    let sun = view.sun_past_casters(world, n);
                     encode_display(lighting.radiance(self.color, n, sky, sun))
                 });
                 ClipVertex {
                     pos: view.view_proj * world.extend(1.0),
                     color: lighting.apply_fog(color, (world - eye).length()),
+                    sun: Vec3::ZERO,
                 }
             })
             .collect();
@@ -154,7 +155,7 @@ impl<'a> MeshInstance<'a> {
             cull: self.cull,
             first_vertex: first,
         };
-        Some(TriangleBatch::build(&verts, &[group], view.vp))
+        Some(TriangleBatch::build(&verts, &[group], None, view.vp))
     }
 }
 
