@@ -31,13 +31,14 @@ pub(crate) struct MapFrame {
 }
 
 impl MapFrame {
-    /// The grid for casters made of `points` under a sun in direction
-    /// `toward_sun` (unit, above the horizon), covering only the casters
-    /// whose shadows may fall inside `camera`'s view onto ground no lower
-    /// than `ground_low` (the casters' lowest point when `None`). `None` when
-    /// there are no points or no such shadow.
+    /// The grid for casters made of triangles `casters` (a blade gives
+    /// three points along it) under a sun in direction `toward_sun` (unit,
+    /// above the horizon), covering only the casters whose shadows may fall
+    /// inside `camera`'s view onto ground no lower than `ground_low` (the
+    /// casters' lowest point when `None`). `None` when there are no casters
+    /// or no such shadow.
     pub fn fit(
-        points: impl Iterator<Item = Vec3>,
+        casters: impl Iterator<Item = [Vec3; 3]> + Clone,
         toward_sun: Vec3,
         camera: &Camera,
         ground_low: Option<f32>,
@@ -45,16 +46,23 @@ impl MapFrame {
         let right = toward_sun.cross(Vec3::Y).try_normalize().unwrap_or(Vec3::X);
         let up = right.cross(toward_sun);
         let across = |p: Vec3| Vec2::new(p.dot(right), p.dot(up));
-        let mut casters = Bounds::EMPTY;
         let (mut y_lo, mut y_hi) = (f32::INFINITY, f32::NEG_INFINITY);
-        for p in points {
-            casters.add(across(p));
+        for p in casters.clone().flatten() {
             y_lo = y_lo.min(p.y);
             y_hi = y_hi.max(p.y);
         }
         let y_lo = ground_low.map_or(y_lo, |g| g.min(y_lo));
         let seen = view_footprint(camera, y_lo, y_hi, across)?;
-        let covered = casters.intersect(&seen)?;
+        let mut covered = Bounds::EMPTY;
+        for caster in casters {
+            let mut own = Bounds::EMPTY;
+            caster.into_iter().for_each(|p| own.add(across(p)));
+            if let Some(part) = own.intersect(&seen) {
+                covered.add(part.lo);
+                covered.add(part.hi);
+            }
+        }
+        let covered = covered.intersect(&covered)?;
         let extent = (covered.hi - covered.lo).max_element();
         let texel = ladder_texel((extent / MAX_SIDE as f32).max(MIN_TEXEL));
         // Whole texels from the light-space origin, one texel of margin.
@@ -177,7 +185,13 @@ mod tests {
     fn the_map_covers_only_casters_whose_shadows_the_camera_may_see() {
         let sun = Vec3::new(0.0, 1.0, 1.0).normalize();
         // A post in view and one 300 m to the side.
-        let post = |x: f32| [Vec3::new(x, 0.0, 0.0), Vec3::new(x, 2.0, 0.0)];
+        let post = |x: f32| {
+            [[
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x, 2.0, 0.0),
+                Vec3::new(x, 1.0, 0.0),
+            ]]
+        };
         let near = MapFrame::fit(post(0.0).into_iter(), sun, &camera(), Some(0.0)).unwrap();
         let both = post(0.0).into_iter().chain(post(300.0));
         let fitted = MapFrame::fit(both, sun, &camera(), Some(0.0)).unwrap();
@@ -189,7 +203,7 @@ mod tests {
         assert!((a.z - top.dot(sun)).abs() < 1e-6);
         // A second post a little aside moves the map's corner by whole
         // texels only: the first post keeps its place within its texel.
-        let wider = post(0.0).into_iter().chain(post(-0.137));
+        let wider = post(0.0).into_iter().chain(post(0.137));
         let moved = MapFrame::fit(wider, sun, &camera(), Some(0.0)).unwrap();
         let b = moved.to_light.transform_point3(top);
         assert_ne!(a.x, b.x);
@@ -199,7 +213,7 @@ mod tests {
             "{shift}"
         );
         // Posts wholly behind the camera cast nothing it sees.
-        let behind = post(0.0).map(|p| p - Vec3::Z * 30.0);
+        let behind = post(0.0).map(|t| t.map(|p| p - Vec3::Z * 30.0));
         assert_eq!(
             MapFrame::fit(behind.into_iter(), Vec3::Y, &camera(), Some(0.0)),
             None

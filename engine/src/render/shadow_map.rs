@@ -63,9 +63,9 @@ impl ShadowMap {
             camera.sees_box(&planes, b.root - reach, b.root + reach)
         };
         let blades: Vec<&GrassBlade> = blades.iter().filter(near_view).collect();
-        let points = triangles.iter().flatten().copied();
-        let blade_points = blades.iter().flat_map(|b| [b.root, b.mid, b.tip]);
-        let frame = MapFrame::fit(points.chain(blade_points), toward_sun, camera, ground_low)?;
+        let blade_points = blades.iter().map(|b| [b.root, b.mid, b.tip]);
+        let casters = triangles.iter().copied().chain(blade_points);
+        let frame = MapFrame::fit(casters, toward_sun, camera, ground_low)?;
         let mut map = ShadowMap {
             frame,
             top: vec![f32::NEG_INFINITY; frame.cols * frame.rows],
@@ -129,8 +129,9 @@ impl ShadowMap {
                 let wa = (c2 - b2).perp_dot(p - b2) / area;
                 let wb = (a2 - c2).perp_dot(p - c2) / area;
                 let wc = 1.0 - wa - wb;
-                // A little slack so that neighbouring triangles leave no gap.
-                if wa >= -0.05 && wb >= -0.05 && wc >= -0.05 {
+                // A hair of slack so that neighbouring triangles leave no
+                // gap along their shared edge.
+                if wa >= -1e-4 && wb >= -1e-4 && wc >= -1e-4 {
                     self.raise(i, j, wa * a.z + wb * b.z + wc * c.z);
                 }
             }
