@@ -208,13 +208,13 @@ impl Renderer {
         let shadows = scene
             .shadows
             .then(|| {
+                let sun = scene.lighting.sun.direction;
                 let casters: Vec<[Vec3; 3]> = scene
                     .meshes
                     .iter()
-                    .flat_map(|m| m.world_triangles())
+                    .flat_map(|m| m.sun_casters(sun))
                     .collect();
                 let ground_low = scene.terrain.map(TerrainRenderer::lowest_height);
-                let sun = scene.lighting.sun.direction;
                 ShadowMap::build(&casters, scene.blades, sun, camera, ground_low)
             })
             .flatten();

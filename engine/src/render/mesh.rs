@@ -91,6 +91,15 @@ impl<'a> MeshInstance<'a> {
             })
     }
 
+    /// Its triangles in world space that may be the first surface the sun
+    /// meets: all of them when both faces are drawn, only those facing
+    /// `toward_sun` when back faces are culled (a closed mesh).
+    pub(crate) fn sun_casters(&self, toward_sun: Vec3) -> impl Iterator<Item = [Vec3; 3]> + '_ {
+        let closed = self.cull == CullMode::Back;
+        self.world_triangles()
+            .filter(move |[a, b, c]| !closed || (*b - *a).cross(*c - *a).dot(toward_sun) > 0.0)
+    }
+
     /// Runs of at most [`TRIANGLES_PER_BATCH`] triangles of each part, in
     /// part order, with the part's transform: a batch each.
     fn runs(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {

@@ -123,16 +123,31 @@ impl ShadowMap {
         if !(lo.x <= hi.x && lo.y <= hi.y) {
             return;
         }
+        // Barycentric weights of a and b and the height as planes over the
+        // texel centres: value = gradient . p + offset.
+        let inv = 1.0 / area;
+        let weight = |from: Vec2, to: Vec2| {
+            let gradient = Vec2::new(from.y - to.y, to.x - from.x) * inv;
+            (gradient, -gradient.dot(from))
+        };
+        let (ga, oa) = weight(b2, c2);
+        let (gb, ob) = weight(c2, a2);
+        let (gh, oh) = (
+            ga * (a.z - c.z) + gb * (b.z - c.z),
+            oa * (a.z - c.z) + ob * (b.z - c.z) + c.z,
+        );
+        // A hair of slack so that neighbouring triangles leave no gap along
+        // their shared edge.
+        const SLACK: f32 = -1e-4;
         for j in lo.y as usize..=hi.y as usize {
+            let y = j as f32 + 0.5;
+            let row = j * self.frame.cols;
             for i in lo.x as usize..=hi.x as usize {
-                let p = Vec2::new(i as f32 + 0.5, j as f32 + 0.5);
-                let wa = (c2 - b2).perp_dot(p - b2) / area;
-                let wb = (a2 - c2).perp_dot(p - c2) / area;
-                let wc = 1.0 - wa - wb;
-                // A hair of slack so that neighbouring triangles leave no
-                // gap along their shared edge.
-                if wa >= -1e-4 && wb >= -1e-4 && wc >= -1e-4 {
-                    self.raise(i, j, wa * a.z + wb * b.z + wc * c.z);
+                let p = Vec2::new(i as f32 + 0.5, y);
+                let (wa, wb) = (ga.dot(p) + oa, gb.dot(p) + ob);
+                if wa >= SLACK && wb >= SLACK && 1.0 - wa - wb >= SLACK {
+                    let t = &mut self.top[row + i];
+                    *t = t.max(gh.dot(p) + oh);
                 }
             }
         }

@@ -399,7 +399,7 @@ impl TerrainRenderer {
         let shaded = view.casters_may_shade(min - Vec3::Y * lod.error, max);
         let vertex = |p: Vec3, v: usize| {
             let fog = view.lighting.fog_amount((p - eye).length());
-            let color = view.lighting.apply_fog(lod.colors[v], (p - eye).length());
+            let color = view.lighting.blend_fog(lod.colors[v], fog);
             let sun = if shaded {
                 (lod.colors[v] - lod.shaded[v]) * (1.0 - fog)
             } else {

@@ -23,10 +23,8 @@ pub(crate) struct TriangleGroup<'a> {
 /// Screen-space triangles ready to fill, binned by the bands of rows they touch.
 #[derive(Debug, Default)]
 pub(crate) struct TriangleBatch {
-    /// The set-up triangles, in submission order, each with the index of
-    /// its sun plane in `sun_planes` when it resolves caster shadows per
-    /// pixel.
-    triangles: Vec<(Triangle, Option<u32>)>,
+    /// The set-up triangles, in submission order.
+    triangles: Vec<Triangle>,
     /// Sun part / w planes of the triangles that resolve shadows per pixel.
     sun_planes: Vec<Plane<Vec3>>,
     /// Indices into `triangles` per band.
@@ -89,16 +87,17 @@ impl TriangleBatch {
     /// it, binned by the bands it touches.
     fn set_up(&mut self, v: [&ScreenVertex; 3], cull: CullMode, with_sun: bool, vp: Viewport) {
         let set_up = if with_sun {
-            Triangle::set_up_with_sun(v, cull, vp).map(|(t, sun)| {
+            Triangle::set_up_with_sun(v, cull, vp).map(|(mut t, sun)| {
+                t.sun_plane = Some(self.sun_planes.len() as u32);
                 self.sun_planes.push(sun);
-                (t, Some(self.sun_planes.len() as u32 - 1))
+                t
             })
         } else {
-            Triangle::set_up(v, cull, vp).map(|t| (t, None))
+            Triangle::set_up(v, cull, vp)
         };
-        if let Some((t, sun)) = set_up {
+        if let Some(t) = set_up {
             self.bins.push(self.triangles.len() as u32, t.rows());
-            self.triangles.push((t, sun));
+            self.triangles.push(t);
         }
     }
 
@@ -112,11 +111,12 @@ impl TriangleBatch {
     /// `shadow` (the one the batch was built with).
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>, shadow: Option<&PixelShadow<'_>>) {
         for &k in self.bins.band(band) {
-            match (&self.triangles[k as usize], shadow) {
-                ((t, Some(sun)), Some(shadow)) => {
-                    t.draw_with_shadow(target, &self.sun_planes[*sun as usize], shadow);
+            let t = &self.triangles[k as usize];
+            match (t.sun_plane, shadow) {
+                (Some(sun), Some(shadow)) => {
+                    t.draw_with_shadow(target, &self.sun_planes[sun as usize], shadow);
                 }
-                ((t, _), _) => t.draw(target),
+                _ => t.draw(target),
             }
         }
     }

@@ -163,6 +163,9 @@ pub(crate) struct Triangle {
     edges: [Edge; 3],
     /// The attributes `1/w` and colour / w.
     attributes: Plane<Vec4>,
+    /// Where its batch keeps the plane of its sun part / w, when it
+    /// resolves caster shadows per pixel.
+    pub sun_plane: Option<u32>,
     /// First and last covered column and row (clipped to the screen).
     x0: i32,
     x1: i32,
@@ -246,6 +249,7 @@ impl Triangle {
         let triangle = Triangle {
             edges,
             attributes: weights.plane(v.map(ScreenVertex::attributes)),
+            sun_plane: None,
             x0,
             x1,
             y0,
@@ -261,7 +265,7 @@ impl Triangle {
 
     /// The covered columns of row `y` of its box, as offsets from its first
     /// column (empty when `lo > hi`).
-    #[inline]
+    #[inline(always)]
     fn covered(&self, y: i32) -> (i32, i32) {
         let r = (y - self.y0) as i64;
         let values = self.edges.map(|e| e.start + r * e.step_y);
@@ -287,7 +291,7 @@ impl Triangle {
     /// Calls `fill(x, y, pixel)` for each covered pixel of `band` whose
     /// `1/w` beats the stored depth (which it replaces), with the pixel's
     /// interpolated attributes; `fill` gives its RGBA.
-    #[inline]
+    #[inline(always)]
     fn fill(&self, band: &mut Band<'_>, mut fill: impl FnMut(i32, i32, Vec4) -> [u8; 4]) {
         let width = band.width as usize;
         for y in self.y0.max(band.y0)..=self.y1.min(band.y1 - 1) {
