@@ -8,10 +8,17 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::camera::Camera;
 
-/// Finest texel, in metres.
-const MIN_TEXEL: f32 = 0.01;
+/// Finest texel width, in metres.
+const MIN_TEXEL: f32 = 0.015;
+/// Least ratio of a texel's height (along the rows) to its width: the sine
+/// of an elevation of about 12 degrees (a lower sun stretches texels on
+/// the ground rather than multiplying rows).
+const MIN_SQUASH: f32 = 0.2;
 /// Most texels per side.
 const MAX_SIDE: usize = 1024;
+/// Texels kept around the casters on each side: a lookup beside a caster
+/// reads its neighbours.
+const MARGIN: f32 = 2.0;
 /// Texel sizes per doubling: the ladder of sizes the texel is rounded up to.
 const TEXEL_STEPS_PER_OCTAVE: f32 = 4.0;
 
@@ -22,7 +29,8 @@ pub(crate) struct MapFrame {
     /// texel `(i, j)` spans `[i, i + 1) x [j, j + 1)`) and height towards
     /// the sun, in metres.
     pub to_light: Mat4,
-    /// Texel side, in metres.
+    /// Texel width (along the columns), in metres; rows are shorter, by
+    /// the sine of the sun's elevation.
     pub texel: f32,
     /// Columns.
     pub cols: usize,
@@ -63,15 +71,22 @@ impl MapFrame {
             }
         }
         let covered = covered.intersect(&covered)?;
-        let extent = (covered.hi - covered.lo).max_element();
-        let texel = ladder_texel((extent / MAX_SIDE as f32).max(MIN_TEXEL));
-        // Whole texels from the light-space origin, one texel of margin.
-        let corner = (covered.lo / texel).floor() - Vec2::ONE;
-        let span = ((covered.hi / texel).ceil() + Vec2::ONE - corner)
-            .min(Vec2::splat((MAX_SIDE + 3) as f32));
+        // Rows are shorter than columns are wide, so that a texel covers a
+        // square of level ground: a row across the rays stretches over
+        // `1 / sin(elevation)` of ground.
+        let squash = toward_sun.y.max(MIN_SQUASH);
+        let extent = covered.hi - covered.lo;
+        let needed = extent.x.max(extent.y / squash) / MAX_SIDE as f32;
+        let texel = ladder_texel(needed.max(MIN_TEXEL));
+        let size = Vec2::new(texel, texel * squash);
+        // Whole texels from the light-space origin, a margin of MARGIN.
+        let margin = Vec2::splat(MARGIN);
+        let corner = (covered.lo / size).floor() - margin;
+        let span =
+            ((covered.hi / size).ceil() + margin - corner).min(Vec2::splat((MAX_SIDE + 5) as f32));
         let to_light = Mat4::from_cols(
-            (right / texel).extend(-corner.x),
-            (up / texel).extend(-corner.y),
+            (right / size.x).extend(-corner.x),
+            (up / size.y).extend(-corner.y),
             toward_sun.extend(0.0),
             Vec4::W,
         )

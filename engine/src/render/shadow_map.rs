@@ -103,7 +103,11 @@ impl ShadowMap {
         }
     }
 
-    /// Marks the texels whose centres a world triangle covers.
+    /// Raises the texels whose centres a world triangle covers to its height
+    /// there. A triangle thinner than a texel in the map (seen almost
+    /// edge-on by the sun, as along a round caster's outline) raises every
+    /// texel it touches instead, to at most its highest corner's height, so
+    /// that it leaves no gaps.
     fn cast_triangle(&mut self, t: &[Vec3; 3]) {
         let [a, b, c] = t.map(|p| self.locate(p));
         let (a2, b2, c2) = (a.truncate(), b.truncate(), c.truncate());
@@ -117,14 +121,16 @@ impl ShadowMap {
             }
             return;
         }
-        let lo = a2.min(b2).min(c2).max(Vec2::ZERO);
+        let lo = (a2.min(b2).min(c2) - Vec2::splat(0.5)).max(Vec2::ZERO);
         let last = Vec2::new(self.frame.cols as f32, self.frame.rows as f32) - Vec2::ONE;
-        let hi = a2.max(b2).max(c2).min(last);
+        let hi = (a2.max(b2).max(c2) + Vec2::splat(0.5)).min(last);
         if !(lo.x <= hi.x && lo.y <= hi.y) {
             return;
         }
         // Barycentric weights of a and b and the height as planes over the
-        // texel centres: value = gradient . p + offset.
+        // texel centres (value = gradient . p + offset). A texel touches the
+        // triangle's side of an edge when its weight at the centre is at
+        // least minus half the weight's change across the texel.
         let inv = 1.0 / area;
         let weight = |from: Vec2, to: Vec2| {
             let gradient = Vec2::new(from.y - to.y, to.x - from.x) * inv;
@@ -132,22 +138,33 @@ impl ShadowMap {
         };
         let (ga, oa) = weight(b2, c2);
         let (gb, ob) = weight(c2, a2);
-        let (gh, oh) = (
-            ga * (a.z - c.z) + gb * (b.z - c.z),
-            oa * (a.z - c.z) + ob * (b.z - c.z) + c.z,
-        );
-        // A hair of slack so that neighbouring triangles leave no gap along
-        // their shared edge.
-        const SLACK: f32 = -1e-4;
+        let longest = [b2 - a2, c2 - b2, a2 - c2]
+            .map(Vec2::length)
+            .into_iter()
+            .fold(0.0, f32::max);
+        let thin = area.abs() < longest;
+        // A hair of slack otherwise, so that neighbouring triangles leave
+        // no gap along their shared edge.
+        let reach = |g: Vec2| {
+            if thin {
+                -0.5 * g.abs().element_sum()
+            } else {
+                -1e-4
+            }
+        };
+        let (ra, rb, rc) = (reach(ga), reach(gb), reach(ga + gb));
+        let (dha, dhb) = (a.z - c.z, b.z - c.z);
+        let (gh, oh) = (ga * dha + gb * dhb, oa * dha + ob * dhb + c.z);
+        let highest = a.z.max(b.z).max(c.z);
         for j in lo.y as usize..=hi.y as usize {
             let y = j as f32 + 0.5;
             let row = j * self.frame.cols;
             for i in lo.x as usize..=hi.x as usize {
                 let p = Vec2::new(i as f32 + 0.5, y);
                 let (wa, wb) = (ga.dot(p) + oa, gb.dot(p) + ob);
-                if wa >= SLACK && wb >= SLACK && 1.0 - wa - wb >= SLACK {
+                if wa >= ra && wb >= rb && 1.0 - wa - wb >= rc {
                     let t = &mut self.top[row + i];
-                    *t = t.max(gh.dot(p) + oh);
+                    *t = t.max((gh.dot(p) + oh).min(highest));
                 }
             }
         }
@@ -190,30 +207,34 @@ impl ShadowMap {
     }
 
     /// How much of the sun reaches the point at light coordinates `l`: the
-    /// four texels nearest it tested and bilinearly weighted. Points off the
-    /// map are lit.
+    /// three by three texels around it tested, weighted by a quadratic
+    /// B-spline (a tent over two texels, so the edge of a shadow is a soft
+    /// ramp rather than texel steps). Points off the map are lit.
     #[inline]
     pub fn visibility_at(&self, l: Vec3) -> f32 {
-        let (x, y) = (l.x - 0.5, l.y - 0.5);
         let (cols, rows) = (self.frame.cols, self.frame.rows);
-        if !(x >= 0.0 && y >= 0.0 && x < (cols - 1) as f32 && y < (rows - 1) as f32) {
+        let inside = l.x >= 1.0 && l.y >= 1.0;
+        if !(inside && l.x < (cols - 1) as f32 && l.y < (rows - 1) as f32) {
             return 1.0;
         }
-        let (i, j) = (x as usize, y as usize);
-        let (fx, fy) = (x - i as f32, y - j as f32);
+        let (i, j) = (l.x as usize, l.y as usize);
+        let (wx, wy) = (
+            spline_weights(l.x - i as f32),
+            spline_weights(l.y - j as f32),
+        );
         let h = l.z + BIAS_TEXELS * self.frame.texel;
-        let at = j * cols + i;
         let lit = |k: usize| f32::from(u8::from(self.top[k] <= h));
-        let row = |k: usize| lit(k) + (lit(k + 1) - lit(k)) * fx;
-        row(at) + (row(at + cols) - row(at)) * fy
+        let row = |k: usize| wx[0] * lit(k) + wx[1] * lit(k + 1) + wx[2] * lit(k + 2);
+        let first = (j - 1) * cols + i - 1;
+        wy[0] * row(first) + wy[1] * row(first + cols) + wy[2] * row(first + 2 * cols)
     }
 
     /// Whether a caster may shade some point whose light coordinates lie in
     /// the box `lo..=hi` (conservative: `false` means every such point is lit).
     pub fn may_shade(&self, lo: Vec3, hi: Vec3) -> bool {
-        // The texels the bilinear lookups of the box read, one more for slack.
-        let first = (lo.truncate() - Vec2::splat(1.5)).max(Vec2::ZERO);
-        let last = hi.truncate() + Vec2::splat(1.5);
+        // The texels the lookups of the box read, and one more for slack.
+        let first = (lo.truncate() - Vec2::splat(2.0)).max(Vec2::ZERO);
+        let last = hi.truncate() + Vec2::splat(2.0);
         let (cols, rows) = (self.frame.cols as f32, self.frame.rows as f32);
         if !(first.x < cols && first.y < rows && last.x >= 0.0 && last.y >= 0.0) {
             return false;
@@ -242,6 +263,14 @@ impl ShadowMap {
         }
         self.may_shade(lo, hi)
     }
+}
+
+/// Weights of the texels before, at and after a point `t` (0..1) of the
+/// way across a texel: the quadratic B-spline (they sum to one).
+#[inline]
+fn spline_weights(t: f32) -> [f32; 3] {
+    let s = 1.0 - t;
+    [0.5 * s * s, 0.5 + t * s, 0.5 * t * t]
 }
 
 #[cfg(test)]
