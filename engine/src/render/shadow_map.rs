@@ -275,27 +275,13 @@ fn spline_weights(t: f32) -> [f32; 3] {
 
 #[cfg(test)]
 mod tests {
-    use glam::Mat4;
-
     use super::*;
-    use crate::geom::TriMesh;
-    use crate::render::mesh::MeshInstance;
+    use crate::render::test_ground::floating_square;
 
     #[test]
     fn a_floating_square_shades_the_ground_below_it_towards_the_sun() {
-        let square = TriMesh::new(
-            vec![
-                Vec3::new(-0.5, 1.0, -0.5),
-                Vec3::new(0.5, 1.0, -0.5),
-                Vec3::new(0.5, 1.0, 0.5),
-                Vec3::new(-0.5, 1.0, 0.5),
-            ],
-            vec![[0, 2, 1], [0, 3, 2]],
-        )
-        .unwrap();
         let sun = Vec3::new(1.0, 1.0, 0.0).normalize();
-        let mesh = MeshInstance::new(&square, Mat4::IDENTITY, Vec3::ONE);
-        let meshes: Vec<[Vec3; 3]> = mesh.world_triangles().collect();
+        let meshes = floating_square();
         let camera = Camera::perspective(1.0, 64, 48, 0.05, 50.0)
             .unwrap()
             .look_at(Vec3::new(0.0, 3.0, -4.0), Vec3::ZERO, Vec3::Y);

@@ -71,25 +71,13 @@ impl<'a> PixelShadow<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::TriMesh;
-    use crate::render::mesh::MeshInstance;
+    use crate::render::test_ground::floating_square;
 
     #[test]
     fn a_pixel_sees_the_shadow_its_ground_point_is_in() {
-        // A 1 m square floating 1 m up, the sun straight above: its shadow
-        // is the square below it on the ground.
-        let square = TriMesh::new(
-            vec![
-                Vec3::new(-0.5, 1.0, -0.5),
-                Vec3::new(0.5, 1.0, -0.5),
-                Vec3::new(0.5, 1.0, 0.5),
-                Vec3::new(-0.5, 1.0, 0.5),
-            ],
-            vec![[0, 2, 1], [0, 3, 2]],
-        )
-        .unwrap();
-        let mesh = MeshInstance::new(&square, Mat4::IDENTITY, Vec3::ONE);
-        let casters: Vec<[Vec3; 3]> = mesh.world_triangles().collect();
+        // The sun straight above a floating square: its shadow is the
+        // square below it on the ground.
+        let casters = floating_square();
         let camera = Camera::perspective(1.0, 64, 48, 0.05, 50.0)
             .unwrap()
             .look_at(Vec3::new(0.3, 3.0, -4.0), Vec3::ZERO, Vec3::Y);
