@@ -210,7 +210,7 @@ impl ShadowMap {
     /// three by three texels around it tested, weighted by a quadratic
     /// B-spline (a tent over two texels, so the edge of a shadow is a soft
     /// ramp rather than texel steps). Points off the map are lit.
-    #[inline]
+    #[inline(always)]
     pub fn visibility_at(&self, l: Vec3) -> f32 {
         let (cols, rows) = (self.frame.cols, self.frame.rows);
         let inside = l.x >= 1.0 && l.y >= 1.0;
@@ -223,10 +223,12 @@ impl ShadowMap {
             spline_weights(l.y - j as f32),
         );
         let h = l.z + BIAS_TEXELS * self.frame.texel;
-        let lit = |k: usize| f32::from(u8::from(self.top[k] <= h));
-        let row = |k: usize| wx[0] * lit(k) + wx[1] * lit(k + 1) + wx[2] * lit(k + 2);
-        let first = (j - 1) * cols + i - 1;
-        wy[0] * row(first) + wy[1] * row(first + cols) + wy[2] * row(first + 2 * cols)
+        let lit = |t: f32| f32::from(u8::from(t <= h));
+        let row = |j: usize| {
+            let texels = &self.top[j * cols + i - 1..][..3];
+            wx[0] * lit(texels[0]) + wx[1] * lit(texels[1]) + wx[2] * lit(texels[2])
+        };
+        wy[0] * row(j - 1) + wy[1] * row(j) + wy[2] * row(j + 1)
     }
 
     /// Whether a caster may shade some point whose light coordinates lie in

@@ -20,7 +20,8 @@
 //!    band of [`BAND_ROWS`] rows their box touches ([`BandBins`]).
 //! 5. **Fill.** The frame ([`crate::render::Renderer`]) clears each band to
 //!    the sky and fills it with the batches' triangles in scene order
-//!    (terrain, meshes), then the grass. Per row, a triangle's covered run
+//!    (terrain, meshes), after the grass (so ground the grass hides fails
+//!    the depth test before it is shaded). Per row, a triangle's covered run
 //!    comes from its edge functions; per pixel, the nearer `1/w` wins and the
 //!    colour is colour / w over `1/w`, less the sun part the shadow map says
 //!    is hidden at the pixel's light coordinates (from its position and
