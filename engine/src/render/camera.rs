@@ -93,6 +93,19 @@ impl Camera {
     /// The world-to-view matrix. A degenerate up hint (parallel to the view
     /// direction) is replaced by a perpendicular axis.
     pub fn view(&self) -> Mat4 {
+        let (s, u, f) = self.basis();
+        Mat4::from_cols(
+            Vec4::new(s.x, u.x, -f.x, 0.0),
+            Vec4::new(s.y, u.y, -f.y, 0.0),
+            Vec4::new(s.z, u.z, -f.z, 0.0),
+            Vec4::new(-self.eye.dot(s), -self.eye.dot(u), self.eye.dot(f), 1.0),
+        )
+    }
+
+    /// The view's unit axes in the world: right, up and forward. A
+    /// degenerate up hint (parallel to the view direction) is replaced by a
+    /// perpendicular axis.
+    fn basis(&self) -> (Vec3, Vec3, Vec3) {
         let f = self.forward();
         let up = if self.up.cross(f).length_squared() > 1e-12 {
             self.up
@@ -102,12 +115,20 @@ impl Camera {
             Vec3::X
         };
         let s = f.cross(up).normalize();
-        let u = s.cross(f);
+        (s, s.cross(f), f)
+    }
+
+    /// The world point seen at clip coordinates `x`, `y` and `w` (the depth
+    /// along the view direction), as the matrix taking `(x, y, w, 1)` to it:
+    /// the inverse of the projection for points known by their `w`.
+    pub fn clip_to_world(&self) -> Mat4 {
+        let (s, u, f) = self.basis();
+        let focal = 1.0 / (0.5 * self.fov_y).tan();
         Mat4::from_cols(
-            Vec4::new(s.x, u.x, -f.x, 0.0),
-            Vec4::new(s.y, u.y, -f.y, 0.0),
-            Vec4::new(s.z, u.z, -f.z, 0.0),
-            Vec4::new(-self.eye.dot(s), -self.eye.dot(u), self.eye.dot(f), 1.0),
+            (s * (self.aspect() / focal)).extend(0.0),
+            (u / focal).extend(0.0),
+            f.extend(0.0),
+            self.eye.extend(1.0),
         )
     }
 
@@ -187,6 +208,25 @@ mod tests {
         assert!(c.project(Vec3::Y).unwrap().y < 50.0);
         assert!(c.project(Vec3::X).unwrap().x > 100.0);
         assert_eq!(c.project(Vec3::new(0.0, 0.0, 10.0)), None);
+    }
+
+    #[test]
+    fn clip_to_world_undoes_the_projection() {
+        let c = cam().look_at(Vec3::new(1.0, 2.0, 3.0), Vec3::new(-0.5, 0.2, 0.0), Vec3::Y);
+        let back = c.clip_to_world();
+        for p in [
+            Vec3::ZERO,
+            Vec3::new(0.3, -0.4, 0.2),
+            Vec3::new(-2.0, 1.0, -4.0),
+        ] {
+            let clip = c.view_proj() * p.extend(1.0);
+            let seen = back * Vec4::new(clip.x, clip.y, clip.w, 1.0);
+            assert!(
+                (seen.truncate() - p).length() < 1e-4,
+                "{p} came back as {seen}"
+            );
+            assert_eq!(seen.w, 1.0);
+        }
     }
 
     #[test]

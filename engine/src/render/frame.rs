@@ -68,7 +68,8 @@ pub struct FrameStats {
 /// First the sun's shadow map of the meshes and blades; then geometry is
 /// projected and set up per batch (terrain patch, mesh part, the grass
 /// layer) in parallel; then the screen is cut into fixed bands of rows,
-/// filled in parallel, each band drawing the batches in scene order. The
+/// filled in parallel, each band drawing the grass, then the batches in
+/// scene order. The
 /// image is byte-identical whatever the number of threads (see
 /// [`super::raster`]).
 #[derive(Debug, Clone)]
@@ -208,12 +209,14 @@ impl Renderer {
         let shadows = scene
             .shadows
             .then(|| {
+                let sun = scene.lighting.sun.direction;
                 let casters: Vec<[Vec3; 3]> = scene
                     .meshes
                     .iter()
-                    .flat_map(|m| m.world_triangles())
+                    .flat_map(|m| m.sun_casters(sun))
                     .collect();
-                ShadowMap::build(&casters, scene.blades, scene.lighting.sun.direction, camera)
+                let ground_low = scene.terrain.map(TerrainRenderer::lowest_height);
+                ShadowMap::build(&casters, scene.blades, sun, camera, ground_low)
             })
             .flatten();
         let view = FrameView::new(camera, &scene.lighting, shadows.as_ref(), vp);
@@ -246,10 +249,12 @@ impl Renderer {
                         y0,
                         y1,
                     };
-                    for batch in &batches {
-                        batch.draw_band(b as i32, &mut band);
-                    }
+                    // The grass first: the ground it hides then fails the
+                    // depth test before it is shaded.
                     grass.draw_band(b as i32, &mut band);
+                    for batch in &batches {
+                        batch.draw_band(b as i32, &mut band, view.pixel_shadow.as_ref());
+                    }
                 });
         });
         stats
@@ -267,7 +272,7 @@ impl Renderer {
 }
 
 /// All batches in drawing order: terrain patches, then meshes (grass is
-/// drawn after them).
+/// drawn before them).
 fn project(view: &FrameView<'_>, scene: &FrameScene<'_>) -> Vec<TriangleBatch> {
     let (mut batches, meshes) = rayon::join(
         || scene.terrain.map(|t| t.batches(view)).unwrap_or_default(),

@@ -1,9 +1,9 @@
 //! How a frame sees the geometry it draws.
 
-use glam::Mat4;
+use glam::{Mat4, Vec3};
 
 use super::camera::Camera;
-use super::raster::Viewport;
+use super::raster::{PixelShadow, Viewport};
 use super::shading::Lighting;
 use super::shadow_map::ShadowMap;
 
@@ -18,7 +18,9 @@ pub(crate) struct FrameView<'a> {
     /// Sun, sky and fog.
     pub lighting: &'a Lighting,
     /// What the sun sees of the scene's casters, when anything casts.
-    pub shadows: Option<&'a ShadowMap>,
+    shadows: Option<&'a ShadowMap>,
+    /// The casters' shadows as the pixels see them, when anything casts.
+    pub pixel_shadow: Option<PixelShadow<'a>>,
     /// The image's size.
     pub vp: Viewport,
 }
@@ -36,14 +38,22 @@ impl<'a> FrameView<'a> {
             view_proj: camera.view_proj(),
             lighting,
             shadows,
+            pixel_shadow: shadows.map(|map| PixelShadow::new(map, camera, vp)),
             vp,
         }
     }
 
     /// How much of the sun reaches world point `p` past the shadow casters
-    /// (0 in shadow, 1 lit).
+    /// (0 in shadow, 1 lit), on a surface with unit `normal` (zero for a
+    /// point without one, such as a blade).
     #[inline]
-    pub fn sun_past_casters(&self, p: glam::Vec3) -> f32 {
-        self.shadows.map_or(1.0, |s| s.visibility(p))
+    pub fn sun_past_casters(&self, p: Vec3, normal: Vec3) -> f32 {
+        self.shadows.map_or(1.0, |s| s.visibility(p, normal))
+    }
+
+    /// Whether a caster may shade some point of the world box `min..=max`
+    /// (conservative).
+    pub fn casters_may_shade(&self, min: Vec3, max: Vec3) -> bool {
+        self.shadows.is_some_and(|s| s.may_shade_box(min, max))
     }
 }

@@ -185,6 +185,7 @@ impl GrassLayer {
                 cull: CullMode::None,
                 first_vertex: 0,
             }],
+            None,
             vp,
         );
         layer.bin(vp.height);
@@ -217,7 +218,7 @@ impl GrassLayer {
     /// blades, then the pieces, nearest blade first.
     #[inline(always)]
     pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
-        self.clipped.draw_band(band, target);
+        self.clipped.draw_band(band, target, None);
         for &p in self.bins.band(band) {
             let group = &self.pieces[(p >> GROUP_BITS) as usize];
             group[(p & ((1 << GROUP_BITS) - 1)) as usize].draw(target);
@@ -242,12 +243,16 @@ impl BladeGroup {
         if all != 0 {
             return;
         }
-        let sun = [blade.root, blade.tip].map(|p| view.sun_past_casters(p));
+        let sun = [blade.root, blade.tip].map(|p| view.sun_past_casters(p, Vec3::ZERO));
         let colors = blade_colors(blade, drawn.distance, view.lighting, sun);
         if any & (OUT_NEAR | OUT_GUARD) != 0 {
             let base = self.clipped_verts.len() as u32;
             self.clipped_verts
-                .extend((pos.iter().zip(&colors)).map(|(&pos, &color)| ClipVertex { pos, color }));
+                .extend((pos.iter().zip(&colors)).map(|(&pos, &color)| ClipVertex {
+                    pos,
+                    color,
+                    sun: Vec3::ZERO,
+                }));
             self.clipped_tris
                 .extend(BLADE_TRIANGLES.iter().map(|t| t.map(|v| v + base)));
             return;

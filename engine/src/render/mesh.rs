@@ -91,6 +91,15 @@ impl<'a> MeshInstance<'a> {
             })
     }
 
+    /// Its triangles in world space that may be the first surface the sun
+    /// meets: all of them when both faces are drawn, only those facing
+    /// `toward_sun` when back faces are culled (a closed mesh).
+    pub(crate) fn sun_casters(&self, toward_sun: Vec3) -> impl Iterator<Item = [Vec3; 3]> + '_ {
+        let closed = self.cull == CullMode::Back;
+        self.world_triangles()
+            .filter(move |[a, b, c]| !closed || (*b - *a).cross(*c - *a).dot(toward_sun) > 0.0)
+    }
+
     /// Runs of at most [`TRIANGLES_PER_BATCH`] triangles of each part, in
     /// part order, with the part's transform: a batch each.
     fn runs(&self) -> Vec<(std::ops::Range<usize>, Mat4)> {
@@ -140,12 +149,13 @@ impl<'a> MeshInstance<'a> {
                     let normal = mesh.normals.get(k).copied().unwrap_or(Vec3::Y);
                     let n = (normal_matrix * normal).normalize_or(Vec3::Y);
                     let sky = 0.65 + 0.35 * n.y;
-                    let sun = view.sun_past_casters(world);
+                    let sun = view.sun_past_casters(world, n);
                     encode_display(lighting.radiance(self.color, n, sky, sun))
                 });
                 ClipVertex {
                     pos: view.view_proj * world.extend(1.0),
                     color: lighting.apply_fog(color, (world - eye).length()),
+                    sun: Vec3::ZERO,
                 }
             })
             .collect();
@@ -154,7 +164,7 @@ impl<'a> MeshInstance<'a> {
             cull: self.cull,
             first_vertex: first,
         };
-        Some(TriangleBatch::build(&verts, &[group], view.vp))
+        Some(TriangleBatch::build(&verts, &[group], None, view.vp))
     }
 }
 

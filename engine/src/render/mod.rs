@@ -37,6 +37,7 @@ mod grass_blade;
 mod mesh;
 pub(crate) mod raster;
 mod shading;
+mod shadow_fit;
 mod shadow_map;
 mod terrain;
 mod terrain_colors;

@@ -90,7 +90,17 @@ impl Lighting {
         if distance <= self.fog_start || self.fog_density == 0.0 {
             return display;
         }
-        display.lerp(self.sky_horizon, self.fog_amount(distance))
+        self.blend_fog(display, self.fog_amount(distance))
+    }
+
+    /// A display colour seen through fog amount `fog` (from
+    /// [`Lighting::fog_amount`]).
+    #[inline]
+    pub fn blend_fog(&self, display: Vec3, fog: f32) -> Vec3 {
+        if fog == 0.0 {
+            return display;
+        }
+        display.lerp(self.sky_horizon, fog)
     }
 
     /// The sky colour for a view direction with vertical component `up` (-1..1).

@@ -200,6 +200,14 @@ impl TerrainRenderer {
         self.remeshed_last
     }
 
+    /// The lowest height of the ground as last [`update`](TerrainRenderer::update)d.
+    pub fn lowest_height(&self) -> f32 {
+        self.patches
+            .iter()
+            .map(|p| p.min_h)
+            .fold(f32::INFINITY, f32::min)
+    }
+
     /// Reports that heights (or colours) inside `rect` changed.
     pub fn mark_dirty(&mut self, rect: GridRect) {
         let rect = rect.intersect(&GridRect::new(0, 0, self.nx, self.nz));
@@ -386,21 +394,27 @@ impl TerrainRenderer {
             )
         };
         let eye = view.camera.eye;
-        let vertex = |p: Vec3, color: Vec3| ClipVertex {
-            pos: view.view_proj * p.extend(1.0),
-            color: view.lighting.apply_fog(color, (p - eye).length()),
+        let (min, max) = patch.bounds(self.origin, self.cell);
+        // Casters' shadows are resolved per pixel, where one may fall.
+        let shaded = view.casters_may_shade(min - Vec3::Y * lod.error, max);
+        let vertex = |p: Vec3, v: usize| {
+            let fog = view.lighting.fog_amount((p - eye).length());
+            let color = view.lighting.blend_fog(lod.colors[v], fog);
+            let sun = if shaded {
+                (lod.colors[v] - lod.shaded[v]) * (1.0 - fog)
+            } else {
+                Vec3::ZERO
+            };
+            ClipVertex {
+                pos: view.view_proj * p.extend(1.0),
+                color,
+                sun,
+            }
         };
         for r in 0..n {
             for c in 0..m {
                 let v = r * m + c;
-                let p = world(c, r, lod.heights[v]);
-                let sun = view.sun_past_casters(p);
-                let color = if sun < 1.0 {
-                    lod.shaded[v].lerp(lod.colors[v], sun)
-                } else {
-                    lod.colors[v]
-                };
-                verts.push(vertex(p, color));
+                verts.push(vertex(world(c, r, lod.heights[v]), v));
             }
         }
         let mut skirt_tris = Vec::new();
@@ -418,7 +432,7 @@ impl TerrainRenderer {
             let base = verts.len() as u32;
             for &(c, r) in side {
                 let v = r * m + c;
-                verts.push(vertex(world(c, r, lod.heights[v] - depth), lod.colors[v]));
+                verts.push(vertex(world(c, r, lod.heights[v] - depth), v));
             }
             for (s, pair) in side.windows(2).enumerate() {
                 let top = |(c, r): (usize, usize)| (r * m + c) as u32;
@@ -443,6 +457,7 @@ impl TerrainRenderer {
                     first_vertex: 0,
                 },
             ],
+            view.pixel_shadow.as_ref(),
             view.vp,
         )
     }

@@ -1,4 +1,5 @@
-//! A bumpy test ground shared by the renderer's whole-frame tests.
+//! Test scenes shared by the renderer's tests: a bumpy ground, and a square
+//! floating above the ground to cast a shadow.
 
 use glam::{Vec2, Vec3};
 
@@ -21,4 +22,17 @@ pub(crate) fn ground(n: usize) -> (TerrainRenderer, TriMesh) {
         )
         .unwrap();
     (terrain, grid.to_tri_mesh())
+}
+
+/// The two triangles of a 1 m square floating 1 m above the ground,
+/// centred over the origin, facing down.
+pub(crate) fn floating_square() -> Vec<[Vec3; 3]> {
+    let corner = |x: f32, z: f32| Vec3::new(x, 1.0, z);
+    let (a, b, c, d) = (
+        corner(-0.5, -0.5),
+        corner(0.5, -0.5),
+        corner(0.5, 0.5),
+        corner(-0.5, 0.5),
+    );
+    vec![[a, c, b], [a, d, c]]
 }

@@ -1,9 +1,12 @@
 //! A batch: the one vertex pass and triangle set-up of a piece of geometry
 //! (a terrain patch, a run of a mesh), its triangles binned by bands.
 
+use glam::Vec3;
+
 use super::band::{Band, BandBins};
 use super::clip::{ClipVertex, OUT_FRUSTUM, OUT_GUARD, OUT_NEAR, clip_triangle, outcode};
-use super::triangle::{ScreenVertex, Triangle};
+use super::pixel_shadow::PixelShadow;
+use super::triangle::{Plane, ScreenVertex, Triangle};
 use super::viewport::{CullMode, Viewport};
 
 /// A run of triangles sharing one cull mode, indexing a vertex slice.
@@ -22,6 +25,8 @@ pub(crate) struct TriangleGroup<'a> {
 pub(crate) struct TriangleBatch {
     /// The set-up triangles, in submission order.
     triangles: Vec<Triangle>,
+    /// Sun part / w planes of the triangles that resolve shadows per pixel.
+    sun_planes: Vec<Plane<Vec3>>,
     /// Indices into `triangles` per band.
     bins: BandBins,
 }
@@ -30,9 +35,12 @@ impl TriangleBatch {
     /// Projects `verts` (the vertex pass) and sets up every triangle of
     /// `groups`, in order: triangles outside one frustum plane are dropped,
     /// those crossing the near plane or the guard band clipped first.
+    /// Triangles with a sun part that a caster of `shadow` may shade keep
+    /// their sun plane, to be shaded per pixel.
     pub fn build(
         verts: &[ClipVertex],
         groups: &[TriangleGroup<'_>],
+        shadow: Option<&PixelShadow<'_>>,
         vp: Viewport,
     ) -> TriangleBatch {
         let projected: Vec<(ScreenVertex, u8)> = verts
@@ -41,6 +49,7 @@ impl TriangleBatch {
             .collect();
         let mut batch = TriangleBatch {
             triangles: Vec::new(),
+            sun_planes: Vec::new(),
             bins: BandBins::new(vp.height),
         };
         let mut polygon = Vec::with_capacity(9);
@@ -51,27 +60,42 @@ impl TriangleBatch {
                 if a.1 & b.1 & c.1 & OUT_FRUSTUM != 0 {
                     continue;
                 }
+                let corners = tri.map(|k| &verts[k as usize]);
+                let shaded = shadow.filter(|s| {
+                    corners.iter().any(|v| v.sun != Vec3::ZERO)
+                        && s.may_shade(corners.map(|v| v.pos))
+                });
                 if (a.1 | b.1 | c.1) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.push(Triangle::set_up([&a.0, &b.0, &c.0], group.cull, vp));
+                    batch.set_up([&a.0, &b.0, &c.0], group.cull, shaded.is_some(), vp);
                     continue;
                 }
-                clip_triangle(tri.map(|k| verts[k as usize]), &mut polygon);
+                clip_triangle(corners.map(|v| *v), &mut polygon);
                 let fan: Vec<ScreenVertex> = polygon
                     .iter()
                     .map(|v| ScreenVertex::project(v, vp))
                     .collect();
                 for k in 1..fan.len().saturating_sub(1) {
                     let v = [&fan[0], &fan[k], &fan[k + 1]];
-                    batch.push(Triangle::set_up(v, group.cull, vp));
+                    batch.set_up(v, group.cull, shaded.is_some(), vp);
                 }
             }
         }
         batch
     }
 
-    /// Keeps a set-up triangle, binned by the bands it touches.
-    fn push(&mut self, triangle: Option<Triangle>) {
-        if let Some(t) = triangle {
+    /// Sets up a triangle (with its sun plane when `with_sun`) and keeps
+    /// it, binned by the bands it touches.
+    fn set_up(&mut self, v: [&ScreenVertex; 3], cull: CullMode, with_sun: bool, vp: Viewport) {
+        let set_up = if with_sun {
+            Triangle::set_up_with_sun(v, cull, vp).map(|(mut t, sun)| {
+                t.sun_plane = Some(self.sun_planes.len() as u32);
+                self.sun_planes.push(sun);
+                t
+            })
+        } else {
+            Triangle::set_up(v, cull, vp)
+        };
+        if let Some(t) = set_up {
             self.bins.push(self.triangles.len() as u32, t.rows());
             self.triangles.push(t);
         }
@@ -83,10 +107,17 @@ impl TriangleBatch {
     }
 
     /// Fills the band (band index `band`) with the triangles touching it, in
-    /// submission order.
-    pub fn draw_band(&self, band: i32, target: &mut Band<'_>) {
-        for &t in self.bins.band(band) {
-            self.triangles[t as usize].draw(target);
+    /// submission order; triangles with a sun plane are shaded per pixel by
+    /// `shadow` (the one the batch was built with).
+    pub fn draw_band(&self, band: i32, target: &mut Band<'_>, shadow: Option<&PixelShadow<'_>>) {
+        for &k in self.bins.band(band) {
+            let t = &self.triangles[k as usize];
+            match (t.sun_plane, shadow) {
+                (Some(sun), Some(shadow)) => {
+                    t.draw_with_shadow(target, &self.sun_planes[sun as usize], shadow);
+                }
+                _ => t.draw(target),
+            }
         }
     }
 }

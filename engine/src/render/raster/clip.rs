@@ -15,8 +15,13 @@ pub(crate) const GUARD_BAND: f32 = 8.0;
 pub(crate) struct ClipVertex {
     /// Homogeneous clip position.
     pub pos: Vec4,
-    /// Colour to interpolate.
+    /// Colour to interpolate, with all the sun that reaches past the
+    /// terrain.
     pub color: Vec3,
+    /// The part of `color` the sun gives, where casters are resolved per
+    /// pixel (see [`super::PixelShadow`]): a pixel a caster hides from the
+    /// sun loses it. Zero for geometry shaded past the casters per vertex.
+    pub sun: Vec3,
 }
 
 impl ClipVertex {
@@ -24,6 +29,7 @@ impl ClipVertex {
         ClipVertex {
             pos: self.pos.lerp(other.pos, t),
             color: self.color.lerp(other.color, t),
+            sun: self.sun.lerp(other.sun, t),
         }
     }
 }
@@ -108,6 +114,7 @@ mod tests {
         ClipVertex {
             pos: Vec4::new(x, y, z, w),
             color: Vec3::new(z, 0.0, 0.0),
+            sun: Vec3::ZERO,
         }
     }
 

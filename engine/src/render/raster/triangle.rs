@@ -1,12 +1,16 @@
 //! The triangle: projection of its vertices to 16.8 fixed point, its set-up
 //! (facing, winding, pixel box, edge functions with the top-left rule, planes
-//! of `1/w` and colour / w) and its fill into a band (depth test `1/w`
-//! greater than stored, perspective-correct colour).
+//! of `1/w`, colour / w and sun part / w) and its fill into a band (depth
+//! test `1/w` greater than stored, perspective-correct colour, less the sun
+//! part a caster hides from the pixel when the triangle resolves shadows).
 
-use glam::{Vec3, Vec4};
+use std::ops::{Add, Mul, Sub};
+
+use glam::{Vec3, Vec4, Vec4Swizzles};
 
 use super::band::Band;
 use super::clip::ClipVertex;
+use super::pixel_shadow::PixelShadow;
 use super::viewport::{CullMode, Viewport};
 
 /// Sub-pixel bits of screen coordinates (16.8 fixed point, as D3D11).
@@ -17,7 +21,7 @@ const ONE: i64 = 1 << SUBPIXEL_BITS;
 const HALF: i64 = ONE / 2;
 
 /// A vertex after projection: fixed-point pixel position (y down), `1/w`,
-/// colour / w.
+/// colour / w and sun part / w.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct ScreenVertex {
     /// X in pixels, fixed point.
@@ -28,6 +32,8 @@ pub(crate) struct ScreenVertex {
     pub inv_w: f32,
     /// Colour divided by `w`, for perspective-correct interpolation.
     pub color_w: Vec3,
+    /// Sun part divided by `w` (see [`ClipVertex::sun`]).
+    pub sun_w: Vec3,
 }
 
 impl ScreenVertex {
@@ -45,6 +51,7 @@ impl ScreenVertex {
             y: (sy * scale + 0.5) as i32,
             inv_w,
             color_w: v.color * inv_w,
+            sun_w: v.sun * inv_w,
         }
     }
 
@@ -109,18 +116,56 @@ impl Edge {
 /// wider ones solve it from the edge equations.
 const SOLVE_MIN_WIDTH: i32 = 6;
 
+/// An attribute's plane over the pixel centres of a triangle's box.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Plane<T> {
+    /// Value at the box's first pixel centre.
+    base: T,
+    /// Change per pixel to the right.
+    step_x: T,
+    /// Change per pixel down.
+    step_y: T,
+}
+
+impl<T: Copy + Add<Output = T> + Mul<f32, Output = T>> Plane<T> {
+    /// The value at offset `(dx, dy)` from the box's first pixel centre.
+    #[inline]
+    fn at(&self, dx: i32, dy: i32) -> T {
+        self.base + self.step_y * dy as f32 + self.step_x * dx as f32
+    }
+}
+
+/// The barycentric weights of a triangle's vertices 1 and 2 as planes over
+/// its box: what turns per-vertex values into attribute planes.
+struct Weights([Plane<f32>; 2]);
+
+impl Weights {
+    /// The plane of an attribute with values `v` at the three vertices.
+    fn plane<T>(&self, v: [T; 3]) -> Plane<T>
+    where
+        T: Copy + Add<Output = T> + Sub<Output = T> + Mul<f32, Output = T>,
+    {
+        let [w1, w2] = &self.0;
+        let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
+        Plane {
+            base: v[0] + d1 * w1.base + d2 * w2.base,
+            step_x: d1 * w1.step_x + d2 * w2.step_x,
+            step_y: d1 * w1.step_y + d2 * w2.step_y,
+        }
+    }
+}
+
 /// A triangle set up for filling: its pixel box, its edge functions and the
-/// planes of its attributes (`1/w`, colour / w) over the pixel centres.
+/// plane of its attributes (`1/w`, colour / w) over the pixel centres.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Triangle {
     /// Edge functions; edge `k` is opposite vertex `k`.
     edges: [Edge; 3],
-    /// Attributes at the box's first pixel centre.
-    base: Vec4,
-    /// Attribute change per pixel to the right.
-    step_x: Vec4,
-    /// Attribute change per pixel down.
-    step_y: Vec4,
+    /// The attributes `1/w` and colour / w.
+    attributes: Plane<Vec4>,
+    /// Where its batch keeps the plane of its sun part / w, when it
+    /// resolves caster shadows per pixel.
+    pub sun_plane: Option<u32>,
     /// First and last covered column and row (clipped to the screen).
     x0: i32,
     x1: i32,
@@ -145,18 +190,41 @@ impl Triangle {
     /// Sets up triangle `v` on `vp`: `None` when `cull` drops its facing, it
     /// has no area, or its box holds no pixel centre of the screen.
     pub fn set_up(v: [&ScreenVertex; 3], cull: CullMode, vp: Viewport) -> Option<Triangle> {
+        Triangle::with_weights(v, cull, vp).map(|(t, _, _)| t)
+    }
+
+    /// Sets up triangle `v` like [`Triangle::set_up`], with the plane of
+    /// its sun part / w.
+    pub fn set_up_with_sun(
+        v: [&ScreenVertex; 3],
+        cull: CullMode,
+        vp: Viewport,
+    ) -> Option<(Triangle, Plane<Vec3>)> {
+        let (t, weights, order) = Triangle::with_weights(v, cull, vp)?;
+        Some((t, weights.plane(order.map(|k| v[k].sun_w))))
+    }
+
+    /// The set-up triangle, the barycentric weights of its vertices and
+    /// which of `v` became its vertices 0, 1 and 2 (wound clockwise on
+    /// screen).
+    fn with_weights(
+        v: [&ScreenVertex; 3],
+        cull: CullMode,
+        vp: Viewport,
+    ) -> Option<(Triangle, Weights, [usize; 3])> {
         let [a, b, c] = v;
         let area = (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
             - (b.y as i64 - a.y as i64) * (c.x as i64 - a.x as i64);
         // Counter-clockwise in the world, seen from the front, projects to a
         // negative area on the y-down screen.
-        let (v, area) = if area < 0 {
-            ([a, c, b], -area)
+        let (order, area) = if area < 0 {
+            ([0, 2, 1], -area)
         } else if area > 0 && cull == CullMode::None {
-            (v, area)
+            ([0, 1, 2], area)
         } else {
             return None;
         };
+        let v = order.map(|k| v[k]);
         let x0 = first_centre(v[0].x.min(v[1].x).min(v[2].x)).max(0);
         let x1 = last_centre(v[0].x.max(v[1].x).max(v[2].x)).min(vp.width - 1);
         let y0 = first_centre(v[0].y.min(v[1].y).min(v[2].y)).max(0);
@@ -173,21 +241,21 @@ impl Triangle {
         // Barycentric weights of vertices 1 and 2 are edges 1 and 2 over the
         // doubled area.
         let inv_area = 1.0 / area as f32;
-        let a0 = v[0].attributes();
-        let (d1, d2) = (v[1].attributes() - a0, v[2].attributes() - a0);
-        let blend = |e: fn(&Edge) -> i64| {
-            d1 * (e(&edges[1]) as f32 * inv_area) + d2 * (e(&edges[2]) as f32 * inv_area)
-        };
-        Some(Triangle {
+        let weights = Weights([1, 2].map(|k| Plane {
+            base: edges[k].start as f32 * inv_area,
+            step_x: edges[k].step_x as f32 * inv_area,
+            step_y: edges[k].step_y as f32 * inv_area,
+        }));
+        let triangle = Triangle {
             edges,
-            base: a0 + blend(|e| e.start),
-            step_x: blend(|e| e.step_x),
-            step_y: blend(|e| e.step_y),
+            attributes: weights.plane(v.map(ScreenVertex::attributes)),
+            sun_plane: None,
             x0,
             x1,
             y0,
             y1,
-        })
+        };
+        Some((triangle, weights, order))
     }
 
     /// The first and last pixel rows of its box.
@@ -197,7 +265,7 @@ impl Triangle {
 
     /// The covered columns of row `y` of its box, as offsets from its first
     /// column (empty when `lo > hi`).
-    #[inline]
+    #[inline(always)]
     fn covered(&self, y: i32) -> (i32, i32) {
         let r = (y - self.y0) as i64;
         let values = self.edges.map(|e| e.start + r * e.step_y);
@@ -220,30 +288,51 @@ impl Triangle {
         (lo, hi)
     }
 
-    /// Draws the triangle's pixels in `band`: depth test `1/w` greater than
-    /// stored, perspective-correct colour.
-    #[inline]
-    pub fn draw(&self, band: &mut Band<'_>) {
+    /// Calls `fill(x, y, pixel)` for each covered pixel of `band` whose
+    /// `1/w` beats the stored depth (which it replaces), with the pixel's
+    /// interpolated attributes; `fill` gives its RGBA.
+    #[inline(always)]
+    fn fill(&self, band: &mut Band<'_>, mut fill: impl FnMut(i32, i32, Vec4) -> [u8; 4]) {
         let width = band.width as usize;
         for y in self.y0.max(band.y0)..=self.y1.min(band.y1 - 1) {
             let (lo, hi) = self.covered(y);
             if lo > hi {
                 continue;
             }
-            let start = self.base + self.step_y * (y - self.y0) as f32 + self.step_x * lo as f32;
+            let start = self.attributes.at(lo, y - self.y0);
+            let step = self.attributes.step_x;
             let first = (y - band.y0) as usize * width + (self.x0 + lo) as usize;
             let end = first + (hi - lo) as usize + 1;
             let pixels = band.depth[first..end]
                 .iter_mut()
                 .zip(band.color[4 * first..4 * end].chunks_exact_mut(4));
             for (c, (depth, color)) in pixels.enumerate() {
-                let a = start + self.step_x * c as f32;
+                let a = start + step * c as f32;
                 if a.x > *depth {
                     *depth = a.x;
-                    color.copy_from_slice(&display_rgba(a));
+                    color.copy_from_slice(&fill(self.x0 + lo + c as i32, y, a));
                 }
             }
         }
+    }
+
+    /// Draws the triangle's pixels in `band`: depth test `1/w` greater than
+    /// stored, perspective-correct colour.
+    #[inline]
+    pub fn draw(&self, band: &mut Band<'_>) {
+        self.fill(band, |_, _, a| display_rgba(a.x, a.yzw()));
+    }
+
+    /// Draws the triangle's pixels in `band` like [`Triangle::draw`], less
+    /// the share of the sun part (plane `sun`) that `shadow` says casters
+    /// hide from each pixel.
+    pub fn draw_with_shadow(&self, band: &mut Band<'_>, sun: &Plane<Vec3>, shadow: &PixelShadow) {
+        self.fill(band, |x, y, a| {
+            let w = 1.0 / a.x;
+            let hidden = 1.0 - shadow.visibility(x, y, w);
+            let sun_w = sun.at(x - self.x0, y - self.y0);
+            display_rgba(a.x, a.yzw() - sun_w * hidden)
+        });
     }
 }
 
@@ -253,9 +342,14 @@ pub(crate) fn to_u8(v: f32) -> u8 {
     (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8
 }
 
-/// The opaque RGBA8 pixel of interpolated attributes (`1/w`, colour / w).
+/// The opaque RGBA8 pixel of an interpolated `1/w` and colour / w.
 #[inline]
-fn display_rgba(a: Vec4) -> [u8; 4] {
-    let inv = 1.0 / a.x;
-    [to_u8(a.y * inv), to_u8(a.z * inv), to_u8(a.w * inv), 255]
+fn display_rgba(inv_w: f32, color_w: Vec3) -> [u8; 4] {
+    let inv = 1.0 / inv_w;
+    [
+        to_u8(color_w.x * inv),
+        to_u8(color_w.y * inv),
+        to_u8(color_w.z * inv),
+        255,
+    ]
 }
