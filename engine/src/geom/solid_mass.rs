@@ -18,6 +18,11 @@ pub struct SolidMass {
     /// Inertia tensor about the centroid at unit density, kg·m² per kg/m³;
     /// multiply by a density for a body's inertia.
     pub inertia: Mat3,
+    /// How far the surface is from closed: the relative change of the volume
+    /// when it is measured from a point half the bounding box away instead.
+    /// 0 for a closed surface; a surface with holes (an open neck, a missing
+    /// face) gives a volume that depends on that point.
+    pub leak: f32,
 }
 
 impl SolidMass {
@@ -42,7 +47,13 @@ impl SolidMass {
         }
         let reference =
             positions.iter().map(|p| p.as_dvec3()).sum::<DVec3>() / positions.len() as f64;
+        let (lo, hi) = positions.iter().fold(
+            (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
+            |(lo, hi), p| (lo.min(p.as_dvec3()), hi.max(p.as_dvec3())),
+        );
+        let shift = (hi - lo) * 0.5;
         let mut volume = 0.0;
+        let mut shifted_volume = 0.0;
         let mut first = DVec3::ZERO;
         let mut second = DMat3::ZERO;
         for tri in indices.chunks_exact(3) {
@@ -51,6 +62,7 @@ impl SolidMass {
             let v = a.dot(b.cross(c)) / 6.0;
             let sum = a + b + c;
             volume += v;
+            shifted_volume += (a - shift).dot((b - shift).cross(c - shift)) / 6.0;
             first += sum * (v / 4.0);
             // ∫ x xᵀ over the tetrahedron (0, a, b, c) = v/20 (a aᵀ + b bᵀ + c cᵀ + s sᵀ).
             second += (outer(a, a) + outer(b, b) + outer(c, c) + outer(sum, sum)) * (v / 20.0);
@@ -69,6 +81,7 @@ impl SolidMass {
             volume: volume as f32,
             centroid: (reference + centre).as_vec3(),
             inertia: inertia.as_mat3(),
+            leak: ((shifted_volume * sign - volume) / volume).abs() as f32,
         })
     }
 }
@@ -150,6 +163,14 @@ mod tests {
         // Each unit cube: 1/6 about its centre, plus 1 · 1.5² about y and z.
         assert!((m.inertia.y_axis.y - (2.0 / 6.0 + 2.0 * 2.25)).abs() < 1e-4);
         assert!((m.inertia.x_axis.x - 2.0 / 6.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn a_closed_surface_does_not_leak_and_an_open_one_does() {
+        let (p, tris) = cuboid(Vec3::new(0.3, 0.0, -0.2), Vec3::new(0.7, 1.8, 0.2));
+        assert!(SolidMass::of_surface(&p, &tris).unwrap().leak < 1e-6);
+        let open = SolidMass::of_surface(&p, &tris[6..]).unwrap();
+        assert!(open.leak > 0.1, "{}", open.leak);
     }
 
     #[test]

@@ -7,7 +7,7 @@ use engine::ecs::Entity;
 use engine::geom::TriMesh;
 use engine::schedule::App;
 use softwalk_systems::character::{Balance, CharacterRig};
-use softwalk_systems::sim::{SimBuilder, SimError, attach_rig};
+use softwalk_systems::sim::{MassSource, SimBuilder, SimError, attach_rig};
 use softwalk_systems::terrain::{Heightfield, MaterialTable};
 
 use super::material::material_table;
@@ -118,9 +118,10 @@ impl Scene {
     }
 
     /// Gives each character drawn as a model its [`CharacterRig`], whose
-    /// skinned volume sets its centre of mass and inertia, and, with a walk
-    /// clip, the [`softwalk_systems::character::ClipWalk`] its upper body plays; one model and bone table
-    /// are loaded once and shared.
+    /// skinned volume sets its centre of mass and inertia (a mesh that is not
+    /// closed keeps the capsules', with a warning), and, with a walk clip,
+    /// the [`softwalk_systems::character::ClipWalk`] its upper body plays; one
+    /// model and bone table are loaded once and shared.
     fn attach_rigs(
         &self,
         app: &mut App,
@@ -148,8 +149,15 @@ impl Scene {
                     .insert(entity, (walk,))
                     .map_err(spawn_failed(format!("{field}.clip")))?;
             }
-            attach_rig(&mut app.world, entity, rig)
+            let mass = attach_rig(&mut app.world, entity, rig)
                 .map_err(spawn_failed(format!("{field}.model")))?;
+            if let MassSource::Capsules { reason } = mass {
+                eprintln!(
+                    "warning: {field}.model `{}`: {reason}; the body keeps the capsules' \
+                     centre of mass and inertia",
+                    c.model
+                );
+            }
         }
         Ok(())
     }

@@ -49,7 +49,7 @@ mod path;
 mod pelvis;
 mod pose;
 mod rays;
-mod rig_mass;
+pub(crate) mod rig_mass;
 mod rig_pose;
 mod skeleton;
 mod steering;

@@ -50,6 +50,15 @@ impl BodyMass {
                     .to_string(),
             }
         })?;
+        if solid.leak > MAX_LEAK {
+            return Err(ModelError::Shape {
+                reason: format!(
+                    "the skinned mesh is not closed (its volume changes by {:.0} % with the \
+                     point it is measured from), so its volume is not the body's",
+                    100.0 * solid.leak
+                ),
+            });
+        }
         let density = body.desc.mass / solid.volume;
         Ok(BodyMass {
             com_height: solid.centroid.y,
@@ -58,12 +67,51 @@ impl BodyMass {
     }
 }
 
+/// Largest [`SolidMass::leak`] of a mesh whose volume is taken as the body's:
+/// small openings (eyes, a mouth) change it by far less.
+pub const MAX_LEAK: f32 = 0.02;
+
 /// The rotation from world axes to the body frame of `pose`: X right, Y up,
 /// Z forward.
 fn body_frame(pose: &Pose) -> Mat3 {
     let forward = (pose.forward * Vec3::new(1.0, 0.0, 1.0)).normalize_or(Vec3::Z);
     let right = forward.cross(Vec3::Y);
     Mat3::from_cols(right, Vec3::Y, forward).transpose()
+}
+
+/// The built-in human with only the triangles of its front: an open shell.
+#[cfg(test)]
+pub(crate) fn open_shell() -> CharacterRig {
+    let rig = CharacterRig::human().unwrap();
+    let model = rig.model();
+    let mesh = &model.mesh;
+    let front: Vec<u32> = mesh
+        .indices()
+        .chunks(3)
+        .filter(|t| {
+            t.iter()
+                .map(|&i| mesh.positions()[i as usize].z)
+                .sum::<f32>()
+                > 0.0
+        })
+        .flatten()
+        .copied()
+        .collect();
+    let shell = engine::anim::SkinnedMesh::new(
+        mesh.positions().to_vec(),
+        mesh.normals().to_vec(),
+        front,
+        mesh.joints().to_vec(),
+        mesh.weights().to_vec(),
+        mesh.joint_count(),
+    )
+    .unwrap();
+    let open = engine::anim::Model {
+        skeleton: model.skeleton.clone(),
+        mesh: shell,
+        clips: Vec::new(),
+    };
+    CharacterRig::new("shell", open, rig.bone_map().clone()).unwrap()
 }
 
 #[cfg(test)]
@@ -82,6 +130,11 @@ mod tests {
         let rig = CharacterRig::human().unwrap();
         let c = standing(CharacterDesc::adult());
         let m = BodyMass::of_rig(&rig, &c.body, &c.pose, &c.feet).unwrap();
+        let mesh = &rig.model().mesh;
+        let leak = SolidMass::of_surface(mesh.positions(), mesh.indices())
+            .unwrap()
+            .leak;
+        assert!(leak < 0.1 * MAX_LEAK, "the human leaks {leak}");
         // A standing adult's centre of mass is at 53–57 % of the standing height;
         // the rig is scaled by hip height, so compare with the rig's own height.
         let height = rig.height() * c.body.hip_height / rig.hip_height();
@@ -109,6 +162,14 @@ mod tests {
         let b = BodyMass::of_rig(&rig, &there.body, &there.pose, &there.feet).unwrap();
         assert!((a.com_height - b.com_height).abs() < 1e-3);
         assert!((a.inertia - b.inertia).abs_diff_eq(Mat3::ZERO, 0.05));
+    }
+
+    #[test]
+    fn an_open_mesh_is_refused_as_a_mass() {
+        let rig = open_shell();
+        let c = standing(CharacterDesc::adult());
+        let e = BodyMass::of_rig(&rig, &c.body, &c.pose, &c.feet).unwrap_err();
+        assert!(e.to_string().contains("not closed"), "{e}");
     }
 
     #[test]

@@ -6,15 +6,34 @@ use engine::ecs::{Entity, World};
 
 use super::components::{CharacterName, Feet};
 use super::error::SimError;
-use crate::character::{BodyMass, CharacterBody, CharacterRig, Pose, RigidProxy};
+use crate::character::{BodyMass, CharacterBody, CharacterRig, ModelError, Pose, RigidProxy};
+
+/// Where an attached character's mass properties come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MassSource {
+    /// The skinned mesh's volume.
+    Mesh,
+    /// The capsule segments, because the mesh's volume is not a body's
+    /// (for example an open mesh); the reason says why.
+    Capsules {
+        /// Why the mesh was not used.
+        reason: String,
+    },
+}
 
 /// Attaches `rig` to the character `entity` and gives its body and rigid
 /// proxy the mass properties of the rig's skinned mesh, posed as the
-/// character stands now (see [`BodyMass::of_rig`]).
+/// character stands now (see [`BodyMass::of_rig`]). A mesh that encloses no
+/// body (open, or flat) keeps the capsules' mass properties, and the returned
+/// [`MassSource`] says so.
 ///
 /// Call it before the first step: the proxy's tilt state is kept, but the
 /// body's centre of mass moves.
-pub fn attach_rig(world: &mut World, entity: Entity, rig: CharacterRig) -> Result<(), SimError> {
+pub fn attach_rig(
+    world: &mut World,
+    entity: Entity,
+    rig: CharacterRig,
+) -> Result<MassSource, SimError> {
     let failed = |message: String| SimError::System {
         system: "attach_rig",
         step: 0,
@@ -30,16 +49,26 @@ pub fn attach_rig(world: &mut World, entity: Entity, rig: CharacterRig) -> Resul
         let feet = world
             .get::<Feet>(entity)
             .map_err(|e| failed(e.to_string()))?;
-        BodyMass::of_rig(&rig, &body, &pose, &feet.0).map_err(|source| {
+        BodyMass::of_rig(&rig, &body, &pose, &feet.0)
+    };
+    let mass = match mass {
+        Ok(mass) => mass,
+        Err(ModelError::Shape { reason }) => {
+            world
+                .insert(entity, (rig,))
+                .map_err(|e| failed(e.to_string()))?;
+            return Ok(MassSource::Capsules { reason });
+        }
+        Err(source) => {
             let name = world
                 .get::<CharacterName>(entity)
                 .map(|n| n.0.clone())
                 .unwrap_or_default();
-            SimError::Model {
+            return Err(SimError::Model {
                 name,
                 source: Box::new(source),
-            }
-        })?
+            });
+        }
     };
     {
         let mut body = world
@@ -53,7 +82,8 @@ pub fn attach_rig(world: &mut World, entity: Entity, rig: CharacterRig) -> Resul
     }
     world
         .insert(entity, (rig,))
-        .map_err(|e| failed(e.to_string()))
+        .map_err(|e| failed(e.to_string()))?;
+    Ok(MassSource::Mesh)
 }
 
 #[cfg(test)]
@@ -61,13 +91,14 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
+    use crate::character::rig_mass::open_shell;
     use crate::character::{CharacterDesc, WalkPath};
     use crate::sim::SimBuilder;
     use crate::terrain::generate::{GridSpec, flat};
     use crate::terrain::{Heightfield, MaterialTable};
 
-    #[test]
-    fn the_rig_sets_the_body_and_proxy_mass_properties() {
+    /// A sand field with one adult walker, built.
+    fn one_walker() -> (engine::schedule::App, Entity) {
         let table = MaterialTable::with_presets();
         let sand = table.id("sand").unwrap();
         let grid = flat(GridSpec::square(4.0, 81), 0.0).unwrap();
@@ -79,15 +110,36 @@ mod tests {
         let walker = builder
             .character("w", CharacterDesc::adult(), path)
             .unwrap();
-        let mut app = builder.build().unwrap();
+        (builder.build().unwrap(), walker)
+    }
+
+    #[test]
+    fn the_rig_sets_the_body_and_proxy_mass_properties() {
+        let (mut app, walker) = one_walker();
         let capsules = app.world.get::<CharacterBody>(walker).unwrap().com_height;
         let rig = CharacterRig::human().unwrap();
-        attach_rig(&mut app.world, walker, rig).unwrap();
+        assert_eq!(
+            attach_rig(&mut app.world, walker, rig).unwrap(),
+            MassSource::Mesh
+        );
         let body = app.world.get::<CharacterBody>(walker).unwrap();
         let proxy = app.world.get::<RigidProxy>(walker).unwrap();
         assert_ne!(body.com_height, capsules);
         let expect = proxy.inertia.x_axis.x + proxy.mass * body.com_height * body.com_height;
         assert!((proxy.pitch_inertia - expect).abs() < 1e-3);
+        assert!(app.world.get::<CharacterRig>(walker).is_ok());
+    }
+
+    #[test]
+    fn an_open_mesh_keeps_the_capsules_mass() {
+        let (mut app, walker) = one_walker();
+        let before = app.world.get::<CharacterBody>(walker).unwrap().com_height;
+        let source = attach_rig(&mut app.world, walker, open_shell()).unwrap();
+        assert!(matches!(source, MassSource::Capsules { .. }), "{source:?}");
+        assert_eq!(
+            app.world.get::<CharacterBody>(walker).unwrap().com_height,
+            before
+        );
         assert!(app.world.get::<CharacterRig>(walker).is_ok());
     }
 }
