@@ -56,7 +56,7 @@ impl RigParts {
         self.rename(|name| {
             BoneRole::ALL
                 .into_iter()
-                .find(|&r| RigPreset::GameEngine.names(r)[0] == name)
+                .find(|&r| softwalk_app::scene::role_key(r) == name)
                 .map_or_else(
                     || format!("{prefix}{name}"),
                     |r| preset.names(r)[0].to_string(),

@@ -113,7 +113,8 @@ pub enum RigPreset {
     /// as the MakeHuman game-engine rig and the default human use.
     GameEngine,
     /// Mixamo names (`mixamorig:Hips`, `mixamorig:LeftUpLeg`, ...); any namespace
-    /// before `:` matches.
+    /// before `:` matches, and so does a prefix ending in `_` before a name
+    /// without underscores (`mixamorig_LeftUpLeg`, `Character1_LeftUpLeg`).
     Mixamo,
     /// CMU / common BVH names (`Hips`, `LeftUpLeg`, `LeftLeg`, `LeftFoot`, `LeftToeBase`).
     Bvh,

@@ -123,7 +123,7 @@ impl Camera {
     /// the inverse of the projection for points known by their `w`.
     pub fn clip_to_world(&self) -> Mat4 {
         let (s, u, f) = self.basis();
-        let focal = 1.0 / (0.5 * self.fov_y).tan();
+        let focal = self.focal();
         Mat4::from_cols(
             (s * (self.aspect() / focal)).extend(0.0),
             (u / focal).extend(0.0),
@@ -132,9 +132,14 @@ impl Camera {
         )
     }
 
+    /// The projection's focal factor, `1 / tan(fov_y / 2)`.
+    fn focal(&self) -> f32 {
+        1.0 / (0.5 * self.fov_y).tan()
+    }
+
     /// The view-to-clip matrix (clip depth in `[0, w]`).
     pub fn proj(&self) -> Mat4 {
-        let f = 1.0 / (0.5 * self.fov_y).tan();
+        let f = self.focal();
         let depth = self.far / (self.near - self.far);
         Mat4::from_cols(
             Vec4::new(f / self.aspect(), 0.0, 0.0, 0.0),

@@ -69,9 +69,8 @@ pub struct FrameStats {
 /// projected and set up per batch (terrain patch, mesh part, the grass
 /// layer) in parallel; then the screen is cut into fixed bands of rows,
 /// filled in parallel, each band drawing the grass, then the batches in
-/// scene order. The
-/// image is byte-identical whatever the number of threads (see
-/// [`super::raster`]).
+/// scene order. The image is byte-identical whatever the number of threads
+/// (see [`super::raster`]).
 #[derive(Debug, Clone)]
 pub struct Renderer {
     width: u32,

@@ -1,7 +1,9 @@
 //! Lighting parameters and the shading formulas shared by terrain, meshes and grass.
 //!
 //! Shading is done in linear RGB and encoded for display with gamma 2 (a square
-//! root), per vertex; the rasterizer interpolates display values.
+//! root), per vertex; the rasterizer interpolates display values (except the
+//! terrain's sun part under caster shadows, taken off per pixel: see
+//! `raster::PixelShadow`).
 
 use glam::Vec3;
 

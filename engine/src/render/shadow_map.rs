@@ -94,6 +94,15 @@ impl ShadowMap {
         self.frame.to_light.transform_point3(p)
     }
 
+    /// Raises the texel under map point `p` (texel coordinates, height) to
+    /// its height; points off the map raise nothing.
+    #[inline]
+    fn raise_at(&mut self, p: Vec3) {
+        if p.x >= 0.0 && p.y >= 0.0 {
+            self.raise(p.x as usize, p.y as usize, p.z);
+        }
+    }
+
     /// Raises texel `(i, j)` to height `h`.
     #[inline]
     fn raise(&mut self, i: usize, j: usize, h: f32) {
@@ -115,9 +124,7 @@ impl ShadowMap {
         if area.abs() < 1e-12 {
             // Seen edge-on by the sun: its corners still cast.
             for p in [a, b, c] {
-                if p.x >= 0.0 && p.y >= 0.0 {
-                    self.raise(p.x as usize, p.y as usize, p.z);
-                }
+                self.raise_at(p);
             }
             return;
         }
@@ -177,10 +184,7 @@ impl ShadowMap {
             let p = b.root * ((1.0 - t) * (1.0 - 2.0 * t))
                 + b.mid * (4.0 * t * (1.0 - t))
                 + b.tip * (t * (2.0 * t - 1.0));
-            let q = self.locate(p);
-            if q.x >= 0.0 && q.y >= 0.0 {
-                self.raise(q.x as usize, q.y as usize, q.z);
-            }
+            self.raise_at(self.locate(p));
         }
     }
 

@@ -127,6 +127,8 @@ struct Live<'a> {
     args: &'a ViewArgs,
     last_frame: Instant,
     threads: usize,
+    /// The window's pixels (0RGB), kept between frames.
+    screen: Vec<u32>,
 }
 
 impl<'a> Live<'a> {
@@ -175,6 +177,7 @@ impl<'a> Live<'a> {
             args,
             last_frame: Instant::now(),
             threads,
+            screen: Vec::new(),
         };
         live.orbit.snap(live.com());
         Ok(live)
@@ -217,13 +220,15 @@ impl<'a> Live<'a> {
         let line = self.hud.line(&self.figures());
         engine::canvas::draw_text(&mut image, 6.0, 4.0, HUD_TEXT_PX, Rgba([255; 4]), &line);
         self.save_frame(&image)?;
-        let buffer: Vec<u32> = image
-            .pixels()
-            .map(|p| (u32::from(p[0]) << 16) | (u32::from(p[1]) << 8) | u32::from(p[2]))
-            .collect();
+        self.screen.clear();
+        self.screen.extend(
+            image
+                .pixels()
+                .map(|p| (u32::from(p[0]) << 16) | (u32::from(p[1]) << 8) | u32::from(p[2])),
+        );
         let (w, h) = (image.width() as usize, image.height() as usize);
         window
-            .update_with_buffer(&buffer, w, h)
+            .update_with_buffer(&self.screen, w, h)
             .map_err(|e| CliError::NoWindow {
                 reason: e.to_string(),
             })?;

@@ -20,6 +20,8 @@ pub struct LoadedClip {
     pub bvh: BvhClip,
     /// Its bones, by the preset that matches them best.
     pub map: BoneMap,
+    /// Its walk cycle.
+    pub cycle: WalkCycle,
     /// Its gait.
     pub gait: ClipGait,
 }
@@ -52,6 +54,7 @@ pub fn load_clip(field: &str, clip: &str, base_dir: &Path) -> Result<LoadedClip,
         .map_err(|e| bad(format!("not a walk clip: {e}")))?;
     Ok(LoadedClip {
         gait: ClipGait::from_cycle(&cycle),
+        cycle,
         field,
         path,
         bvh,
@@ -62,12 +65,17 @@ pub fn load_clip(field: &str, clip: &str, base_dir: &Path) -> Result<LoadedClip,
 impl LoadedClip {
     /// The clip retargeted onto `rig`, to play its upper body.
     pub fn on_rig(&self, rig: &CharacterRig) -> Result<ClipWalk, SceneError> {
-        ClipWalk::new(&self.bvh.skeleton, &self.map, &self.bvh.clip, rig).map_err(|e| {
-            SceneError::BadFile {
-                field: self.field.clone(),
-                path: self.path.clone(),
-                reason: e.to_string(),
-            }
+        ClipWalk::new(
+            &self.bvh.skeleton,
+            &self.map,
+            &self.bvh.clip,
+            self.cycle,
+            rig,
+        )
+        .map_err(|e| SceneError::BadFile {
+            field: self.field.clone(),
+            path: self.path.clone(),
+            reason: e.to_string(),
         })
     }
 }

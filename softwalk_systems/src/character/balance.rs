@@ -56,6 +56,8 @@ use super::body::CharacterBody;
 use super::desc::DEFAULT_PASSIVE_DAMPING;
 use super::error::{CharacterError, check_range};
 use super::gait::{Gait, clamp_dt};
+use super::gravity::GRAVITY;
+use super::path::turn_angle;
 use super::rays::FootRays;
 
 /// The balance controller's settings (paper eq. 1), settable at run time.
@@ -99,8 +101,6 @@ pub const MAX_TURN_LEAN: f32 = 0.52;
 /// The largest lean back while braking, radians (3°): the legs do most of
 /// the braking, the trunk leans back slightly.
 pub const MAX_BRAKE_LEAN: f32 = 0.052;
-/// Gravity, m/s², for the turn lean.
-const GRAVITY: f32 = 9.81;
 
 impl Balance {
     /// The controller with the given gains, enabled, and default passive terms.
@@ -187,12 +187,10 @@ pub struct RigidProxy {
 impl RigidProxy {
     /// An upright, resting proxy for a body.
     pub fn new(body: &CharacterBody) -> Self {
-        let mass = body.desc.proxy_mass;
-        let inertia = body.inertia * (mass / body.desc.mass);
-        RigidProxy {
-            mass,
-            inertia,
-            pitch_inertia: about_ground(inertia.x_axis.x, mass, body.com_height),
+        let mut proxy = RigidProxy {
+            mass: body.desc.proxy_mass,
+            inertia: Mat3::ZERO,
+            pitch_inertia: 0.0,
             com: Vec3::Y * body.com_height,
             orientation: Quat::IDENTITY,
             angular_velocity: Vec3::ZERO,
@@ -202,14 +200,16 @@ impl RigidProxy {
             torque: 0.0,
             slope: 0.0,
             slow_offset: 0.0,
-            roll_inertia: about_ground(inertia.z_axis.z, mass, body.com_height),
+            roll_inertia: 0.0,
             lean: 0.0,
             lean_rate: 0.0,
             turn_lean: 0.0,
             last_heading: Vec2::ZERO,
             capsule_radius: 0.15 * body.desc.height,
             capsule_half_height: 0.35 * body.desc.height,
-        }
+        };
+        proxy.take_body_mass(body);
+        proxy
     }
 
     /// Takes the inertia and centre of mass height of `body` (after
@@ -337,8 +337,7 @@ fn lateral_stage(proxy: &mut RigidProxy, balance: &Balance, gait: &Gait, dt: f32
     let rate = if previous == Vec2::ZERO {
         0.0
     } else {
-        let left = Vec2::new(previous.y, -previous.x);
-        heading.dot(left).atan2(heading.dot(previous)) / dt
+        turn_angle(previous, heading) / dt
     };
     proxy.turn_lean = if balance.enabled {
         turn_lean(gait.velocity.length(), rate)

@@ -2,8 +2,7 @@
 
 use engine::anim::WalkCycle;
 
-/// Standard gravity, m/s².
-const GRAVITY: f32 = 9.81;
+use super::gravity::GRAVITY;
 /// Walking Froude numbers (v² / (g · hip height)) a clip's speed is kept within,
 /// as `CharacterDesc::froude`.
 const FROUDE_RANGE: (f32, f32) = (0.02, 0.5);
@@ -80,7 +79,7 @@ mod tests {
     use crate::character::CharacterBody;
 
     fn timing_on(gait: &ClipGait, body: &CharacterBody) -> ClipTiming {
-        gait.timing(body.thigh + body.shank, body.hip_height)
+        gait.timing(body.leg_reach(), body.hip_height)
     }
     use crate::character::CharacterDesc;
 

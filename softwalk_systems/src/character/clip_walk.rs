@@ -3,21 +3,16 @@
 
 use std::sync::Arc;
 
-use engine::anim::{
-    BoneMap, Clip, Playback, RetargetError, Skeleton, WalkCycle, WalkCycleError, retarget,
-};
+use engine::anim::{BoneMap, Clip, Playback, RetargetError, Skeleton, WalkCycle, retarget};
 use glam::{Mat4, Quat};
 use thiserror::Error;
 
-use super::{CharacterBody, CharacterRig, ClipGait, Gait, Pose, RigPose};
+use super::{CharacterBody, CharacterRig, Gait, Pose, RigPose};
 use crate::foot::FootState;
 
 /// Why a clip cannot drive a character.
 #[derive(Debug, Error, PartialEq)]
 pub enum ClipWalkError {
-    /// The clip is not a walk.
-    #[error("not a walk clip: {0}")]
-    Cycle(#[source] WalkCycleError),
     /// The clip could not be moved onto the character's rig.
     #[error("cannot retarget the clip onto the rig: {0}")]
     Retarget(#[source] RetargetError),
@@ -31,15 +26,16 @@ pub struct ClipWalk {
 }
 
 impl ClipWalk {
-    /// The walk `clip` (animating `source`, whose bones `source_map` names)
-    /// analysed and retargeted onto `rig`.
+    /// The walk `clip` (animating `source`, whose bones `source_map` names,
+    /// with the `cycle` [`WalkCycle::analyse`] read from it) retargeted onto
+    /// `rig`.
     pub fn new(
         source: &Skeleton,
         source_map: &BoneMap,
         clip: &Clip,
+        cycle: WalkCycle,
         rig: &CharacterRig,
     ) -> Result<ClipWalk, ClipWalkError> {
-        let cycle = WalkCycle::analyse(clip, source, source_map).map_err(ClipWalkError::Cycle)?;
         let on_rig = retarget(
             source,
             source_map,
@@ -52,21 +48,6 @@ impl ClipWalk {
             clip: Arc::new(on_rig),
             cycle,
         })
-    }
-
-    /// The clip's cycle (in the source clip's units).
-    pub fn cycle(&self) -> &WalkCycle {
-        &self.cycle
-    }
-
-    /// The clip's gait for a character's description.
-    pub fn gait(&self) -> ClipGait {
-        ClipGait::from_cycle(&self.cycle)
-    }
-
-    /// The retargeted clip (on the rig's skeleton).
-    pub fn clip(&self) -> &Clip {
-        &self.clip
     }
 
     /// The rig posed by the driver ([`RigPose::drive`]), then its upper body

@@ -7,7 +7,9 @@ use std::f32::consts::{PI, TAU};
 use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
+use super::clip_gait::CLIP_DUTY_RANGE;
 use super::error::CharacterError;
+use super::gravity::GRAVITY;
 use super::path::{PathPoint, WalkPath};
 use crate::foot::{FootPhase, Side};
 use crate::ground::rise_along;
@@ -201,19 +203,19 @@ impl GaitParams {
         let slope_scale = 1.0 / (1.0 + DOWNHILL_STEP_SHORTENING * (-grade).max(0.0));
         let (speed, stride, duty) = match body.desc.clip_gait {
             Some(clip) => {
-                let walk = clip.timing(body.thigh + body.shank, body.hip_height);
+                let walk = clip.timing(body.leg_reach(), body.hip_height);
                 let stride = walk.stride * length_scale * slope_scale;
                 (walk.speed * speed_scale, stride, walk.duty)
             }
             None => {
-                let speed = (body.desc.froude * 9.81 * ht).sqrt() * speed_scale;
+                let speed = (body.desc.froude * GRAVITY * ht).sqrt() * speed_scale;
                 let rv = speed / ht;
                 let stride = 1.346 * rv.sqrt() * ht * length_scale * slope_scale;
                 let cycle = stride / speed;
                 (
                     speed,
                     stride,
-                    ((0.752 * cycle - 0.143) / cycle).clamp(0.55, 0.7),
+                    ((0.752 * cycle - 0.143) / cycle).clamp(CLIP_DUTY_RANGE.0, CLIP_DUTY_RANGE.1),
                 )
             }
         };

@@ -39,6 +39,7 @@ mod desc;
 mod error;
 mod foot_ik;
 mod gait;
+mod gravity;
 mod ground_cross;
 mod ik;
 mod mesh;
@@ -77,14 +78,13 @@ pub use mesh::{capsule, character_mesh};
 pub use metrics::CharacterMetrics;
 pub use model_error::ModelError;
 pub use model_units::{ModelUnits, STANDING_HEIGHT_M};
-pub use path::{MAX_BACKWARD_ASLANT, PathPoint, PathSegment, WalkPath};
+pub use path::{MAX_BACKWARD_ASLANT, PathPoint, PathSegment, WalkPath, turn_angle};
 pub use pose::Pose;
 pub use rays::{FootRays, GroundKey, foot_raycast_stage};
 pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use steering::{
     Brake, Steering, SteeringSettings, braking, curve_radius, steer_stage, stop_distance,
-    turn_angle,
 };
 pub use step::{Character, step_character};
 pub use support::{FootSupport, RIM_CLEARANCE, SupportPoint};

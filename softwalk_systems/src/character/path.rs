@@ -196,7 +196,7 @@ impl WalkPath {
         };
         let behind = -face;
         let left = Vec2::new(behind.y, -behind.x);
-        let angle = go.dot(left).atan2(go.dot(behind));
+        let angle = turn_angle(behind, go);
         if angle.abs() < STRAIGHT_BEHIND {
             return Self::walked_backward(start, facing, segments);
         }
@@ -339,6 +339,12 @@ fn advance(from: PathPoint, seg: &PathSegment, along: f32) -> PathPoint {
             }
         }
     }
+}
+
+/// The signed angle from `heading` to `direction`, radians, positive to the left.
+pub fn turn_angle(heading: Vec2, direction: Vec2) -> f32 {
+    let left = Vec2::new(heading.y, -heading.x);
+    direction.dot(left).atan2(direction.dot(heading))
 }
 
 /// `v` (x, z) turned by the angle whose `(cos, sin)` is `turn`, positive left.

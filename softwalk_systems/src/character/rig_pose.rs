@@ -113,7 +113,8 @@ impl RigPose {
         }
         let skeleton = rig.model().skeleton.joints();
         for j in 0..n {
-            if j == chains.pelvis || skeleton_is_above(rig, j, chains.pelvis) {
+            // The pelvis and the joints above it move with the pelvis.
+            if rig.model().skeleton.is_ancestor(j, chains.pelvis) {
                 out.rotations[j] = pelvis_turn;
                 out.positions[j] =
                     pelvis_at + pelvis_turn * ((rest[j] - rest[chains.pelvis]) * scale);
@@ -180,11 +181,6 @@ impl RigPose {
         self.globals(rig, globals);
         engine::anim::skin_matrices(&rig.model().skeleton, globals, out);
     }
-}
-
-/// Whether `joint` is an ancestor of `of` (the joints above the pelvis move with it).
-fn skeleton_is_above(rig: &CharacterRig, joint: usize, of: usize) -> bool {
-    joint != of && rig.model().skeleton.is_ancestor(joint, of)
 }
 
 /// The joint a limb bone points at: the mapped joint of its role's child.

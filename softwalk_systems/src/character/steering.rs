@@ -31,7 +31,7 @@ use glam::{Vec2, Vec3};
 use super::body::CharacterBody;
 use super::error::CharacterError;
 use super::gait::{Gait, GaitModifiers, GaitParams, clamp_dt};
-use super::path::{PathSegment, WalkPath};
+use super::path::{PathSegment, WalkPath, turn_angle};
 
 /// How a [`Steering`] shapes the paths it generates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -206,12 +206,6 @@ pub fn stop_distance(settings: &SteeringSettings, gait: &Gait, speed: f32) -> f3
     } else {
         braking
     }
-}
-
-/// The signed angle from `heading` to `direction`, radians, positive to the left.
-pub fn turn_angle(heading: Vec2, direction: Vec2) -> f32 {
-    let left = Vec2::new(heading.y, -heading.x);
-    direction.dot(left).atan2(direction.dot(heading))
 }
 
 /// The curve radius at `speed`: `speed² / max_lateral_acceleration`, at

@@ -51,14 +51,19 @@ pub fn attach_rig(
             .map_err(|e| failed(e.to_string()))?;
         BodyMass::of_rig(&rig, &body, &pose, &feet.0)
     };
-    let mass = match mass {
-        Ok(mass) => mass,
-        Err(ModelError::Shape { reason }) => {
-            world
-                .insert(entity, (rig,))
+    let source = match mass {
+        Ok(mass) => {
+            let mut body = world
+                .get_mut::<CharacterBody>(entity)
                 .map_err(|e| failed(e.to_string()))?;
-            return Ok(MassSource::Capsules { reason });
+            body.set_mass_properties(mass);
+            let mut proxy = world
+                .get_mut::<RigidProxy>(entity)
+                .map_err(|e| failed(e.to_string()))?;
+            proxy.take_body_mass(&body);
+            MassSource::Mesh
         }
+        Err(ModelError::Shape { reason }) => MassSource::Capsules { reason },
         Err(source) => {
             let name = world
                 .get::<CharacterName>(entity)
@@ -70,20 +75,10 @@ pub fn attach_rig(
             });
         }
     };
-    {
-        let mut body = world
-            .get_mut::<CharacterBody>(entity)
-            .map_err(|e| failed(e.to_string()))?;
-        body.set_mass_properties(mass);
-        let mut proxy = world
-            .get_mut::<RigidProxy>(entity)
-            .map_err(|e| failed(e.to_string()))?;
-        proxy.take_body_mass(&body);
-    }
     world
         .insert(entity, (rig,))
         .map_err(|e| failed(e.to_string()))?;
-    Ok(MassSource::Mesh)
+    Ok(source)
 }
 
 #[cfg(test)]

@@ -35,12 +35,7 @@ pub struct TerrainPaint {
 impl TerrainPaint {
     /// The colours of every sample of `hf`.
     pub fn of(hf: &Heightfield) -> Self {
-        let palette: Vec<Vec3> = hf
-            .table()
-            .materials()
-            .iter()
-            .map(|m| material_albedo(&m.name))
-            .collect();
+        let palette = palette(hf);
         TerrainPaint {
             albedo: hf
                 .material_map()
@@ -55,9 +50,7 @@ impl TerrainPaint {
     /// the ground changed there, or was repainted).
     pub fn refresh(&mut self, hf: &Heightfield, rect: engine::geom::GridRect) {
         let (nx, marks) = (hf.grid().nx(), hf.disturbed());
-        let palette: Vec<Vec3> = (hf.table().materials().iter())
-            .map(|m| material_albedo(&m.name))
-            .collect();
+        let palette = palette(hf);
         let map = hf.material_map();
         for (i, j) in rect.iter() {
             let k = j * nx + i;
@@ -72,6 +65,15 @@ impl TerrainPaint {
 /// A trodden mark (0..255) as a darkening amount (0..1).
 fn disturbance(mark: u8) -> f32 {
     f32::from(mark) / 255.0
+}
+
+/// The albedo of each material of `hf`'s table, by material id.
+fn palette(hf: &Heightfield) -> Vec<Vec3> {
+    hf.table()
+        .materials()
+        .iter()
+        .map(|m| material_albedo(&m.name))
+        .collect()
 }
 
 #[cfg(test)]
