@@ -26,8 +26,6 @@ const CHANGED_PIXELS: usize = 10;
 const CHANNEL_STEP: i16 = 8;
 /// Steps tried before giving up.
 const MOST_STEPS: u64 = 30;
-/// The viewer's camera offset from the centre of mass, metres.
-const CAMERA_OFFSET: Vec3 = Vec3::new(0.5, 1.6, 4.0);
 
 /// One copy of the steered world.
 struct Twin<'a> {
@@ -91,7 +89,7 @@ fn steps_to_visible(before: Vec<InputEvent>, warm: u64, action: InputAction) -> 
         twins.iter_mut().for_each(|t| t.step(&scene, step));
     }
     let target = twins[0].com();
-    let eye = target + CAMERA_OFFSET;
+    let eye = target + softwalk_app::live::DEFAULT_CAMERA_OFFSET;
     let t = &mut twins[1];
     let (app, walkers) = (&mut t.app, &mut t.walkers);
     t.session.apply(&action, &scene, app, walkers).unwrap();

@@ -22,14 +22,13 @@ use super::scene_and_options;
 use crate::cli::{CliError, ViewArgs};
 use crate::inputs::{InputAction, InputEvent, InputScript, InputSession};
 use crate::live::{
-    FixedStepClock, Held, Hud, HudFigures, OrbitCamera, RUN_FACTOR, desired_velocity, next_brush,
+    DEFAULT_CAMERA_OFFSET, FixedStepClock, Held, Hud, HudFigures, OrbitCamera, RUN_FACTOR,
+    desired_velocity, next_brush,
 };
 use crate::runner::SimError;
 use crate::scene::{CameraMode, Scene};
 use crate::view::scene_view;
 
-/// Camera offset from the character when the scene's camera is fixed, metres.
-const DEFAULT_OFFSET: Vec3 = Vec3::new(0.5, 1.6, 4.0);
 /// Size of the heads-up text, pixels.
 const HUD_TEXT_PX: f32 = 15.0;
 
@@ -151,7 +150,7 @@ impl<'a> Live<'a> {
         .map_err(|e| sim_error(SimError::View(e)))?;
         let offset = match scene.camera.mode {
             CameraMode::Follow { offset, .. } => Vec3::from(offset),
-            CameraMode::Fixed { .. } => DEFAULT_OFFSET,
+            CameraMode::Fixed { .. } => DEFAULT_CAMERA_OFFSET,
         };
         let mut live = Live {
             scene,

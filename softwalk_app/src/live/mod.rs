@@ -13,4 +13,4 @@ pub use controls::{
     BRUSH_MATERIALS, Held, RUN_FACTOR, WALK_SPEED_M_S, desired_velocity, next_brush,
 };
 pub use hud::{Hud, HudFigures};
-pub use orbit::OrbitCamera;
+pub use orbit::{DEFAULT_CAMERA_OFFSET, OrbitCamera};

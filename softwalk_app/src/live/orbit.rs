@@ -3,6 +3,10 @@
 
 use glam::Vec3;
 
+/// The viewer's camera offset from the character when the scene's camera is
+/// fixed, metres.
+pub const DEFAULT_CAMERA_OFFSET: Vec3 = Vec3::new(0.5, 1.6, 4.0);
+
 /// Radians turned per pixel of mouse drag.
 const RADIANS_PER_PIXEL: f32 = 0.008;
 /// Lowest and highest elevation above the ground, radians.
@@ -81,8 +85,8 @@ mod tests {
 
     #[test]
     fn the_offset_round_trips_and_the_eye_keeps_its_distance() {
-        let cam = OrbitCamera::from_offset(Vec3::ZERO, Vec3::new(0.5, 1.6, 4.0));
-        assert!((cam.eye() - Vec3::new(0.5, 1.6, 4.0)).length() < 1e-4);
+        let cam = OrbitCamera::from_offset(Vec3::ZERO, DEFAULT_CAMERA_OFFSET);
+        assert!((cam.eye() - DEFAULT_CAMERA_OFFSET).length() < 1e-4);
         let mut turned = cam;
         turned.drag(120.0, 0.0);
         assert!((turned.eye().length() - cam.distance).abs() < 1e-4);

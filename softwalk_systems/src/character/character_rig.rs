@@ -25,15 +25,14 @@ const SOLE_WEIGHT: f32 = 0.5;
 /// (a T-pose's arm span is about its height; a lying figure is several times it).
 const MAX_WIDTH_PER_HEIGHT: f32 = 1.5;
 
-/// An arm's joints: shoulder (upper arm bone), elbow (forearm bone), wrist (hand bone).
+/// An arm's joints the driver aims: shoulder (upper arm bone) and elbow
+/// (forearm bone). An arm is driven only when its hand is mapped too.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ArmChain {
     /// The upper arm's joint.
     pub shoulder: usize,
     /// The forearm's joint.
     pub elbow: usize,
-    /// The hand's joint.
-    pub wrist: usize,
 }
 
 /// A loaded model with everything the driver needs, shared (cloning is cheap).
@@ -134,10 +133,10 @@ impl CharacterRig {
         let frame = rest_frame(&chains, &rest_positions, &rest_vertices.positions, &feet)?;
         let sole_lengths = [0, 1].map(|k| sole_length(&rest_vertices.positions, &soles[k], frame));
         let arm = |upper, lower, hand| {
+            map.joint(hand)?;
             Some(ArmChain {
                 shoulder: map.joint(upper)?,
                 elbow: map.joint(lower)?,
-                wrist: map.joint(hand)?,
             })
         };
         use BoneRole::*;
