@@ -24,11 +24,14 @@ pub(crate) struct GroundCross {
     /// the highest floor (surface less give) found, metres: a sole across
     /// two grounds, or across a print's edge, stops on the firmer floor.
     pub rest_floor: f32,
-    /// The median give of the centre and the four ends, metres: the patch's
-    /// floor is `mean - typical_give`. A median, so that one ray in a print
-    /// (pressed to its floor) or on another ground beside the walker's line
-    /// (the edge of a snowfield beside a path on sand) does not move it.
-    pub typical_give: f32,
+    /// The median floor (surface less give) of the centre and the four
+    /// ends, metres: the height a planted foot would sink to on the patch.
+    /// Each ray's own floor, so a ray in a print (its surface pressed down,
+    /// its give used up) reads the same floor as one on fresh ground beside
+    /// it; a median, so that one ray on a rim or on another ground beside
+    /// the walker's line (the edge of a snowfield beside a path on sand)
+    /// does not move it. On a plane it is the centre's floor.
+    pub typical_floor: f32,
     /// What the ray at the patch's centre found.
     pub centre: Option<GroundHit>,
 }
@@ -83,19 +86,19 @@ impl GroundCross {
             -right * reach_across,
         ]
         .map(cast);
-        let mut gives = [0.0f32; 5];
+        let mut floors = [0.0f32; 5];
         let mut count = 0;
         for s in ends.iter().flatten() {
-            gives[count] = s.give;
+            floors[count] = s.height - s.give;
             count += 1;
         }
         if count == 0 {
             return None;
         }
         let mean = ends.iter().flatten().map(|s| s.height).sum::<f32>() / count as f32;
-        let gives = &mut gives[..count];
-        gives.sort_by(f32::total_cmp);
-        let typical_give = gives[count / 2];
+        let floors = &mut floors[..count];
+        floors.sort_by(f32::total_cmp);
+        let typical_floor = floors[count / 2];
         let height = |i: usize| ends[i].map(|s| s.height);
         let grade = |ahead: Option<f32>, behind: Option<f32>, reach: f32| match (ahead, behind) {
             (Some(a), Some(b)) if reach > 0.0 => (a - b) / (2.0 * reach),
@@ -127,7 +130,7 @@ impl GroundCross {
             normal: Vec3::new(-rise.x, 1.0, -rise.y).normalize(),
             rest_top: base + top,
             rest_floor: base + floor,
-            typical_give,
+            typical_floor,
             centre,
         })
     }

@@ -162,8 +162,9 @@ impl FootSupport {
             );
         }
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
-        // Ground rising above the path between the two footholds lifts the foot.
-        let height = cast(plan.target).map_or(height, |h| height.max(h.point.y));
+        // Ground rising above the path between the two footholds, under any
+        // part of the sole, lifts the foot.
+        let height = highest_under_sole(&cast, plan, body).map_or(height, |h| height.max(h));
         // Until the sole is out of its print, the print stays held: its walls
         // do not slump onto the rising foot.
         let in_print = self.left.give > 0.0 && u < 0.5 && height < self.left_rim;
@@ -226,6 +227,22 @@ impl FootSupport {
         let held = smoothstep(u.min(1.0 - u) / STEP_OUT_TIME);
         base + (top - base).max(0.0) * held + clearance * (PI * u).sin()
     }
+}
+
+/// The highest surface under the heel, the centre and the toe of a flat
+/// sole at `plan`'s target, facing its heading; `None` when every ray
+/// misses. A sole centred over an old print can still have its heel or toe
+/// over the fresh ground beside it.
+fn highest_under_sole(
+    cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+    plan: &FootPlan,
+    body: &CharacterBody,
+) -> Option<f32> {
+    let half = plan.heading * (0.5 * body.foot_length);
+    [plan.target - half, plan.target, plan.target + half]
+        .into_iter()
+        .filter_map(|at| cast(at).map(|hit| hit.point.y))
+        .reduce(f32::max)
 }
 
 /// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
