@@ -18,11 +18,11 @@ pub const RIM_MIN_WIDTH_M: f32 = 1.5 * REFERENCE_CELL_M;
 /// A sample counts as pressed (held) when the sole is at most this high above it, metres.
 pub const CONTACT_TOLERANCE: f32 = 0.005;
 /// How much wider than the sole a print is on every side, metres (one
-/// reference cell, [`REFERENCE_CELL_M`]). The print's anti-aliased edge is
-/// centred this far outside the sole's outline, so on any grid up to twice
-/// the reference cell every sample under the sole is pressed the whole way
-/// and the surface read anywhere under a sole resting on the print's floor
-/// is that floor, not part of the print's wall.
+/// reference cell, [`REFERENCE_CELL_M`], about 2 cm). The print's
+/// anti-aliased edge is centred this far outside the sole's outline, so on
+/// any grid up to twice the reference cell every sample under the sole is
+/// pressed the whole way: a sole resting on the print's floor reads that
+/// floor, not part of the print's wall.
 pub const PRINT_MARGIN_M: f32 = REFERENCE_CELL_M;
 
 /// Width of the rim ring around a footprint of half-width `radius`, metres:
