@@ -579,6 +579,23 @@ mod tests {
     }
 
     #[test]
+    fn a_foot_the_leg_leaves_below_its_swing_ploughs() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let aimed = level_frame(0.0).place(&body, 0.0);
+        assert!(!ploughs(&aimed, &aimed));
+        assert!(!ploughs(
+            &aimed,
+            &aimed.moved(Vec3::NEG_Y * (0.5 * PLOUGH_DEPTH))
+        ));
+        assert!(ploughs(
+            &aimed,
+            &aimed.moved(Vec3::NEG_Y * (2.0 * PLOUGH_DEPTH))
+        ));
+        // Higher than aimed (a leg that cannot reach down) is not ploughing.
+        assert!(!ploughs(&aimed, &aimed.moved(Vec3::Y * 0.1)));
+    }
+
+    #[test]
     fn a_foot_is_left_alone_when_unrolling_cannot_lengthen_the_leg() {
         let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
         let flat = level_frame(0.0).place(&body, 0.0);

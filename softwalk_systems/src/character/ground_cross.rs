@@ -179,6 +179,36 @@ mod tests {
     }
 
     #[test]
+    fn the_floor_is_each_rays_own_floor_so_a_print_under_one_ray_does_not_lower_it() {
+        // Loose snow over a firm floor at -0.3: fresh surface at 0 giving
+        // 0.3, and an old print ahead of the centre pressed to the floor
+        // (giving nothing); the floor is -0.3 wherever the print is.
+        let snow = |p: Vec2| {
+            if (p.x - 0.3).abs() < 0.05 {
+                hit(p, -0.3, 0.0)
+            } else {
+                hit(p, 0.0, 0.3)
+            }
+        };
+        let c = GroundCross::sample(snow, Vec2::ZERO, Vec2::X, [0.3, 0.3], &[]).unwrap();
+        assert!((c.typical_floor + 0.3).abs() < 1e-6, "{}", c.typical_floor);
+        assert!(
+            c.mean < -0.05,
+            "the mean surface is in the print: {}",
+            c.mean
+        );
+        // A rim under one ray (raised 4 cm, giving its print depth) and a
+        // firmer ground under another beside the line do not move it either.
+        let mixed = |p: Vec2| match (p.x > 0.2, p.y > 0.2) {
+            (true, _) => hit(p, 0.04, 0.3),
+            (_, true) => hit(p, 0.0, 0.05),
+            _ => hit(p, 0.0, 0.3),
+        };
+        let c = GroundCross::sample(mixed, Vec2::ZERO, Vec2::X, [0.3, 0.3], &[]).unwrap();
+        assert!((c.typical_floor + 0.3).abs() < 1e-6, "{}", c.typical_floor);
+    }
+
+    #[test]
     fn a_sole_over_a_print_edge_rests_on_the_edge_and_stops_on_the_firmer_floor() {
         // An old print 5 cm deep (pressed firm, giving 1 cm) ahead of x = -0.1,
         // loose sand giving 4 cm behind it; the sole centre is over the print.
