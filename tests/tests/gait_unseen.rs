@@ -8,11 +8,13 @@
 //! lift a foot over the surface: the foot ploughs through it.
 //!
 //! Left out, as known limits: the 1.0 m walker on level snow, whose stance
-//! knee averages 25–29° (goal 25°: the swing knee, held at its 117° cap
-//! over the snow, is still straightening at the landing); a walker stepping
-//! out of 0.3 m of snow onto rigid ground (a stair-like step up, stance
-//! knee up to 37°); and the 1.0 and 1.3 m walkers up 20° of rigid ground,
-//! whose stance knee averages 25–27° (a stair-like climb).
+//! knee averages 25–30° (goal 25°: the swing knee, held at its 117° cap
+//! over the snow, is still straightening at the landing), and whose sole
+//! reads 2.2 cm into its print on a 256-sample grid (a cell of 4 cm against
+//! a foot 5.5 cm wide); a walker stepping out of 0.3 m of snow onto rigid
+//! ground (a stair-like step up, stance knee up to 37°); and the 1.0 and
+//! 1.3 m walkers up 20° of rigid ground, whose stance knee averages 25–27°
+//! (a stair-like climb).
 
 use rayon::prelude::*;
 use softwalk_app::paper::recorded_run::record_run;
