@@ -13,6 +13,7 @@ use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
 use super::support::sole_direction;
+use super::swing_knee::knee_limit;
 use crate::foot::{FootPhase, FootSole, FootState, Side};
 use crate::ground::rise_along;
 
@@ -46,6 +47,10 @@ pub struct FootIK {
     /// Knee flexion of each leg last step, radians: it changes by at most
     /// [`MAX_KNEE_SPEED`].
     pub knee_flexion: Option<[f32; 2]>,
+    /// Whether each swinging knee has reached [`MAX_KNEE_FLEXION`] in this
+    /// swing: from then on it is bound to straighten in time for the
+    /// landing (see [`knee_limit`]). Cleared while the foot is planted.
+    pub knee_at_cap: [bool; 2],
 }
 
 impl Default for FootIK {
@@ -59,6 +64,7 @@ impl Default for FootIK {
             last_ankles: [Vec3::ZERO; 2],
             flat_heights: None,
             knee_flexion: None,
+            knee_at_cap: [false; 2],
         }
     }
 }
@@ -79,13 +85,15 @@ const MAX_PITCH_RATE: f32 = 6.0;
 const MAX_PLANTED_PITCH_RATE: f32 = 3.0;
 /// Length of a planted leg (hip to ankle, a fraction of its reach) past
 /// which the pelvis rises to straighten it: a knee bent about 20°.
-const STANDING_LEG: f32 = 0.985;
+pub(super) const STANDING_LEG: f32 = 0.985;
 /// The most the pelvis rises above its walking height for bent planted legs,
 /// a fraction of the leg reach.
 const MAX_PELVIS_RAISE: f32 = 0.12;
 /// The most a knee bends while walking, radians (about 117°: high stepping
 /// out of deep snow reaches 100–110°).
 pub const MAX_KNEE_FLEXION: f32 = 2.05;
+/// How close to [`MAX_KNEE_FLEXION`] a knee counts as at its cap, radians.
+const AT_CAP: f32 = 1.0e-3;
 /// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
 /// peaks at about 400–450°/s).
 pub const MAX_KNEE_SPEED: f32 = 9.5;
@@ -285,7 +293,23 @@ pub fn foot_ik_stage(
     ik.pelvis_drop = follow_pelvis(ik, body, gait, rays, &hips, &feet, dt);
     pelvis.y -= ik.pelvis_drop;
     let planted = gait.feet.map(|f| f.phase == FootPhase::Stance);
-    let placed = solve_legs(ik, pose, body, &hips, &feet, planted, forward, dt);
+    let knee_limits = [0, 1].map(|k| {
+        if !ik.knee_at_cap[k] {
+            return MAX_KNEE_FLEXION;
+        }
+        let hip = hips[k] - Vec3::Y * ik.pelvis_drop;
+        let key = &rays.feet[k];
+        let floor = key.floor.max(key.platform.unwrap_or(f32::MIN));
+        let (ankle, lowest) = (feet[k].ankle, feet[k].lowest.y);
+        knee_limit(body, &gait.params, &gait.feet[k], hip, ankle, lowest, floor)
+    });
+    let legs = Legs {
+        hips: &hips,
+        feet: &feet,
+        planted,
+        knee_limits,
+    };
+    let placed = solve_legs(ik, pose, body, &legs, forward, dt);
     pose_upper_body(pose, body, gait, proxy, pelvis, travel, right);
     pose.forward = forward;
     pose.right = right;
@@ -388,25 +412,40 @@ fn follow_pelvis(
     ground_y - ik.pelvis.follow(ground_y - needed + raise, ground_rate, dt)
 }
 
+/// What the legs are solved for this step (left first).
+struct Legs<'a> {
+    /// The hips before the pelvis drop.
+    hips: &'a [Vec3; 2],
+    /// The feet as placed on their keys.
+    feet: &'a [FootPlacement; 2],
+    /// Which feet are planted.
+    planted: [bool; 2],
+    /// The most each knee may bend this step, radians (see [`knee_limit`]).
+    knee_limits: [f32; 2],
+}
+
 /// Solves both legs from the hips (lowered by `ik.pelvis_drop`) to their
-/// ankles, the knees within their range and speed, into `pose`; returns the
+/// ankles, the knees within their limits and speed, into `pose`; returns the
 /// feet as placed on the ankles the legs really reached (unrolled where a
 /// knee could not bend fast enough, see [`unroll_to_length`]). A `planted`
 /// foot the leg cannot reach is lifted straight up to the leg's reach, never
 /// pulled towards the hip: it stays where it stands, above its floor, and
 /// does not slide.
-#[allow(clippy::too_many_arguments)]
 fn solve_legs(
     ik: &mut FootIK,
     pose: &mut Pose,
     body: &CharacterBody,
-    hips: &[Vec3; 2],
-    feet: &[FootPlacement; 2],
-    planted: [bool; 2],
+    legs: &Legs,
     forward: Vec3,
     dt: f32,
 ) -> [FootPlacement; 2] {
-    let legs = [
+    let Legs {
+        hips,
+        feet,
+        planted,
+        knee_limits,
+    } = *legs;
+    let joints = [
         (
             Joint::HipLeft,
             Joint::KneeLeft,
@@ -423,13 +462,13 @@ fn solve_legs(
     let foot_radius = body.bone_radius(super::skeleton::Bone::FootLeft);
     let mut placed = *feet;
     let mut knees = [0.0; 2];
-    for (k, &(hip, knee, ankle, toe)) in legs.iter().enumerate() {
+    for (k, &(hip, knee, ankle, toe)) in joints.iter().enumerate() {
         let hip_at = hips[k] - Vec3::Y * ik.pelvis_drop;
         let pole = hip_at + forward * body.leg_reach();
         let (l1, l2) = (body.thigh, body.shank);
         // The knee's range, then its speed.
         let mut ankle_target =
-            limit_flexion_change(hip_at, feet[k].ankle, 0.0, MAX_KNEE_FLEXION, l1, l2);
+            limit_flexion_change(hip_at, feet[k].ankle, 0.0, knee_limits[k], l1, l2);
         if let (Some(last), true) = (ik.knee_flexion, dt > 0.0) {
             let step = MAX_KNEE_SPEED * dt;
             ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
@@ -444,6 +483,8 @@ fn solve_legs(
         }
         let s = solve_two_bone(hip_at, ankle_target, pole, l1, l2);
         knees[k] = flexion_at_distance(s.end.distance(hip_at), l1, l2);
+        ik.knee_at_cap[k] =
+            !planted[k] && (ik.knee_at_cap[k] || knees[k] >= MAX_KNEE_FLEXION - AT_CAP);
         // The foot follows the ankle the IK really reached.
         placed[k] = foot.moved(s.end - foot.ankle);
         pose.joints[hip as usize] = hip_at;

@@ -56,6 +56,7 @@ mod skeleton;
 mod steering;
 mod step;
 mod support;
+mod swing_knee;
 
 pub use balance::{
     Balance, DEFAULT_LATERAL_DAMPING, DEFAULT_LATERAL_STIFFNESS, DEFAULT_LEAN_STIFFNESS,

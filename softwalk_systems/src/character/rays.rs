@@ -27,6 +27,12 @@ pub struct GroundKey {
     /// True while the foot presses the ground: planted, pushing into its
     /// landing at the end of the swing, or rising out of its print.
     pub pressing: bool,
+    /// The lowest the sole's lowest point may be pushed, metres: the floor
+    /// under a swinging sole (the surface less what the ground gives), or
+    /// the floor a planted foot stands on (see [`SupportKey::floor`]).
+    ///
+    /// [`SupportKey::floor`]: super::support::SupportKey::floor
+    pub floor: f32,
     /// Top of a virtual platform under the foot (set by the vegetation's
     /// platform system): the sole centre stays on or above it.
     pub platform: Option<f32>,
@@ -54,6 +60,7 @@ impl FootRays {
             normal: Vec3::Y,
             hit: false,
             pressing: false,
+            floor: 0.0,
             platform: None,
         };
         let mut rays = FootRays {
@@ -85,14 +92,14 @@ impl FootRays {
         self.body = body_ground(gait, ground, from_y, self.body);
         for k in 0..2 {
             let plan = &gait.feet[k];
-            let (centre, normal, pressing) =
-                self.support[k].advance(plan, &gait.params, body, ground, from_y);
-            let along = sole_direction(plan.heading, normal);
+            let key = self.support[k].advance(plan, &gait.params, body, ground, from_y);
+            let along = sole_direction(plan.heading, key.normal);
             self.feet[k] = GroundKey {
-                point: centre + along * plan.contact_along,
-                normal,
+                point: key.centre + along * plan.contact_along,
+                normal: key.normal,
                 hit: self.support[k].hit,
-                pressing,
+                pressing: key.pressing,
+                floor: key.floor,
                 platform: None,
             };
         }
@@ -114,6 +121,7 @@ fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -
             normal: cross.normal,
             hit: true,
             pressing: false,
+            floor: cross.typical_floor,
             platform: None,
         },
         None => GroundKey {

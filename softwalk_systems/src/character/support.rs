@@ -112,10 +112,6 @@ impl FootSupport {
 
     /// Advances the support for `plan` under `params` (the swing lift, the
     /// swing's duration) for a foot of `body`, casting rays from `from_y`.
-    /// Returns the ground point under the sole centre that the swing's lift
-    /// is measured from, its normal, and whether the foot presses the ground
-    /// (planted, pushing in at the end of its swing, or still rising out of
-    /// its print).
     pub fn advance(
         &mut self,
         plan: &FootPlan,
@@ -123,12 +119,13 @@ impl FootSupport {
         body: &CharacterBody,
         ground: &dyn Ground,
         from_y: f32,
-    ) -> (Vec3, Vec3, bool) {
+    ) -> SupportKey {
         let cast = |at: Vec2| ground.cast_down(at.x, at.y, from_y);
         if plan.phase == FootPhase::Stance {
             // The landing was aimed (and locked) during the swing.
             self.planted = true;
-            return (self.landing.floor(), self.landing.normal, true);
+            let floor = self.landing.floor();
+            return SupportKey::pressing(floor, self.landing.normal);
         }
         if self.planted {
             self.left = SupportPoint {
@@ -155,21 +152,26 @@ impl FootSupport {
         let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
         if u > pushing_from {
             let pushed = (u - pushing_from) / (1.0 - pushing_from);
-            return (
-                at(self.landing.point.y - self.landing.give * pushed),
-                normal,
-                true,
-            );
+            let centre = at(self.landing.point.y - self.landing.give * pushed);
+            return SupportKey {
+                floor: centre.y.min(self.landing.floor().y),
+                ..SupportKey::pressing(centre, normal)
+            };
         }
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
         // Ground rising above the path between the two footholds, under any
         // part of the sole, lifts the foot.
-        let height =
-            lowest_clear_centre(&cast, plan, body, normal).map_or(height, |h| height.max(h));
+        let clear = lowest_clear_centre(&cast, plan, body, normal);
+        let height = clear.map_or(height, |c| height.max(c.surface));
         // Until the sole is out of its print, the print stays held: its walls
         // do not slump onto the rising foot.
         let in_print = self.left.give > 0.0 && u < 0.5 && height < self.left_rim;
-        (at(height), normal, in_print)
+        SupportKey {
+            centre: at(height),
+            normal,
+            pressing: in_print,
+            floor: clear.map_or(f32::MIN, |c| c.floor.min(height)),
+        }
     }
 
     /// Aims the landing at `plan`'s foothold: the surface under the sole
@@ -230,23 +232,73 @@ impl FootSupport {
     }
 }
 
-/// The lowest height of the centre of a flat sole at `plan`'s target,
+/// What one foot's support gives its ground key this step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SupportKey {
+    /// The ground point under the sole centre that the swing's lift is
+    /// measured from.
+    pub centre: Vec3,
+    /// Its unit normal.
+    pub normal: Vec3,
+    /// Whether the foot presses the ground: planted, pushing in at the end
+    /// of its swing, or still rising out of its print.
+    pub pressing: bool,
+    /// The lowest the sole's lowest point may go, metres: the floor of the
+    /// ground under it (its surface less what it gives), never above
+    /// `centre`; `f32::MIN` where no ray found ground.
+    pub floor: f32,
+}
+
+impl SupportKey {
+    /// A foot pressing the ground at `centre`, on its floor.
+    fn pressing(centre: Vec3, normal: Vec3) -> Self {
+        SupportKey {
+            centre,
+            normal,
+            pressing: true,
+            floor: centre.y,
+        }
+    }
+}
+
+/// Heights of the centre of a flat sole at which its heel, centre and toe
+/// are all on or above the ground under them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ClearCentre {
+    /// Above the surface.
+    surface: f32,
+    /// Above the floor: the surface less what the ground gives there.
+    floor: f32,
+}
+
+/// The lowest heights of the centre of a flat sole at `plan`'s target,
 /// facing its heading and lying in the plane of `normal`, at which its
-/// heel, centre and toe are all on or above the surface under them; `None`
-/// when every ray misses. A sole centred over an old print can still have
-/// its heel or toe over the fresh ground beside it.
+/// heel, centre and toe are all on or above the surface, and the floor,
+/// under them; `None` when every ray misses. A sole centred over an old
+/// print can still have its heel or toe over the fresh ground beside it.
 fn lowest_clear_centre(
     cast: &dyn Fn(Vec2) -> Option<GroundHit>,
     plan: &FootPlan,
     body: &CharacterBody,
     normal: Vec3,
-) -> Option<f32> {
+) -> Option<ClearCentre> {
     let half = plan.heading * (0.5 * body.foot_length);
     let rise = |offset: Vec2| -(normal.x * offset.x + normal.z * offset.y) / normal.y.max(1e-3);
     [-half, Vec2::ZERO, half]
         .into_iter()
-        .filter_map(|offset| cast(plan.target + offset).map(|hit| hit.point.y - rise(offset)))
-        .reduce(f32::max)
+        .filter_map(|offset| {
+            cast(plan.target + offset).map(|hit| {
+                let surface = hit.point.y - rise(offset);
+                ClearCentre {
+                    surface,
+                    floor: surface - hit.give.max(0.0),
+                }
+            })
+        })
+        .reduce(|a, b| ClearCentre {
+            surface: a.surface.max(b.surface),
+            floor: a.floor.max(b.floor),
+        })
 }
 
 /// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
@@ -323,7 +375,9 @@ mod tests {
         // An old print 0.3 m deep under the centre and the toe; fresh
         // snow at 0 behind x = -0.1, under the heel.
         let print = |p: Vec2| hit_at(p, if p.x > -0.1 { -0.3 } else { 0.0 });
-        let centre = lowest_clear_centre(&print, &plan, &body, Vec3::Y).unwrap();
+        let centre = lowest_clear_centre(&print, &plan, &body, Vec3::Y)
+            .unwrap()
+            .surface;
         assert!(
             centre.abs() < 1e-6,
             "the flat sole clears the heel's snow: {centre}"
@@ -333,7 +387,9 @@ mod tests {
         let slope = 20f32.to_radians().tan();
         let normal = Vec3::new(slope, 1.0, 0.0).normalize();
         let plane = |p: Vec2| hit_at(p, -slope * p.x);
-        let centre = lowest_clear_centre(&plane, &plan, &body, normal).unwrap();
+        let centre = lowest_clear_centre(&plane, &plan, &body, normal)
+            .unwrap()
+            .surface;
         assert!(centre.abs() < 1e-5, "down 20°: {centre}");
         assert!(lowest_clear_centre(&|_| None, &plan, &body, Vec3::Y).is_none());
     }
