@@ -47,10 +47,10 @@ pub struct FootIK {
     /// Knee flexion of each leg last step, radians: it changes by at most
     /// [`MAX_KNEE_SPEED`].
     pub knee_flexion: Option<[f32; 2]>,
-    /// Whether each swinging knee has reached [`MAX_KNEE_FLEXION`] in this
-    /// swing: from then on it is bound to straighten in time for the
-    /// landing (see [`knee_limit`]). Cleared while the foot is planted.
-    pub knee_at_cap: [bool; 2],
+    /// Whether each swinging foot has ploughed in this swing (see
+    /// [`ploughs`]): from then on its knee is bound to straighten in time
+    /// for the landing (see [`knee_limit`]). Cleared while the foot is planted.
+    pub ploughed: [bool; 2],
 }
 
 impl Default for FootIK {
@@ -64,7 +64,7 @@ impl Default for FootIK {
             last_ankles: [Vec3::ZERO; 2],
             flat_heights: None,
             knee_flexion: None,
-            knee_at_cap: [false; 2],
+            ploughed: [false; 2],
         }
     }
 }
@@ -92,8 +92,6 @@ const MAX_PELVIS_RAISE: f32 = 0.12;
 /// The most a knee bends while walking, radians (about 117°: high stepping
 /// out of deep snow reaches 100–110°).
 pub const MAX_KNEE_FLEXION: f32 = 2.05;
-/// How close to [`MAX_KNEE_FLEXION`] a knee counts as at its cap, radians.
-const AT_CAP: f32 = 1.0e-3;
 /// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
 /// peaks at about 400–450°/s).
 pub const MAX_KNEE_SPEED: f32 = 9.5;
@@ -294,7 +292,7 @@ pub fn foot_ik_stage(
     pelvis.y -= ik.pelvis_drop;
     let planted = gait.feet.map(|f| f.phase == FootPhase::Stance);
     let knee_limits = [0, 1].map(|k| {
-        if !ik.knee_at_cap[k] {
+        if !ik.ploughed[k] {
             return MAX_KNEE_FLEXION;
         }
         let hip = hips[k] - Vec3::Y * ik.pelvis_drop;
@@ -314,6 +312,7 @@ pub fn foot_ik_stage(
     pose.forward = forward;
     pose.right = right;
     let ploughing = [0, 1].map(|k| !planted[k] && ploughs(&feet[k], &placed[k]));
+    ik.ploughed = [0, 1].map(|k| !planted[k] && (ik.ploughed[k] || ploughing[k]));
     foot_states(ik, pose, gait, rays, &placed, ploughing, dt)
 }
 
@@ -483,8 +482,6 @@ fn solve_legs(
         }
         let s = solve_two_bone(hip_at, ankle_target, pole, l1, l2);
         knees[k] = flexion_at_distance(s.end.distance(hip_at), l1, l2);
-        ik.knee_at_cap[k] =
-            !planted[k] && (ik.knee_at_cap[k] || knees[k] >= MAX_KNEE_FLEXION - AT_CAP);
         // The foot follows the ankle the IK really reached.
         placed[k] = foot.moved(s.end - foot.ankle);
         pose.joints[hip as usize] = hip_at;

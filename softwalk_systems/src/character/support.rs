@@ -27,6 +27,8 @@ pub const RIM_CLEARANCE: f32 = 0.02;
 /// Fraction of the swing over which a foot rises out of a print (and, at
 /// the end, comes down into a lower landing).
 const STEP_OUT_TIME: f32 = 0.3;
+/// Fraction of the swing after which the landing is no longer re-aimed.
+const AIMED_UNTIL: f32 = 0.5;
 /// Give of a landing (metres) from which a foot pushes into it for the
 /// ground's whole [`SINK_TIME_S`]; a landing that gives less takes less.
 pub const FULL_PUSH_GIVE: f32 = 0.02;
@@ -138,9 +140,11 @@ impl FootSupport {
         let swing_time = params.cycle_time() * (1.0 - params.duty);
         let u = plan.swing.clamp(0.0, 1.0);
         let pushing_from = 1.0 - self.push_time() / swing_time.max(f32::EPSILON);
-        // The landing is aimed until the foot starts pushing into it; from
-        // then on it is carved, and must not be read back.
-        if u <= pushing_from {
+        // The landing is aimed until mid-swing, or until the foot starts
+        // pushing into it if sooner; from then on it may be carved (by the
+        // landing, or by the foot ploughing towards it), and must not be
+        // read back as a shallower landing.
+        if u <= pushing_from.min(AIMED_UNTIL) {
             self.aim(plan, body, &cast);
         }
         let normal = self
@@ -392,6 +396,49 @@ mod tests {
             .surface;
         assert!(centre.abs() < 1e-5, "down 20°: {centre}");
         assert!(lowest_clear_centre(&|_| None, &plan, &body, Vec3::Y).is_none());
+    }
+
+    /// Level loose ground: its surface at `top`, giving `give` under a foot.
+    struct Loose {
+        top: f32,
+        give: f32,
+    }
+
+    impl Ground for Loose {
+        fn cast_down(&self, x: f32, z: f32, _from_y: f32) -> Option<GroundHit> {
+            Some(GroundHit {
+                point: Vec3::new(x, self.top, z),
+                normal: Vec3::Y,
+                give: self.give,
+            })
+        }
+    }
+
+    #[test]
+    fn the_landing_is_aimed_until_mid_swing_and_a_swinging_sole_reads_its_floor() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
+        let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::ZERO));
+        let fresh = Loose {
+            top: 0.0,
+            give: 0.3,
+        };
+        let mut plan = swinging_at(Vec2::new(0.5, 0.0));
+        plan.swing = 0.3;
+        let key = s.advance(&plan, &params, &body, &fresh, 2.0);
+        assert!((s.landing.give - 0.3).abs() < 1e-6);
+        assert!((key.floor + 0.3).abs() < 1e-5, "{}", key.floor);
+        assert!(key.floor <= key.centre.y);
+        // Pressed after mid-swing (a foot ploughing towards it): the landing
+        // keeps the fresh ground's surface and give.
+        let pressed = Loose {
+            top: -0.1,
+            give: 0.1,
+        };
+        plan.swing = 0.6;
+        s.advance(&plan, &params, &body, &pressed, 2.0);
+        assert_eq!(s.landing.point.y, 0.0);
+        assert!((s.landing.give - 0.3).abs() < 1e-6);
     }
 
     #[test]

@@ -120,15 +120,10 @@ mod tests {
         assert!(limit > swing_only);
         let reached = lowest_at(&body, hip, ankle, lowest, limit);
         assert!((reached - rigid).abs() < 1e-3, "{reached} vs {rigid}");
-        // A foot aimed below its floor is not held by it.
-        assert_eq!(
-            flexion_over_floor(&body, hip, ankle, lowest, lowest + 0.1).min(flexion_at_distance(
-                ankle.distance(hip),
-                body.thigh,
-                body.shank
-            )),
-            flexion_over_floor(&body, hip, ankle, lowest, lowest + 0.1)
-        );
+        // A foot aimed below its floor is not pulled further down: the
+        // knee may bend at least as far as the aim needs.
+        let aimed = flexion_at_distance(ankle.distance(hip), body.thigh, body.shank);
+        assert!(flexion_over_floor(&body, hip, ankle, lowest, lowest + 0.1) >= aimed);
     }
 
     fn swinging(swing: f32) -> FootPlan {
