@@ -16,6 +16,7 @@ use super::support::sole_direction;
 use super::swing_knee::knee_limit;
 use crate::foot::{FootPhase, FootSole, FootState, Side};
 use crate::ground::rise_along;
+use crate::terrain::SINK_TIME_S;
 
 /// Foot IK state: the pelvis follower, the foot roll added for reach, and
 /// last ankle positions.
@@ -296,8 +297,7 @@ pub fn foot_ik_stage(
             return MAX_KNEE_FLEXION;
         }
         let hip = hips[k] - Vec3::Y * ik.pelvis_drop;
-        let key = &rays.feet[k];
-        let floor = key.floor.max(key.platform.unwrap_or(f32::MIN));
+        let floor = reachable_floor(&rays.feet[k], dt);
         let (ankle, lowest) = (feet[k].ankle, feet[k].lowest.y);
         knee_limit(body, &gait.params, &gait.feet[k], hip, ankle, lowest, floor)
     });
@@ -411,6 +411,18 @@ fn follow_pelvis(
     ground_y - ik.pelvis.follow(ground_y - needed + raise, ground_rate, dt)
 }
 
+/// The lowest a swinging foot on `key` may be pushed this step: into the
+/// ground under its sole no deeper than the ground gives in `dt` (its whole
+/// give over [`SINK_TIME_S`]), as carving presses it; never below its floor,
+/// nor below a platform under it.
+fn reachable_floor(key: &GroundKey, dt: f32) -> f32 {
+    let pressed = (dt / SINK_TIME_S).min(1.0);
+    let floor = key
+        .floor
+        .max(key.surface - (key.surface - key.floor) * pressed);
+    floor.max(key.platform.unwrap_or(f32::MIN))
+}
+
 /// What the legs are solved for this step (left first).
 struct Legs<'a> {
     /// The hips before the pelvis drop.
@@ -468,6 +480,12 @@ fn solve_legs(
         // The knee's range, then its speed.
         let mut ankle_target =
             limit_flexion_change(hip_at, feet[k].ankle, 0.0, knee_limits[k], l1, l2);
+        if !planted[k] && ankle_target != feet[k].ankle {
+            // A swinging foot the knee cannot lift goes straight down where
+            // it is in its swing, onto the ground its floor was read from.
+            let length = ankle_target.distance(hip_at);
+            ankle_target = lift_to_reach(hip_at, feet[k].ankle, length).unwrap_or(ankle_target);
+        }
         if let (Some(last), true) = (ik.knee_flexion, dt > 0.0) {
             let step = MAX_KNEE_SPEED * dt;
             ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
@@ -631,6 +649,31 @@ mod tests {
         ));
         // Higher than aimed (a leg that cannot reach down) is not ploughing.
         assert!(!ploughs(&aimed, &aimed.moved(Vec3::Y * 0.1)));
+    }
+
+    #[test]
+    fn a_ploughing_foot_goes_into_the_ground_as_fast_as_it_gives() {
+        let key = GroundKey {
+            point: Vec3::ZERO,
+            normal: Vec3::Y,
+            hit: true,
+            pressing: false,
+            floor: -0.3,
+            surface: 0.0,
+            platform: None,
+        };
+        // A tenth of the press time: a tenth of the give, at most.
+        let step = reachable_floor(&key, 0.1 * SINK_TIME_S);
+        assert!((step + 0.03).abs() < 1e-6, "{step}");
+        // Never below the floor, however long the step; not at all at dt 0.
+        assert_eq!(reachable_floor(&key, 2.0 * SINK_TIME_S), -0.3);
+        assert_eq!(reachable_floor(&key, 0.0), 0.0);
+        // A platform holds the foot up.
+        let held = GroundKey {
+            platform: Some(0.05),
+            ..key
+        };
+        assert_eq!(reachable_floor(&held, 0.1), 0.05);
     }
 
     #[test]

@@ -33,6 +33,11 @@ pub struct GroundKey {
     ///
     /// [`SupportKey::floor`]: super::support::SupportKey::floor
     pub floor: f32,
+    /// The highest surface under a swinging sole (see
+    /// [`SupportKey::surface`]), or the floor a planted foot stands on.
+    ///
+    /// [`SupportKey::surface`]: super::support::SupportKey::surface
+    pub surface: f32,
     /// Top of a virtual platform under the foot (set by the vegetation's
     /// platform system): the sole centre stays on or above it.
     pub platform: Option<f32>,
@@ -61,6 +66,7 @@ impl FootRays {
             hit: false,
             pressing: false,
             floor: 0.0,
+            surface: 0.0,
             platform: None,
         };
         let mut rays = FootRays {
@@ -100,6 +106,7 @@ impl FootRays {
                 hit: self.support[k].hit,
                 pressing: key.pressing,
                 floor: key.floor,
+                surface: key.surface,
                 platform: None,
             };
         }
@@ -122,6 +129,7 @@ fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -
             hit: true,
             pressing: false,
             floor: cross.typical_floor,
+            surface: cross.typical_floor,
             platform: None,
         },
         None => GroundKey {

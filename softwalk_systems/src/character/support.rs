@@ -175,6 +175,7 @@ impl FootSupport {
             normal,
             pressing: in_print,
             floor: clear.map_or(f32::MIN, |c| c.floor.min(height)),
+            surface: clear.map_or(f32::MIN, |c| c.surface.min(height)),
         }
     }
 
@@ -251,6 +252,11 @@ pub struct SupportKey {
     /// ground under it (its surface less what it gives), never above
     /// `centre`; `f32::MIN` where no ray found ground.
     pub floor: f32,
+    /// The highest surface under the sole's heel, centre and toe, metres
+    /// (the floor where the foot presses its landing; `f32::MIN` where no
+    /// ray found ground): a foot goes below it only as fast as the ground
+    /// gives.
+    pub surface: f32,
 }
 
 impl SupportKey {
@@ -261,6 +267,7 @@ impl SupportKey {
             normal,
             pressing: true,
             floor: centre.y,
+            surface: centre.y,
         }
     }
 }
@@ -429,6 +436,7 @@ mod tests {
         assert!((s.landing.give - 0.3).abs() < 1e-6);
         assert!((key.floor + 0.3).abs() < 1e-5, "{}", key.floor);
         assert!(key.floor <= key.centre.y);
+        assert!(key.surface.abs() < 1e-5, "{}", key.surface);
         // Pressed after mid-swing (a foot ploughing towards it): the landing
         // keeps the fresh ground's surface and give.
         let pressed = Loose {

@@ -12,7 +12,7 @@
 //! deeper than the floor under it: over rigid ground, or a print already
 //! pressed, the knee bends as far as the foot needs.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
 use super::foot_ik::{MAX_KNEE_FLEXION, MAX_KNEE_SPEED, STANDING_LEG};
@@ -42,9 +42,9 @@ pub(super) fn swing_knee_limit(body: &CharacterBody, params: &GaitParams, plan: 
 }
 
 /// The least knee flexion at which a foot whose ankle is aimed at `ankle`
-/// (its lowest point at height `lowest`), moved along the line from `hip`
-/// as a bound on the knee moves it, keeps its lowest point on or above
-/// `floor`, radians; 0 when lowering the foot cannot take it below.
+/// (its lowest point at height `lowest`), lowered straight down as a bound
+/// on the knee lowers it, keeps its lowest point on or above `floor`,
+/// radians; 0 when lowering the foot cannot take it below.
 pub(super) fn flexion_over_floor(
     body: &CharacterBody,
     hip: Vec3,
@@ -52,18 +52,15 @@ pub(super) fn flexion_over_floor(
     lowest: f32,
     floor: f32,
 ) -> f32 {
-    let dir = (ankle - hip).normalize_or_zero();
-    if dir.y >= 0.0 {
-        return 0.0;
-    }
-    // The ankle at distance d from the hip puts the lowest point at
-    // lowest + (hip.y + dir.y * d - ankle.y).
-    let longest = (floor - lowest + ankle.y - hip.y) / dir.y;
+    let across = Vec2::new(ankle.x - hip.x, ankle.z - hip.z).length();
+    // How far below the hip the ankle is with the sole's lowest point on the floor.
+    let below = hip.y - (ankle.y + floor - lowest);
+    let longest = (across * across + below.max(0.0).powi(2)).sqrt();
     let (l1, l2) = (body.thigh, body.shank);
     if longest >= l1 + l2 {
         return 0.0;
     }
-    flexion_at_distance(longest.max(0.0), l1, l2)
+    flexion_at_distance(longest, l1, l2)
 }
 
 /// The most the knee of a foot on `plan` may bend this step: the swing's
@@ -85,17 +82,17 @@ pub(super) fn knee_limit(
 
 #[cfg(test)]
 mod tests {
-    use super::super::ik::distance_at_flexion;
+    use super::super::ik::{distance_at_flexion, lift_to_reach};
     use super::*;
     use crate::character::{CharacterDesc, GaitModifiers};
-    use glam::Vec2;
 
     /// Height of the lowest point of a foot aimed at `ankle` (its lowest
-    /// point at `lowest`) once the knee bends only `flexion`.
+    /// point at `lowest`) lowered straight down until the knee bends only
+    /// `flexion`.
     fn lowest_at(body: &CharacterBody, hip: Vec3, ankle: Vec3, lowest: f32, flexion: f32) -> f32 {
         let d = distance_at_flexion(flexion, body.thigh, body.shank);
-        let dir = (ankle - hip).normalize();
-        lowest + (hip.y + dir.y * d - ankle.y)
+        let lowered = lift_to_reach(hip, ankle, d).unwrap();
+        lowest + (lowered.y - ankle.y)
     }
 
     #[test]
