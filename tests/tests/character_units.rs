@@ -225,7 +225,7 @@ fn a_raised_key_under_a_swing_foot_lifts_it_and_bends_the_knee_more() {
             &mut c.pose,
             &c.body,
             &c.gait,
-            &c.rays,
+            &mut c.rays,
             &c.proxy,
             DT,
         );

@@ -262,13 +262,15 @@ fn unroll_to_length(
 /// Each foot rolls as the gait schedules it (heel strike about the heel,
 /// heel rise about the toe), and further where a leg cannot reach its foot;
 /// the pelvis follows the height the legs need at a bounded speed
-/// ([`PelvisFollower`]); the knees stay within their range and speed.
+/// ([`PelvisFollower`]); the knees stay within their range and speed. A
+/// swinging foot that ploughs holds its landing in `rays` (see
+/// [`super::FootSupport::landing_held`]).
 pub fn foot_ik_stage(
     ik: &mut FootIK,
     pose: &mut Pose,
     body: &CharacterBody,
     gait: &Gait,
-    rays: &FootRays,
+    rays: &mut FootRays,
     proxy: &RigidProxy,
     dt: f32,
 ) -> [FootState; 2] {
@@ -313,6 +315,9 @@ pub fn foot_ik_stage(
     pose.right = right;
     let ploughing = [0, 1].map(|k| !planted[k] && ploughs(&feet[k], &placed[k]));
     ik.ploughed = [0, 1].map(|k| !planted[k] && (ik.ploughed[k] || ploughing[k]));
+    for (support, &ploughed) in rays.support.iter_mut().zip(&ik.ploughed) {
+        support.landing_held |= ploughed;
+    }
     foot_states(ik, pose, gait, rays, &placed, ploughing, dt)
 }
 

@@ -53,11 +53,11 @@ impl Character {
         let balance = Balance::new(desc.alpha, desc.beta)?;
         let modifiers = GaitModifiers::default();
         let gait = Gait::new(&body, path, &modifiers);
-        let rays = FootRays::new(&gait, &body, ground);
+        let mut rays = FootRays::new(&gait, &body, ground);
         let proxy = RigidProxy::new(&body);
         let mut ik = FootIK::default();
         let mut pose = Pose::rest(&body, Vec3::ZERO);
-        let feet = foot_ik_stage(&mut ik, &mut pose, &body, &gait, &rays, &proxy, 0.0);
+        let feet = foot_ik_stage(&mut ik, &mut pose, &body, &gait, &mut rays, &proxy, 0.0);
         let metrics = CharacterMetrics::capture(&body, &pose, &proxy, &ik, &feet);
         Ok(Character {
             body,
@@ -89,7 +89,7 @@ pub fn step_character(character: &mut Character, path: &WalkPath, ground: &dyn G
         &mut c.pose,
         &c.body,
         &c.gait,
-        &c.rays,
+        &mut c.rays,
         &c.proxy,
         dt,
     );

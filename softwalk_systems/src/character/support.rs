@@ -27,8 +27,6 @@ pub const RIM_CLEARANCE: f32 = 0.02;
 /// Fraction of the swing over which a foot rises out of a print (and, at
 /// the end, comes down into a lower landing).
 const STEP_OUT_TIME: f32 = 0.3;
-/// Fraction of the swing after which the landing is no longer re-aimed.
-const AIMED_UNTIL: f32 = 0.5;
 /// Give of a landing (metres) from which a foot pushes into it for the
 /// ground's whole [`SINK_TIME_S`]; a landing that gives less takes less.
 pub const FULL_PUSH_GIVE: f32 = 0.02;
@@ -98,6 +96,10 @@ pub struct FootSupport {
     pub planted: bool,
     /// False when the last ray for this foot found nothing.
     pub hit: bool,
+    /// True once the swinging foot has ploughed towards its landing (set by
+    /// the foot IK): the landing is no longer re-aimed, so the ground the
+    /// foot pressed on its way is not read back as a shallower landing.
+    pub landing_held: bool,
 }
 
 impl FootSupport {
@@ -109,6 +111,7 @@ impl FootSupport {
             left_rim: point.point.y,
             planted: true,
             hit: true,
+            landing_held: false,
         }
     }
 
@@ -126,6 +129,7 @@ impl FootSupport {
         if plan.phase == FootPhase::Stance {
             // The landing was aimed (and locked) during the swing.
             self.planted = true;
+            self.landing_held = false;
             let floor = self.landing.floor();
             return SupportKey::pressing(floor, self.landing.normal);
         }
@@ -140,11 +144,10 @@ impl FootSupport {
         let swing_time = params.cycle_time() * (1.0 - params.duty);
         let u = plan.swing.clamp(0.0, 1.0);
         let pushing_from = 1.0 - self.push_time() / swing_time.max(f32::EPSILON);
-        // The landing is aimed until mid-swing, or until the foot starts
-        // pushing into it if sooner; from then on it may be carved (by the
-        // landing, or by the foot ploughing towards it), and must not be
-        // read back as a shallower landing.
-        if u <= pushing_from.min(AIMED_UNTIL) {
+        // The landing is aimed until the foot starts pushing into it, or
+        // ploughs towards it; from then on it is carved, and must not be
+        // read back.
+        if u <= pushing_from && !self.landing_held {
             self.aim(plan, body, &cast);
         }
         let normal = self
@@ -422,7 +425,7 @@ mod tests {
     }
 
     #[test]
-    fn the_landing_is_aimed_until_mid_swing_and_a_swinging_sole_reads_its_floor() {
+    fn a_held_landing_is_not_re_aimed_and_a_swinging_sole_reads_its_floor() {
         let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
         let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
         let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::ZERO));
@@ -437,16 +440,24 @@ mod tests {
         assert!((key.floor + 0.3).abs() < 1e-5, "{}", key.floor);
         assert!(key.floor <= key.centre.y);
         assert!(key.surface.abs() < 1e-5, "{}", key.surface);
-        // Pressed after mid-swing (a foot ploughing towards it): the landing
-        // keeps the fresh ground's surface and give.
+        // Pressed by other feet: re-aimed.
         let pressed = Loose {
             top: -0.1,
             give: 0.1,
         };
-        plan.swing = 0.6;
+        plan.swing = 0.4;
         s.advance(&plan, &params, &body, &pressed, 2.0);
-        assert_eq!(s.landing.point.y, 0.0);
-        assert!((s.landing.give - 0.3).abs() < 1e-6);
+        assert!((s.landing.point.y + 0.1).abs() < 1e-6);
+        // Pressed by the foot ploughing towards it: the landing is held.
+        s.landing_held = true;
+        plan.swing = 0.5;
+        s.advance(&plan, &params, &body, &fresh, 2.0);
+        assert!((s.landing.point.y + 0.1).abs() < 1e-6);
+        assert!((s.landing.give - 0.1).abs() < 1e-6);
+        // Planted, the next swing aims again.
+        plan.phase = FootPhase::Stance;
+        s.advance(&plan, &params, &body, &fresh, 2.0);
+        assert!(!s.landing_held);
     }
 
     #[test]

@@ -158,7 +158,8 @@ pub fn balance_system(world: &mut World) {
         });
 }
 
-/// System `foot_ik`: legs to the keys, pelvis drop, tilt; writes [`Feet`].
+/// System `foot_ik`: legs to the keys, pelvis drop, tilt; writes [`Feet`]
+/// (and holds the landing of a foot that ploughs, in [`FootRays`]).
 pub fn foot_ik_system(world: &mut World) {
     let dt = step_dt(world);
     world
@@ -167,7 +168,7 @@ pub fn foot_ik_system(world: &mut World) {
             &mut Pose,
             &CharacterBody,
             &Gait,
-            &FootRays,
+            &mut FootRays,
             &RigidProxy,
             &mut Feet,
         )>()
