@@ -31,6 +31,8 @@ const MIDSTANCE_LEG: f32 = 0.995;
 /// shortens them by about a fifth, a 20° one by about a third), as
 /// people's do.
 const DOWNHILL_STEP_SHORTENING: f32 = 1.5;
+/// How far the duty of a walk at rest stays past its later foot's phase.
+const PLANTED_MARGIN: f32 = 1.0e-4;
 /// Time over which the feet roll flat once the walk has stopped, seconds.
 const STOP_SETTLE_TIME: f32 = 0.25;
 /// Stride factor while walking backward: people step back in short steps.
@@ -409,6 +411,14 @@ impl Gait {
         (p.position + right * (sign * body.hip_half_width), p.heading)
     }
 
+    /// Raises the duty, where the ground has shortened it, to just past the
+    /// later foot's phase: a walk at rest has both feet planted, and the
+    /// ground settling under them must not put one in a swing.
+    fn keep_feet_planted(&mut self) {
+        let latest = self.local_phase(0).max(self.local_phase(1));
+        self.params.duty = self.params.duty.max(latest + PLANTED_MARGIN);
+    }
+
     /// Sets each foot's phase, target and lift from the cycle phase, planning
     /// a new foothold at lift-off.
     fn update_feet(&mut self, body: &CharacterBody, path: &WalkPath) {
@@ -521,6 +531,9 @@ pub fn gait_stage(
 ) {
     let dt = clamp_dt(dt);
     gait.params = walk_params(body, path, modifiers);
+    if gait.stopped {
+        gait.keep_feet_planted();
+    }
     if gait.backward != path.is_backward() {
         gait.backward = path.is_backward();
         gait.phase = (gait.params.duty - gait.phase).rem_euclid(1.0);
@@ -541,6 +554,7 @@ pub fn gait_stage(
     }
     let finishing = path.is_finished(gait.distance);
     if finishing && gait.double_support() {
+        gait.keep_feet_planted();
         gait.stopped = true;
         gait.velocity = Vec2::ZERO;
         return;
@@ -606,6 +620,17 @@ mod tests {
         assert!(gait.double_support());
         for f in &gait.feet {
             assert!((f.target.y - 3.0).abs() < 0.5 * gait.params.stride);
+        }
+        // The ground shortening the duty at rest (a quicker walk) leaves
+        // both feet planted.
+        let quicker = GaitModifiers {
+            speed_scale: 1.8,
+            ..mods
+        };
+        assert!(GaitParams::new(&body, &quicker).duty < gait.params.duty);
+        for _ in 0..60 {
+            gait_stage(&mut gait, &body, &path, &quicker, 1.0 / 60.0);
+            assert!(gait.stopped && gait.double_support());
         }
     }
 }
