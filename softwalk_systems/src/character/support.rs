@@ -325,7 +325,7 @@ pub(crate) fn sole_direction(heading: Vec2, normal: Vec3) -> Vec3 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     fn support(left_floor: f32, left_rim: f32, landing: f32) -> FootSupport {
@@ -356,7 +356,7 @@ mod tests {
     }
 
     /// A swinging plan at `target` (x, z) facing +X.
-    fn swinging_at(target: Vec2) -> FootPlan {
+    pub(in crate::character) fn swinging_at(target: Vec2) -> FootPlan {
         FootPlan {
             side: crate::foot::Side::Left,
             phase: FootPhase::SwingDown,

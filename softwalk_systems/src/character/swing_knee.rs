@@ -83,6 +83,7 @@ pub(super) fn knee_limit(
 #[cfg(test)]
 mod tests {
     use super::super::ik::{distance_at_flexion, lift_to_reach};
+    use super::super::support::tests::swinging_at;
     use super::*;
     use crate::character::{CharacterDesc, GaitModifiers};
 
@@ -123,25 +124,16 @@ mod tests {
         assert!(flexion_over_floor(&body, hip, ankle, lowest, lowest + 0.1) >= aimed);
     }
 
+    /// A plan `swing` of the way through its swing.
     fn swinging(swing: f32) -> FootPlan {
         FootPlan {
-            side: crate::foot::Side::Left,
             phase: if swing < 0.5 {
                 FootPhase::SwingUp
             } else {
                 FootPhase::SwingDown
             },
-            from: Vec2::ZERO,
-            foothold: Vec2::X,
             swing,
-            target: Vec2::ZERO,
-            lift: 0.0,
-            pitch: 0.0,
-            from_heading: Vec2::X,
-            foothold_heading: Vec2::X,
-            heading: Vec2::X,
-            contact_along: 0.0,
-            contact: Vec2::ZERO,
+            ..swinging_at(Vec2::ZERO)
         }
     }
 
