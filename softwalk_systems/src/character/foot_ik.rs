@@ -13,7 +13,7 @@ use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
 use super::support::sole_direction;
-use super::swing_knee::knee_limit;
+use super::swing_knee::{MAX_KNEE_FLEXION, MAX_KNEE_SPEED, STANDING_LEG, knee_limit};
 use crate::foot::{FootPhase, FootSole, FootState, Side};
 use crate::ground::rise_along;
 use crate::terrain::SINK_TIME_S;
@@ -84,18 +84,9 @@ const MAX_PITCH_RATE: f32 = 6.0;
 /// Fastest change of a planted foot's extra pitch, rad/s: its toe or heel
 /// comes down onto ground that gives no faster than the ground is pressed.
 const MAX_PLANTED_PITCH_RATE: f32 = 3.0;
-/// Length of a planted leg (hip to ankle, a fraction of its reach) past
-/// which the pelvis rises to straighten it: a knee bent about 20°.
-pub(super) const STANDING_LEG: f32 = 0.985;
 /// The most the pelvis rises above its walking height for bent planted legs,
 /// a fraction of the leg reach.
 const MAX_PELVIS_RAISE: f32 = 0.12;
-/// The most a knee bends while walking, radians (about 117°: high stepping
-/// out of deep snow reaches 100–110°).
-pub const MAX_KNEE_FLEXION: f32 = 2.05;
-/// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
-/// peaks at about 400–450°/s).
-pub const MAX_KNEE_SPEED: f32 = 9.5;
 /// Fastest a foot's target falls, m/s.
 pub const MAX_FOOT_FALL_SPEED: f32 = 3.0;
 /// How far below where its swing aims it a foot the leg cannot lift

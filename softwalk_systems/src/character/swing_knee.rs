@@ -1,25 +1,32 @@
-//! How far a swinging knee may bend: no further than it can straighten
-//! again before its foot lands.
+//! How far a knee may bend and how fast it turns; a swinging knee no
+//! further than it can straighten again before its foot lands.
 //!
 //! Over deep loose ground a short leg's swing knee reaches its range's end
 //! trying to lift the foot over the surface. Held there, it is still
 //! straightening at its top speed when the foot lands, and the stance
-//! starts deeply bent. With this bound the knee starts straightening in
-//! time, once its knee has reached the end of its range in this swing (a
-//! leg that lifts its foot clear is left its own swing): the foot the leg
-//! can no longer lift ploughs through the loose
-//! layer instead, and lands under a nearly straight leg. It ploughs no
-//! deeper than the floor under it: over rigid ground, or a print already
-//! pressed, the knee bends as far as the foot needs.
+//! starts deeply bent. Once the foot ploughs (the leg cannot lift it where
+//! the swing aims it), the knee is bound to straighten in time: the foot
+//! goes through the loose layer instead, and lands under a nearly straight
+//! leg. A leg that lifts its foot clear keeps its own swing. The foot
+//! ploughs no deeper than the floor under it: over rigid ground, or a print
+//! already pressed, the knee bends as far as the foot needs.
 
 use glam::{Vec2, Vec3};
 
 use super::body::CharacterBody;
-use super::foot_ik::{MAX_KNEE_FLEXION, MAX_KNEE_SPEED, STANDING_LEG};
 use super::gait::{FootPlan, GaitParams};
 use super::ik::flexion_at_distance;
 use crate::foot::FootPhase;
 
+/// Length of a planted leg (hip to ankle, a fraction of its reach) past
+/// which the pelvis rises to straighten it: a knee bent about 20°.
+pub(super) const STANDING_LEG: f32 = 0.985;
+/// The most a knee bends while walking, radians (about 117°: high stepping
+/// out of deep snow reaches 100–110°).
+pub const MAX_KNEE_FLEXION: f32 = 2.05;
+/// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
+/// peaks at about 400–450°/s).
+pub const MAX_KNEE_SPEED: f32 = 9.5;
 /// Speed at which the bound falls towards the landing, as a fraction of
 /// [`MAX_KNEE_SPEED`]: the rest is slack for the knee to follow the bound
 /// while its foot is also coming down.
