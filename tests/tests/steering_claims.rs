@@ -12,7 +12,7 @@ use softwalk_app::paper::recorded_run::{RecordedRun, record_run_with_inputs};
 use softwalk_app::scene::Scene;
 use softwalk_systems::character::{
     Character, CharacterBody, CharacterDesc, GaitModifiers, GaitParams, Joint, MAX_BACKWARD_ASLANT,
-    Steering, SteeringSettings, WalkPath, braking, steer_stage, step_character,
+    Steering, SteeringSettings, WalkPath, braking, cadence_hold, steer_stage, step_character,
 };
 use softwalk_systems::ground::FlatGround;
 use softwalk_systems::sim::WalkerMetrics;
@@ -55,6 +55,7 @@ impl Steered {
                 let scale = steer_stage(&mut self.steering, &c.gait, &c.body, &mut self.path, DT);
                 c.modifiers.speed_scale = scale;
                 c.modifiers.braking = braking(&self.steering, &c.gait, &self.path);
+                c.modifiers.cadence_hold = cadence_hold(&self.steering, &c.gait);
                 step_character(c, &self.path, &self.ground, DT);
                 let m = &c.metrics;
                 [0, 1].map(|k| (m.contact[k], [m.soles[k].heel, m.soles[k].toe]))
