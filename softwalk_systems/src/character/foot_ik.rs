@@ -291,7 +291,8 @@ pub fn foot_ik_stage(
 
 /// Places each foot on its key with the scheduled roll, plus the roll a
 /// leg needs to reach its foot before the pelvis drops: more heel lift
-/// behind the hip, more toe lift ahead of it. A planted foot only rolls
+/// behind the hip, more toe lift ahead of it; a walker standing still puts
+/// its feet flat and lowers its pelvis instead. A planted foot only rolls
 /// further about the point its scheduled roll already stands on (where its
 /// ray was cast), so a flat planted foot does not rock. Records the targets
 /// in `ik`.
@@ -315,7 +316,9 @@ fn place_feet(
         flat_heights[k] = frame.centre.y;
         let trailing = (frame.centre - hips[k]).dot(forward) < 0.0;
         let swinging = plan.phase != FootPhase::Stance;
-        let pitch = if trailing && (swinging || plan.contact_along > 0.0) {
+        let pitch = if gait.stopped {
+            plan.pitch
+        } else if trailing && (swinging || plan.contact_along > 0.0) {
             let from = plan.pitch.min(0.0);
             frame.pitch_to_reach(body, hips[k], reach, from, -MAX_HEEL_LIFT.max(-from))
         } else if !trailing && (swinging || plan.contact_along < 0.0) {
