@@ -474,9 +474,11 @@ impl Gait {
     /// swing that far along would swing it backward first.
     fn shorten_rising_swings(&mut self, body: &CharacterBody, path: &WalkPath) {
         let travel = self.travel_heading();
+        let left = path.end_distance() - self.distance;
         for k in 0..2 {
             let plan = &self.feet[k];
-            if plan.phase != FootPhase::SwingUp {
+            let ahead = (plan.foothold - self.pelvis.position).dot(travel);
+            if plan.phase != FootPhase::SwingUp || ahead <= left + 1.0e-4 {
                 continue;
             }
             let (end, end_heading) = self.foothold_at(body, path, k, f32::INFINITY);
