@@ -15,10 +15,13 @@
 //!   slower (`backward_speed_factor`, at most `backward_top_speed`) and in
 //!   the gait's short backward steps;
 //! - a speed below `stop_speed` brakes: a stop is placed where the walker
-//!   can come to rest ([`stop_distance`]: from its speed and the step it
-//!   is in) and the walking speed falls from the first step, at a constant
-//!   deceleration, to the stop (a [`Brake`]); the gait halts there with
-//!   both feet planted, and starts again on the next desired velocity.
+//!   comes to rest as its closing foot lands ([`stop_distance`]: from its
+//!   speed and the time until that landing, [`closing_time`]) and the
+//!   walking speed falls from the first step, at a constant deceleration,
+//!   to the stop (a [`Brake`]), while the walk keeps its cadence
+//!   ([`cadence_hold`]): the steps shorten, the step being taken ends, and
+//!   the closing step lands beside it; the gait halts there with both feet
+//!   flat, and starts again on the next desired velocity.
 //!
 //! Switching between walking forward and backward goes through a stop:
 //! the walker halts, its feet roll flat, and then it walks the other way.
