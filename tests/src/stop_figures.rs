@@ -6,6 +6,7 @@
 use std::fmt;
 
 use glam::{Vec2, Vec3};
+use softwalk_app::paper::gait_figures::within;
 use softwalk_app::paper::gait_quality::{
     KNEE_MAX_GOAL_DEG, KNEE_STEP_GOAL_DEG, PELVIS_STEP_GOAL_CM, SOLE_BELOW_GOAL_CM, deepest_sole,
 };
@@ -148,7 +149,7 @@ impl StopFigures {
     pub fn failures(&self) -> Vec<String> {
         let mut out = Vec::new();
         let mut check = |figure: &str, value: f32, limit: f32, unit: &str| {
-            if !(value <= limit) {
+            if !within(value, limit) {
                 out.push(format!(
                     "{figure} {value:.2} {unit} (goal ≤ {limit} {unit})"
                 ));
