@@ -13,7 +13,9 @@ use softwalk_app::paper::recorded_run::record_run_with_inputs;
 use softwalk_app::paper::variants::{builtin, checked, with_material, with_slope};
 use softwalk_app::scene::Scene;
 use softwalk_systems::character::{CharacterBody, CharacterDesc, GaitModifiers, GaitParams};
-use softwalk_tests::stop_figures::{FLAT_AFTER_GOAL_S, FLAT_FIGURE, StopFigures};
+use softwalk_tests::stop_figures::{
+    FLAT_AFTER_GOAL_S, FLAT_FIGURE, SLIDE_GOAL_M, StopFigures, sole_samples, worst_slide,
+};
 
 /// The probe whose closing foot is not held to [`FLAT_FIGURE`], a known
 /// limit: in snow the closing step is short (slow, short steps), so the
@@ -152,4 +154,37 @@ fn every_probed_stop_closes_flat_and_meets_the_gait_goals() {
         .fold(0.0f32, f32::max);
     println!("slowest to both feet flat: {slowest:.2} s (goal ≤ {FLAT_AFTER_GOAL_S} s)");
     assert!(failed.is_empty(), "{failed:#?}");
+}
+
+#[test]
+fn a_standing_walker_keeps_both_feet_planted_when_the_ground_is_repainted() {
+    // Snow painted under the closing step, then mud once at rest: slower
+    // materials, whose walk has another stance fraction.
+    let text = "character = \"walker\"\n\
+                [[event]]\nstep = 0\nvelocity = [1.2, 0.0]\n\
+                [[event]]\nstep = 150\nvelocity = [0.0, 0.0]\n\
+                [[event]]\nstep = 190\nbrush = \"snow\"\n\
+                [[event]]\nstep = 240\nbrush = \"mud\"\n";
+    let inputs = InputScript::parse(text, Path::new("repaint.toml")).unwrap();
+    let run = record_run_with_inputs(&sand(), 330, Some(&inputs)).unwrap();
+    let walked = &run.walkers[0];
+    let at_rest = |m: &softwalk_systems::sim::WalkerMetrics| {
+        m.velocity.length() == 0.0 && m.character.contact == [true, true]
+    };
+    let rest = (STOP_AT..walked.len())
+        .find(|&s| at_rest(&walked[s]))
+        .unwrap();
+    let lifted: Vec<usize> = (rest..walked.len())
+        .filter(|&s| walked[s].character.contact != [true, true])
+        .collect();
+    let slide = worst_slide(&sole_samples(&walked[rest..]));
+    println!(
+        "repainted under a standing walker: at rest from step {rest}, a foot off the ground \
+         in {} steps, slide {:.2} cm",
+        lifted.len(),
+        100.0 * slide
+    );
+    assert!(rest < 240, "not at rest before the mud: {rest}");
+    assert!(lifted.is_empty(), "a foot lifted at steps {lifted:?}");
+    assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");
 }
