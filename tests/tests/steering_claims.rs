@@ -118,9 +118,11 @@ fn tight_curves_start_and_stop_keep_planted_feet_still() {
 
 /// Steps of the backward walk on sand (8 s at 60 Hz).
 const BACK_STEPS: u64 = 480;
-/// The steps of the backward walk while stepping back (the wish behind
-/// starts at step 120, the walker stops, then steps back until step 280).
-const STEPPING_BACK: std::ops::Range<usize> = 150..300;
+/// The step at which the wish behind starts: the walker stops (its last
+/// step closing at the walk's cadence), then steps back until step 280.
+const WISH_BEHIND: usize = 120;
+/// The step by which stepping back has ended.
+const STEPPED_BACK: usize = 300;
 
 /// A recorded walk on sand-flat from `tests/inputs/<name>`, `steps` long:
 /// the run, each step's soles against the ground under them, and whether
@@ -152,7 +154,10 @@ fn landings(walked: &[WalkerMetrics]) -> usize {
 fn a_slow_wish_behind_steps_back_on_sand_facing_forward() {
     let (run, samples, facing_forward) = recorded_on_sand("steps_back_sand.toml", BACK_STEPS);
     let walked = &run.walkers[0];
-    let back = &walked[STEPPING_BACK];
+    let first_back = (WISH_BEHIND..STEPPED_BACK)
+        .find(|&s| walked[s].velocity.x < 0.0)
+        .expect("never stepped back");
+    let back = &walked[first_back..STEPPED_BACK];
     let landings = landings(back);
     let moved = back[back.len() - 1].character.com - back[0].character.com;
     let slide = worst_slide(&samples);

@@ -4,7 +4,8 @@
 //! 60, 120 Hz), and however often a foot presses the same spot, nothing goes
 //! below the initial surface minus the material's layer.
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
+use softwalk_systems::foot::FootSole;
 use softwalk_systems::terrain::generate::{self, GridSpec};
 use softwalk_systems::terrain::*;
 use softwalk_tests::steepest_wall_across;
@@ -248,6 +249,53 @@ fn the_carved_volume_is_the_same_at_every_resolution_and_rate() {
                 "{} at {samples} samples, {rate} Hz: {v} vs {reference}",
                 m.name
             );
+        }
+    }
+}
+
+#[test]
+fn a_sole_on_its_prints_floor_reads_that_floor_under_heel_centre_and_toe() {
+    // A flat sole held at the snow's firm floor presses its print down to
+    // it; the surface read under the sole (at the centres of its rounded
+    // heel and toe and at its centre) is that floor, not the print's wall,
+    // wherever the samples fall under the sole: for an adult's and a
+    // child's foot on grids of the reference cell or finer, and within a
+    // centimetre for an adult's foot on cells twice as large (a child's
+    // foot, 5.5 cm wide, is then barely wider than one cell).
+    let snow = TerrainMaterial::snow();
+    let floor = BASE - snow.layer;
+    let (adult, child) = ((0.26, 0.10), (0.152, 0.055));
+    let cases = [
+        (512, adult, 0.001),
+        (512, child, 0.001),
+        (1024, adult, 0.001),
+        (1024, child, 0.001),
+        (256, adult, 0.012),
+    ];
+    for (samples, (length, width), tolerance) in cases {
+        for shift in [0.0, 0.3, 0.5, 0.8] {
+            let mut hf = patch(&snow, samples);
+            let cell = hf.grid().cell_size();
+            let c = CENTER + Vec2::new(shift, 0.7 * shift) * cell;
+            let half = Vec3::X * (0.5 * length);
+            let at = Vec3::new(c.x, floor, c.y);
+            let sole = FootSole {
+                heel: at - half,
+                toe: at + half,
+                width,
+            };
+            let mut print = FootPrint::new();
+            hf.begin_step();
+            carve(&mut hf, &mut print, &sole, true, 1.0 / 60.0).unwrap();
+            let inset = Vec3::X * (0.5 * width);
+            for p in [sole.heel + inset, at, sole.toe - inset] {
+                let read = hf.grid().height_at(p.x, p.z).unwrap();
+                assert!(
+                    read - floor <= tolerance,
+                    "{samples} samples, foot {length} x {width}, shift {shift}: \
+                     {read} over the floor {floor} at {p}"
+                );
+            }
         }
     }
 }

@@ -31,6 +31,13 @@ pub enum AnimError {
         /// The sum found.
         sum: f32,
     },
+    /// A coarse mesh was asked for with a cube size that is not a positive
+    /// finite number of metres.
+    #[error("cluster size {cell} m must be a positive finite number")]
+    ClusterSize {
+        /// The size asked for.
+        cell: f32,
+    },
     /// A value is NaN or infinite.
     #[error("{what} is not finite")]
     NonFinite {

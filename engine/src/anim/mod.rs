@@ -7,7 +7,8 @@
 //!   transforms, inverse bind matrices);
 //! - [`Pose`]: local transforms of every joint, and their global matrices;
 //! - [`Clip`] of [`Channel`]s, each sampled with an [`Interpolation`];
-//! - [`SkinnedMesh`]: positions, normals, triangles, 4 joints and 4 weights per vertex;
+//! - [`SkinnedMesh`]: positions, normals, triangles, 4 joints and 4 weights per vertex,
+//!   and its coarse copy for figures seen from afar ([`SkinnedMesh::clustered`]);
 //! - [`skin`]: linear blend skinning on the CPU, parallel over vertices;
 //! - [`Model`]: what a glTF file holds (skeleton, mesh, clips).
 //!
@@ -32,6 +33,7 @@ mod pose;
 mod retarget;
 mod rig;
 mod skeleton;
+mod skinned_lod;
 mod skinned_mesh;
 mod skinning;
 mod transform;

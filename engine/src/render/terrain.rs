@@ -262,11 +262,9 @@ impl TerrainRenderer {
         }
         let reach = self.reach();
         let sun_dir = lighting.sun.direction;
-        for rect in std::mem::take(&mut self.pending) {
-            self.light.note_heights(grid, &rect);
-            for window in self.light.relight(grid, &rect, sun_dir, reach) {
-                self.flag_patches(&window);
-            }
+        let pending = std::mem::take(&mut self.pending);
+        for window in self.light.relight(grid, &pending, sun_dir, reach) {
+            self.flag_patches(&window);
         }
         let style = self.style;
         let light = &self.light;

@@ -70,28 +70,53 @@ impl TerrainLight {
         self.max_height = self.max_height.max(hi);
     }
 
-    /// Re-lights what a change of heights in `rect` can reach: both terms
-    /// within the sky radius of it, then, away from the sun, the sun
-    /// visibility strip by strip ([`SHADOW_STRIP`] samples of travel each)
-    /// until a strip outside that radius keeps every value, or the longest
-    /// shadow is reached. Returns the windows re-lit.
+    /// Re-lights what changes of heights in `rects` can reach: both terms
+    /// within the sky radius of each, every sample once however many of
+    /// those windows cover it; then, away from the sun, the sun visibility
+    /// strip by strip ([`SHADOW_STRIP`] samples of travel each) until a strip
+    /// outside that radius keeps every value, or the longest shadow is
+    /// reached. Returns the windows re-lit.
     pub fn relight(
         &mut self,
         grid: &HeightGrid,
-        rect: &GridRect,
+        rects: &[GridRect],
         sun_dir: Vec3,
         reach: LightReach,
     ) -> Vec<GridRect> {
         let (nx, nz) = (grid.nx(), grid.nz());
-        let near = rect.expand(reach.sky + 1, nx, nz);
-        self.recompute(grid, &near, sun_dir, reach);
-        let mut windows = vec![near];
-        if near.area() == nx * nz {
-            return windows;
+        for rect in rects {
+            self.note_heights(grid, rect);
         }
+        let near: Vec<GridRect> = rects
+            .iter()
+            .map(|r| r.expand(reach.sky + 1, nx, nz))
+            .collect();
+        self.recompute(grid, &near, sun_dir, reach);
+        let mut windows = near.clone();
+        for (rect, near) in rects.iter().zip(&near) {
+            if near.area() < nx * nz {
+                self.relight_shadow_strips(grid, rect, near, sun_dir, reach, &mut windows);
+            }
+        }
+        windows
+    }
+
+    /// Re-lights the sun visibility away from the sun of a change in `rect`
+    /// (whose `near` window is already re-lit), pushing each strip re-lit
+    /// onto `windows`.
+    fn relight_shadow_strips(
+        &mut self,
+        grid: &HeightGrid,
+        rect: &GridRect,
+        near: &GridRect,
+        sun_dir: Vec3,
+        reach: LightReach,
+        windows: &mut Vec<GridRect>,
+    ) {
+        let (nx, nz) = (grid.nx(), grid.nz());
         let away = Vec3::new(-sun_dir.x, 0.0, -sun_dir.z).normalize_or_zero();
         if sun_dir.y <= 0.0 || away == Vec3::ZERO {
-            return windows;
+            return;
         }
         let shifted = |d: usize| {
             let (di, dj) = (
@@ -114,14 +139,13 @@ impl TerrainLight {
             if strip.is_empty() {
                 break;
             }
-            let changed = self.recompute_sun(grid, &strip, &near, sun_dir, reach);
+            let changed = self.recompute_sun(grid, &strip, near, sun_dir, reach);
             windows.push(strip);
             if changed == 0 && travelled > 0 {
                 break;
             }
             travelled = next;
         }
-        windows
     }
 
     /// Recomputes the sun visibility of the samples of `rect`; returns how
@@ -152,32 +176,58 @@ impl TerrainLight {
             .sum()
     }
 
-    /// Recomputes both terms for the samples of `rect`.
+    /// Recomputes both terms for the samples `windows` cover, each sample
+    /// once (a sample's light depends on the heights alone, so the result
+    /// is the same whatever the windows' order or overlap).
     pub fn recompute(
         &mut self,
         grid: &HeightGrid,
-        rect: &GridRect,
+        windows: &[GridRect],
         sun_dir: Vec3,
         reach: LightReach,
     ) {
-        if rect.is_empty() {
-            return;
+        let windows: Vec<GridRect> = windows.iter().filter(|w| !w.is_empty()).copied().collect();
+        for window in &windows {
+            self.note_heights(grid, window);
         }
-        self.note_heights(grid, rect);
+        let Some(rows) = windows.iter().copied().reduce(|a, b| a.union(&b)) else {
+            return;
+        };
         let nx = grid.nx();
         let max_height = self.max_height;
         self.sky_view
             .par_chunks_mut(nx)
             .zip(self.sun_visible.par_chunks_mut(nx))
             .enumerate()
-            .filter(|(j, _)| *j >= rect.j0 && *j < rect.j1)
+            .filter(|(j, _)| *j >= rows.j0 && *j < rows.j1)
             .for_each(|(j, (sky_row, sun_row))| {
-                for i in rect.i0..rect.i1 {
-                    sky_row[i] = sky_view(grid, i, j, reach.sky);
-                    sun_row[i] = sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow);
+                for (i0, i1) in row_spans(&windows, j) {
+                    for i in i0..i1 {
+                        sky_row[i] = sky_view(grid, i, j, reach.sky);
+                        sun_row[i] = sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow);
+                    }
                 }
             });
     }
+}
+
+/// The columns of row `j` that `windows` cover, as sorted spans
+/// `[i0, i1)` that neither overlap nor touch.
+fn row_spans(windows: &[GridRect], j: usize) -> Vec<(usize, usize)> {
+    let mut spans: Vec<(usize, usize)> = windows
+        .iter()
+        .filter(|w| j >= w.j0 && j < w.j1)
+        .map(|w| (w.i0, w.i1))
+        .collect();
+    spans.sort_unstable();
+    let mut merged: Vec<(usize, usize)> = Vec::with_capacity(spans.len());
+    for (i0, i1) in spans {
+        match merged.last_mut() {
+            Some(last) if i0 <= last.1 => last.1 = last.1.max(i1),
+            _ => merged.push((i0, i1)),
+        }
+    }
+    merged
 }
 
 /// Sky-view factor of sample `(i, j)` over horizons within `radius` samples.
@@ -263,6 +313,41 @@ mod tests {
             if d < 0.08 { -0.04 } else { 0.0 }
         })
         .unwrap()
+    }
+
+    #[test]
+    fn overlapping_windows_give_each_column_of_a_row_once() {
+        let windows = [
+            GridRect::new(5, 0, 9, 4),
+            GridRect::new(0, 2, 3, 6),
+            GridRect::new(2, 3, 6, 5),
+            GridRect::new(12, 3, 14, 8),
+        ];
+        assert_eq!(row_spans(&windows, 0), vec![(5, 9)]);
+        assert_eq!(row_spans(&windows, 3), vec![(0, 9), (12, 14)]);
+        assert_eq!(row_spans(&windows, 5), vec![(0, 3), (12, 14)]);
+        assert_eq!(row_spans(&windows, 8), vec![]);
+    }
+
+    #[test]
+    fn re_lighting_windows_that_overlap_gives_what_lighting_all_gives() {
+        let g = pit();
+        let sun = Vec3::new(0.3, 0.5, -1.0).normalize();
+        let reach = LightReach {
+            sky: 15,
+            shadow: 64,
+        };
+        let mut whole = TerrainLight::new(&g);
+        whole.recompute(&g, &[g.full_rect()], sun, reach);
+        let mut parts = TerrainLight::new(&g);
+        let windows = [
+            GridRect::new(0, 0, 40, 50),
+            GridRect::new(20, 10, 64, 64),
+            GridRect::new(0, 40, 30, 64),
+        ];
+        parts.recompute(&g, &windows, sun, reach);
+        assert_eq!(parts.sky_view, whole.sky_view);
+        assert_eq!(parts.sun_visible, whole.sun_visible);
     }
 
     #[test]

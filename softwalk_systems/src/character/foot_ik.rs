@@ -95,6 +95,9 @@ pub const MAX_KNEE_FLEXION: f32 = 2.05;
 pub const MAX_KNEE_SPEED: f32 = 9.5;
 /// Fastest a foot's target falls, m/s.
 pub const MAX_FOOT_FALL_SPEED: f32 = 3.0;
+/// How far below where its swing aims it a foot the leg cannot lift
+/// further goes before it ploughs through the ground, metres.
+const PLOUGH_DEPTH: f32 = 0.01;
 /// Bisection steps when solving the foot pitch a leg needs (resolution below 0.001 rad).
 const PITCH_STEPS: usize = 11;
 
@@ -286,11 +289,12 @@ pub fn foot_ik_stage(
     ik.pelvis_drop = follow_pelvis(ik, body, gait, rays, &hips, &feet, dt);
     pelvis.y -= ik.pelvis_drop;
     let planted = gait.feet.map(|f| f.phase == FootPhase::Stance);
-    let feet = solve_legs(ik, pose, body, &hips, &feet, planted, forward, dt);
+    let placed = solve_legs(ik, pose, body, &hips, &feet, planted, forward, dt);
     pose_upper_body(pose, body, gait, proxy, pelvis, travel, right);
     pose.forward = forward;
     pose.right = right;
-    foot_states(ik, pose, gait, rays, &feet, dt)
+    let ploughing = [0, 1].map(|k| !planted[k] && ploughs(&feet[k], &placed[k]));
+    foot_states(ik, pose, gait, rays, &placed, ploughing, dt)
 }
 
 /// Places each foot on its key with the scheduled roll, plus the roll a
@@ -504,14 +508,25 @@ fn pose_upper_body(
     }
 }
 
+/// True when a swinging foot `placed` where its leg reached is more than
+/// [`PLOUGH_DEPTH`] below where its swing `aimed` it: a knee at the end of
+/// its range cannot lift the foot over deep loose ground, so the foot
+/// ploughs through it and presses what it meets, as a short leg does in
+/// deep snow.
+fn ploughs(aimed: &FootPlacement, placed: &FootPlacement) -> bool {
+    placed.lowest.y < aimed.lowest.y - PLOUGH_DEPTH
+}
+
 /// Each foot's state after the pose (left first); records the lowest sole
-/// points and the ankles in `ik`.
+/// points and the ankles in `ik`. A foot `ploughing` presses the ground
+/// (see [`ploughs`]).
 fn foot_states(
     ik: &mut FootIK,
     pose: &Pose,
     gait: &Gait,
     rays: &FootRays,
     feet: &[FootPlacement; 2],
+    ploughing: [bool; 2],
     dt: f32,
 ) -> [FootState; 2] {
     let ankles = [pose.joint(Joint::AnkleLeft), pose.joint(Joint::AnkleRight)];
@@ -529,7 +544,7 @@ fn foot_states(
             },
             phase: gait.feet[k].phase,
             contact: rays.feet[k].hit && gait.feet[k].phase == FootPhase::Stance,
-            pressing: rays.feet[k].hit && rays.feet[k].pressing,
+            pressing: rays.feet[k].hit && (rays.feet[k].pressing || ploughing[k]),
         }
     });
     ik.last_ankles = ankles;
@@ -570,6 +585,23 @@ mod tests {
         assert!(foot.sole.toe.distance(lifted.sole.toe) < 1e-5);
         assert!((foot.ankle.distance(hip) - length).abs() < 2e-3);
         assert!(foot.sole.heel.y >= -1e-5 && foot.sole.toe.y >= -1e-5);
+    }
+
+    #[test]
+    fn a_foot_the_leg_leaves_below_its_swing_ploughs() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let aimed = level_frame(0.0).place(&body, 0.0);
+        assert!(!ploughs(&aimed, &aimed));
+        assert!(!ploughs(
+            &aimed,
+            &aimed.moved(Vec3::NEG_Y * (0.5 * PLOUGH_DEPTH))
+        ));
+        assert!(ploughs(
+            &aimed,
+            &aimed.moved(Vec3::NEG_Y * (2.0 * PLOUGH_DEPTH))
+        ));
+        // Higher than aimed (a leg that cannot reach down) is not ploughing.
+        assert!(!ploughs(&aimed, &aimed.moved(Vec3::Y * 0.1)));
     }
 
     #[test]

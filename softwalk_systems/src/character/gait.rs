@@ -271,8 +271,7 @@ pub struct FootPlan {
     /// centre towards the toe: the part that touches, or will touch, the
     /// ground. In stance under the heel pad for the first half and under the
     /// ball for the second (both touch while the foot is flat), in the swing
-    /// and at rest under the part [`contact_offset`] picks for the scheduled
-    /// roll (a foot standing flat stands on its whole sole).
+    /// under the part [`contact_offset`] picks for the scheduled roll.
     pub contact_along: f32,
     /// That point (x, z) on the horizontal heading (the ray is cast where
     /// the sole, lying along the ground, puts it).
@@ -451,7 +450,7 @@ impl Gait {
                     .unwrap_or(plan.foothold_heading);
                 plan.lift = clearance * (PI * u).sin();
             }
-            plan.contact_along = if in_stance && !self.stopped {
+            plan.contact_along = if in_stance {
                 let half = 0.5 * body.foot_length;
                 let heel_first = !self.backward;
                 if (p < 0.5 * duty) == heel_first {
@@ -619,7 +618,6 @@ pub fn gait_stage(
     if finishing && gait.double_support() {
         gait.stopped = true;
         gait.velocity = Vec2::ZERO;
-        gait.update_feet(body, path);
         return;
     }
     let step = gait.params.speed * dt;

@@ -24,11 +24,14 @@ pub(crate) struct GroundCross {
     /// the highest floor (surface less give) found, metres: a sole across
     /// two grounds, or across a print's edge, stops on the firmer floor.
     pub rest_floor: f32,
-    /// The median give of the centre and the four ends, metres: the patch's
-    /// floor is `mean - typical_give`. A median, so that one ray in a print
-    /// (pressed to its floor) or on another ground beside the walker's line
-    /// (the edge of a snowfield beside a path on sand) does not move it.
-    pub typical_give: f32,
+    /// The median floor (surface less give) of the centre and the four
+    /// ends, metres: the height a planted foot would sink to on the patch.
+    /// Each ray's own floor, so a ray in a print (its surface pressed down,
+    /// its give used up) reads the same floor as one on fresh ground beside
+    /// it; a median, so that one ray on a rim or on another ground beside
+    /// the walker's line (the edge of a snowfield beside a path on sand)
+    /// does not move it. On a plane it is the centre's floor.
+    pub typical_floor: f32,
     /// What the ray at the patch's centre found.
     pub centre: Option<GroundHit>,
 }
@@ -83,19 +86,19 @@ impl GroundCross {
             -right * reach_across,
         ]
         .map(cast);
-        let mut gives = [0.0f32; 5];
+        let mut floors = [0.0f32; 5];
         let mut count = 0;
         for s in ends.iter().flatten() {
-            gives[count] = s.give;
+            floors[count] = s.height - s.give;
             count += 1;
         }
         if count == 0 {
             return None;
         }
         let mean = ends.iter().flatten().map(|s| s.height).sum::<f32>() / count as f32;
-        let gives = &mut gives[..count];
-        gives.sort_by(f32::total_cmp);
-        let typical_give = gives[count / 2];
+        let floors = &mut floors[..count];
+        floors.sort_by(f32::total_cmp);
+        let typical_floor = floors[count / 2];
         let height = |i: usize| ends[i].map(|s| s.height);
         let grade = |ahead: Option<f32>, behind: Option<f32>, reach: f32| match (ahead, behind) {
             (Some(a), Some(b)) if reach > 0.0 => (a - b) / (2.0 * reach),
@@ -127,7 +130,7 @@ impl GroundCross {
             normal: Vec3::new(-rise.x, 1.0, -rise.y).normalize(),
             rest_top: base + top,
             rest_floor: base + floor,
-            typical_give,
+            typical_floor,
             centre,
         })
     }
@@ -173,6 +176,36 @@ mod tests {
             "a sole bridges the pit"
         );
         assert!(GroundCross::sample(|_| None, Vec2::ZERO, Vec2::X, [0.3, 0.3], &[]).is_none());
+    }
+
+    #[test]
+    fn the_floor_is_each_rays_own_floor_so_a_print_under_one_ray_does_not_lower_it() {
+        // Loose snow over a firm floor at -0.3: fresh surface at 0 giving
+        // 0.3, and an old print ahead of the centre pressed to the floor
+        // (giving nothing); the floor is -0.3 wherever the print is.
+        let snow = |p: Vec2| {
+            if (p.x - 0.3).abs() < 0.05 {
+                hit(p, -0.3, 0.0)
+            } else {
+                hit(p, 0.0, 0.3)
+            }
+        };
+        let c = GroundCross::sample(snow, Vec2::ZERO, Vec2::X, [0.3, 0.3], &[]).unwrap();
+        assert!((c.typical_floor + 0.3).abs() < 1e-6, "{}", c.typical_floor);
+        assert!(
+            c.mean < -0.05,
+            "the mean surface is in the print: {}",
+            c.mean
+        );
+        // A rim under one ray (raised 4 cm, giving its print depth) and a
+        // firmer ground under another beside the line do not move it either.
+        let mixed = |p: Vec2| match (p.x > 0.2, p.y > 0.2) {
+            (true, _) => hit(p, 0.04, 0.3),
+            (_, true) => hit(p, 0.0, 0.05),
+            _ => hit(p, 0.0, 0.3),
+        };
+        let c = GroundCross::sample(mixed, Vec2::ZERO, Vec2::X, [0.3, 0.3], &[]).unwrap();
+        assert!((c.typical_floor + 0.3).abs() < 1e-6, "{}", c.typical_floor);
     }
 
     #[test]

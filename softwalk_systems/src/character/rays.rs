@@ -39,7 +39,7 @@ pub struct FootRays {
     pub feet: [GroundKey; 2],
     /// Where each foot stands or will land (left first).
     pub support: [FootSupport; 2],
-    /// The body's ground: the floor a planted foot would sink to, averaged
+    /// The body's ground: the floor a planted foot would sink to, the median
     /// over a cross of samples around the pelvis (so prints and rims under
     /// the pelvis do not jolt it), and the slope of the surface there.
     pub body: GroundKey,
@@ -99,10 +99,10 @@ impl FootRays {
     }
 }
 
-/// The body's ground: the mean floor (surface minus give) under the pelvis
-/// and four points around it, with the normal of the surface's plane
-/// through them (so the edge between two grounds of different give is not
-/// read as a slope).
+/// The body's ground: the median floor (surface minus give) of the pelvis
+/// and four points around it ([`GroundCross::typical_floor`]), with the
+/// normal of the surface's plane through them (so the edge between two
+/// grounds of different give is not read as a slope).
 /// When every ray misses, `last` moves along.
 fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -> GroundKey {
     let at = gait.pelvis.position;
@@ -110,7 +110,7 @@ fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -
     let reach = BODY_SAMPLE_REACH;
     match GroundCross::sample(cast, at, gait.pelvis.heading, [reach, reach], &[]) {
         Some(cross) => GroundKey {
-            point: Vec3::new(at.x, cross.mean - cross.typical_give, at.y),
+            point: Vec3::new(at.x, cross.typical_floor, at.y),
             normal: cross.normal,
             hit: true,
             pressing: false,

@@ -21,7 +21,8 @@
 //!   to the stop (a [`Brake`]), while the walk keeps its cadence
 //!   ([`cadence_hold`]): the steps shorten, the step being taken ends, and
 //!   the closing step lands beside it; the gait halts there with both feet
-//!   flat, and starts again on the next desired velocity.
+//!   flat, and starts again on the next desired velocity, speeding up from
+//!   its braked speed at `speed_change_rate` (the bob grows with it).
 //!
 //! Switching between walking forward and backward goes through a stop:
 //! the walker halts, its feet roll flat, and then it walks the other way.
@@ -229,9 +230,7 @@ pub fn steer_stage(
     let dt = clamp_dt(dt);
     if let Some(brake) = &steering.brake {
         let s = &steering.settings;
-        *scale = if gait.stopped {
-            brake.from_scale
-        } else if path.is_finished(gait.distance) {
+        *scale = if gait.stopped || path.is_finished(gait.distance) {
             *scale
         } else {
             let moved = gait.velocity.length() * dt;

@@ -162,8 +162,10 @@ impl FootSupport {
             );
         }
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
-        // Ground rising above the path between the two footholds lifts the foot.
-        let height = cast(plan.target).map_or(height, |h| height.max(h.point.y));
+        // Ground rising above the path between the two footholds, under any
+        // part of the sole, lifts the foot.
+        let height =
+            lowest_clear_centre(&cast, plan, body, normal).map_or(height, |h| height.max(h));
         // Until the sole is out of its print, the print stays held: its walls
         // do not slump onto the rising foot.
         let in_print = self.left.give > 0.0 && u < 0.5 && height < self.left_rim;
@@ -228,6 +230,25 @@ impl FootSupport {
     }
 }
 
+/// The lowest height of the centre of a flat sole at `plan`'s target,
+/// facing its heading and lying in the plane of `normal`, at which its
+/// heel, centre and toe are all on or above the surface under them; `None`
+/// when every ray misses. A sole centred over an old print can still have
+/// its heel or toe over the fresh ground beside it.
+fn lowest_clear_centre(
+    cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+    plan: &FootPlan,
+    body: &CharacterBody,
+    normal: Vec3,
+) -> Option<f32> {
+    let half = plan.heading * (0.5 * body.foot_length);
+    let rise = |offset: Vec2| -(normal.x * offset.x + normal.z * offset.y) / normal.y.max(1e-3);
+    [-half, Vec2::ZERO, half]
+        .into_iter()
+        .filter_map(|offset| cast(plan.target + offset).map(|hit| hit.point.y - rise(offset)))
+        .reduce(f32::max)
+}
+
 /// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
 /// unit `normal`: the heading projected into the ground's tangent plane.
 pub(crate) fn sole_direction(heading: Vec2, normal: Vec3) -> Vec3 {
@@ -266,6 +287,55 @@ mod tests {
             "drops {end_drop} m in the last fifth: {heights:?}"
         );
         assert!((heights[20] - 0.0).abs() < 1e-6);
+    }
+
+    /// A swinging plan at `target` (x, z) facing +X.
+    fn swinging_at(target: Vec2) -> FootPlan {
+        FootPlan {
+            side: crate::foot::Side::Left,
+            phase: FootPhase::SwingDown,
+            from: target,
+            foothold: target,
+            swing: 0.6,
+            target,
+            lift: 0.0,
+            pitch: 0.0,
+            from_heading: Vec2::X,
+            foothold_heading: Vec2::X,
+            heading: Vec2::X,
+            contact_along: 0.0,
+            contact: target,
+        }
+    }
+
+    fn hit_at(p: Vec2, y: f32) -> Option<GroundHit> {
+        Some(GroundHit {
+            point: Vec3::new(p.x, y, p.y),
+            normal: Vec3::Y,
+            give: 0.0,
+        })
+    }
+
+    #[test]
+    fn a_sole_over_an_old_print_clears_the_ground_under_its_heel() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let plan = swinging_at(Vec2::ZERO);
+        // An old print 0.3 m deep under the centre and the toe; fresh
+        // snow at 0 behind x = -0.1, under the heel.
+        let print = |p: Vec2| hit_at(p, if p.x > -0.1 { -0.3 } else { 0.0 });
+        let centre = lowest_clear_centre(&print, &plan, &body, Vec3::Y).unwrap();
+        assert!(
+            centre.abs() < 1e-6,
+            "the flat sole clears the heel's snow: {centre}"
+        );
+        // On a plane the sole lies along the slope: its centre is on the
+        // surface under it, not raised to the surface under the heel.
+        let slope = 20f32.to_radians().tan();
+        let normal = Vec3::new(slope, 1.0, 0.0).normalize();
+        let plane = |p: Vec2| hit_at(p, -slope * p.x);
+        let centre = lowest_clear_centre(&plane, &plan, &body, normal).unwrap();
+        assert!(centre.abs() < 1e-5, "down 20°: {centre}");
+        assert!(lowest_clear_centre(&|_| None, &plan, &body, Vec3::Y).is_none());
     }
 
     #[test]

@@ -17,6 +17,13 @@ pub const RIM_WIDTH_FRACTION: f32 = 0.6;
 pub const RIM_MIN_WIDTH_M: f32 = 1.5 * REFERENCE_CELL_M;
 /// A sample counts as pressed (held) when the sole is at most this high above it, metres.
 pub const CONTACT_TOLERANCE: f32 = 0.005;
+/// How much wider than the sole a print is on every side, metres (one
+/// reference cell, [`REFERENCE_CELL_M`], about 2 cm). The print's
+/// anti-aliased edge is centred this far outside the sole's outline, so on
+/// any grid up to twice the reference cell every sample under the sole is
+/// pressed the whole way: a sole resting on the print's floor reads that
+/// floor, not part of the print's wall.
+pub const PRINT_MARGIN_M: f32 = REFERENCE_CELL_M;
 
 /// Width of the rim ring around a footprint of half-width `radius`, metres:
 /// [`RIM_WIDTH_FRACTION`] of it, at least [`RIM_MIN_WIDTH_M`].
@@ -112,10 +119,11 @@ impl FootPrint {
 /// [`super::TerrainMaterial::sink_speed`] × `dt` a step; never below the
 /// print depth under the surface this contact first touched, and never below
 /// its firm floor ([`Heightfield::firm_floor`]: the
-/// loose layer is all there is to press). The print's edge is anti-aliased:
-/// a sample within half a cell of it goes the share of that way its cell
-/// is covered (`0.5 + (radius - distance) / cell`, at most 1), so a print
-/// has the same area and volume on any grid. Of the removed volume, c_t is
+/// loose layer is all there is to press). The print is [`PRINT_MARGIN_M`]
+/// wider than the sole on every side, and its edge is anti-aliased: a
+/// sample within half a cell of it goes the share of that way its cell is
+/// covered (`0.5 + (radius + margin - distance) / cell`, at most 1), so a
+/// print has the same area and volume on any grid. Of the removed volume, c_t is
 /// compacted and 1 - c_t is spread over the rim ring of [`rim_width`] just
 /// outside the pressed samples, weighted linearly from 1 at its inner edge
 /// to 0 at its outer edge. Samples off the grid, and samples a sole holds
@@ -186,13 +194,14 @@ pub fn press(
     }
     let grid = hf.grid();
     let (origin, cell, nx, nz) = (grid.origin(), grid.cell_size(), grid.nx(), grid.nz());
-    // The print's edge is anti-aliased over one cell: a sample within half a
-    // cell of it is pressed by the part of its cell the sole covers, so a
-    // print has the same area and volume on any grid. The rim starts where
-    // that band ends.
-    let rim_start = foot.radius + 0.5 * cell;
+    // The print's edge, [`PRINT_MARGIN_M`] outside the sole's outline, is
+    // anti-aliased over one cell: a sample within half a cell of it is
+    // pressed by the part of its cell the print covers, so a print has the
+    // same area and volume on any grid. The rim starts where that band ends.
+    let edge = foot.radius + PRINT_MARGIN_M;
+    let rim_start = edge + 0.5 * cell;
     let rim_width = rim_width(foot.radius);
-    let (lo, hi) = foot.bounds(rim_width + 0.5 * cell);
+    let (lo, hi) = foot.bounds(PRINT_MARGIN_M + rim_width + 0.5 * cell);
     let rect = grid.rect_covering(lo, hi);
     if rect.is_empty() {
         return Ok(Pressed::default());
@@ -208,7 +217,7 @@ pub fn press(
             let p = origin + Vec2::new(i as f32, j as f32) * cell;
             let d = foot.axis_distance(p);
             let k = j * nx + i;
-            let cover = (0.5 + (foot.radius - d) / cell).min(1.0);
+            let cover = (0.5 + (edge - d) / cell).min(1.0);
             if cover <= 0.0 {
                 if d <= rim_start + rim_width {
                     print.rim.push((k, 1.0 - (d - rim_start) / rim_width));

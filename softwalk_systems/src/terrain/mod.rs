@@ -52,8 +52,8 @@ mod units;
 mod waves;
 
 pub use carve::{
-    CONTACT_TOLERANCE, FootPrint, Pressed, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION, carve, deposit_rim,
-    press, rim_width,
+    CONTACT_TOLERANCE, FootPrint, PRINT_MARGIN_M, Pressed, RIM_MIN_WIDTH_M, RIM_WIDTH_FRACTION,
+    carve, deposit_rim, press, rim_width,
 };
 pub use dirty_rects::DirtyRects;
 pub use error::TerrainError;

@@ -1,70 +1,137 @@
 //! [`SkinnedFigure`]: a rigged character's mesh, skinned on the CPU each
-//! frame from the pose the driver gives its rig.
+//! frame from the pose the driver gives its rig, in full or, for a figure
+//! seen small, as a coarse copy (about a fifth of the triangles of the
+//! default human) that skins, casts shadows and draws that much faster.
 
-use engine::anim::{SkinnedVertices, skin};
+use engine::anim::{SkinnedMesh, SkinnedVertices, skin};
 use engine::geom::TriMesh;
-use glam::{Affine3A, Mat4};
+use glam::{Affine3A, Mat4, Vec3};
 
 use crate::character::{CharacterBody, CharacterRig, ClipWalk, Gait, Pose, RigPose};
 use crate::foot::FootState;
 
-/// A skinned model with its scratch buffers and the world-space mesh of the last frame.
+/// The coarse copy's cubes, as a fraction of the model's largest extent.
+const COARSE_CELL: f32 = 1.0 / 40.0;
+
+/// How much of a figure's mesh is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Detail {
+    /// Every triangle of the model.
+    Full,
+    /// The model's vertices clustered into cubes of [`COARSE_CELL`] of its size.
+    Coarse,
+}
+
+/// A skinned model with its scratch buffers and the world-space meshes of
+/// the last frame.
 pub(super) struct SkinnedFigure {
     rig: CharacterRig,
+    /// The model's mesh clustered, for [`Detail::Coarse`].
+    coarse: SkinnedMesh,
     globals: Vec<Mat4>,
     matrices: Vec<Affine3A>,
     skinned: SkinnedVertices,
-    mesh: TriMesh,
+    /// The world-space mesh of each detail, as last skinned.
+    meshes: [TriMesh; 2],
+    /// The detail of the last update.
+    detail: Detail,
 }
 
 impl SkinnedFigure {
     /// A figure of `rig`, in its rest pose until the first update.
     pub(super) fn new(rig: CharacterRig) -> SkinnedFigure {
-        let source = &rig.model().mesh;
-        let mesh = TriMesh {
-            positions: source.positions().to_vec(),
-            normals: source.normals().to_vec(),
-            triangles: source
-                .indices()
-                .chunks_exact(3)
-                .map(|t| [t[0], t[1], t[2]])
-                .collect(),
-            parts: Vec::new(),
-        };
+        let full = &rig.model().mesh;
+        let (lo, hi) = (full.positions().iter())
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let coarse = full
+            .clustered((hi - lo).max_element() * COARSE_CELL)
+            .unwrap_or_else(|_| full.clone());
+        let meshes = [rest_mesh(full), rest_mesh(&coarse)];
         SkinnedFigure {
             rig,
+            coarse,
             globals: Vec::new(),
             matrices: Vec::new(),
             skinned: SkinnedVertices::default(),
-            mesh,
+            meshes,
+            detail: Detail::Full,
         }
     }
 
     /// Poses the rig after the driver (the upper body from the walk clip it
-    /// plays, if any) and skins the mesh into world space, in parallel over
-    /// vertices (each vertex is computed alone, so the result does not depend
-    /// on the thread count).
+    /// plays, if any) and skins the mesh of `detail` into world space, in
+    /// parallel over vertices (each vertex is computed alone, so the result
+    /// does not depend on the thread count).
     pub(super) fn update(
         &mut self,
         body: &CharacterBody,
         pose: &Pose,
         feet: &[FootState; 2],
         clip: Option<(&ClipWalk, &Gait)>,
+        detail: Detail,
     ) {
         let rig_pose = match clip {
             Some((clip, gait)) => clip.drive(&self.rig, body, pose, feet, gait),
             None => RigPose::drive(&self.rig, body, pose, feet),
         };
         rig_pose.skin_matrices(&self.rig, &mut self.globals, &mut self.matrices);
+        self.detail = detail;
+        let (source, mesh) = match detail {
+            Detail::Full => (&self.rig.model().mesh, &mut self.meshes[0]),
+            Detail::Coarse => (&self.coarse, &mut self.meshes[1]),
+        };
         // The matrices cover every joint of the skeleton the mesh was checked against.
-        if skin(&self.rig.model().mesh, &self.matrices, &mut self.skinned).is_ok() {
-            std::mem::swap(&mut self.mesh.positions, &mut self.skinned.positions);
-            std::mem::swap(&mut self.mesh.normals, &mut self.skinned.normals);
+        if skin(source, &self.matrices, &mut self.skinned).is_ok() {
+            std::mem::swap(&mut mesh.positions, &mut self.skinned.positions);
+            std::mem::swap(&mut mesh.normals, &mut self.skinned.normals);
         }
     }
 
     /// The mesh as skinned by the last update, in world space.
     pub(super) fn mesh(&self) -> &TriMesh {
-        &self.mesh
+        match self.detail {
+            Detail::Full => &self.meshes[0],
+            Detail::Coarse => &self.meshes[1],
+        }
+    }
+}
+
+/// `source` in its bind pose, as a mesh to draw.
+fn rest_mesh(source: &SkinnedMesh) -> TriMesh {
+    TriMesh {
+        positions: source.positions().to_vec(),
+        normals: source.normals().to_vec(),
+        triangles: source
+            .indices()
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+        parts: Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The corners of the box around `mesh`'s vertices.
+    fn bounds(mesh: &TriMesh) -> (Vec3, Vec3) {
+        (mesh.positions.iter()).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        })
+    }
+
+    #[test]
+    fn the_coarse_human_fills_the_same_box_with_a_fifth_of_the_triangles() {
+        let figure = SkinnedFigure::new(CharacterRig::human().unwrap());
+        let [full, coarse] = &figure.meshes;
+        assert!(coarse.triangles.len() * 4 < full.triangles.len());
+        let ((lo, hi), (coarse_lo, coarse_hi)) = (bounds(full), bounds(coarse));
+        let cell = (hi - lo).max_element() * COARSE_CELL;
+        assert!((coarse_lo - lo).abs().max_element() < cell);
+        assert!((coarse_hi - hi).abs().max_element() < cell);
+        assert_eq!(figure.mesh().triangles.len(), full.triangles.len());
     }
 }

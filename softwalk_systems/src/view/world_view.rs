@@ -15,7 +15,7 @@ use super::overlay_layers::OverlayLayers;
 use super::overlays::draw_overlays;
 use super::palette::TerrainPaint;
 use super::settings::ViewSettings;
-use super::skinned_figure::SkinnedFigure;
+use super::skinned_figure::{Detail, SkinnedFigure};
 use crate::character::{
     Balance, CharacterBody, CharacterRig, ClipWalk, Gait, Pose, character_mesh,
 };
@@ -33,6 +33,9 @@ const PROP: Vec3 = Vec3::new(0.5, 0.48, 0.45);
 const NEAR_FAR: (f32, f32) = (0.05, 200.0);
 /// Smoothing of the follow camera.
 const FOLLOW_SMOOTHING: f32 = 0.4;
+/// A skinned figure standing less tall than this on screen, in pixels, is
+/// drawn with its coarse mesh (whose cubes then span at most 1.5 pixels).
+const COARSE_BELOW_PX: f32 = 60.0;
 
 /// A frame could not be set up or drawn.
 #[derive(Debug, Error)]
@@ -57,7 +60,7 @@ enum FigureBody {
     /// The capsule mannequin: one capsule per bone, placed by the pose.
     Mannequin(TriMesh),
     /// A skinned model, re-skinned each frame from its rig's pose.
-    Skinned(SkinnedFigure),
+    Skinned(Box<SkinnedFigure>),
 }
 
 /// Draws a world as a [`CameraRig`] sees it: shaded terrain (re-meshed and
@@ -147,7 +150,7 @@ impl WorldView {
         self.collect_blades(world);
         let mut poses: Vec<(&Figure, Vec<Mat4>)> = Vec::with_capacity(self.figures.len());
         for figure in &mut self.figures {
-            if let Some(parts) = figure.pose(world) {
+            if let Some(parts) = figure.pose(world, &self.camera) {
                 poses.push((figure, parts));
             }
         }
@@ -248,8 +251,9 @@ fn colors<'a>(paint: &'a TerrainPaint, hf: &Heightfield) -> SampleColors<'a> {
 impl Figure {
     /// Poses the figure as the world has it now: the mannequin's part
     /// transforms, or nothing for a skinned model (its mesh is re-skinned in
-    /// world space). `None` when the entity has no pose.
-    fn pose(&mut self, world: &World) -> Option<Vec<Mat4>> {
+    /// world space, coarse when `camera` sees it small). `None` when the
+    /// entity has no pose.
+    fn pose(&mut self, world: &World, camera: &Camera) -> Option<Vec<Mat4>> {
         let pose = world.get::<Pose>(self.entity).ok()?;
         match &mut self.body {
             FigureBody::Mannequin(_) => Some(pose.part_transforms()),
@@ -259,7 +263,8 @@ impl Figure {
                 let clip = world.get::<ClipWalk>(self.entity).ok();
                 let gait = world.get::<Gait>(self.entity).ok();
                 let playing = clip.as_deref().zip(gait.as_deref());
-                skinned.update(&body, &pose, &feet.0, playing);
+                let detail = detail_seen(world, self.entity, body.desc.height, camera);
+                skinned.update(&body, &pose, &feet.0, playing, detail);
                 Some(Vec::new())
             }
         }
@@ -280,7 +285,7 @@ fn figures(world: &World) -> Vec<Figure> {
         .map(|(entity, body, balance, rig)| Figure {
             entity,
             body: match rig {
-                Some(rig) => FigureBody::Skinned(SkinnedFigure::new(rig.clone())),
+                Some(rig) => FigureBody::Skinned(Box::new(SkinnedFigure::new(rig.clone()))),
                 None => FigureBody::Mannequin(character_mesh(body)),
             },
             color: match balance.is_none_or(|b| b.enabled) {
@@ -291,6 +296,19 @@ fn figures(world: &World) -> Vec<Figure> {
         .collect();
     figures.sort_by_key(|f| f.entity);
     figures
+}
+
+/// How much of the figure of `entity`, `height` metres tall, to draw as
+/// `camera` sees it: coarse below [`COARSE_BELOW_PX`] on screen.
+fn detail_seen(world: &World, entity: Entity, height: f32, camera: &Camera) -> Detail {
+    let Some(centre) = followed_point(world, entity) else {
+        return Detail::Full;
+    };
+    let distance = centre.distance(camera.eye).max(1e-3);
+    match camera.focal_px() * height / distance < COARSE_BELOW_PX {
+        true => Detail::Coarse,
+        false => Detail::Full,
+    }
 }
 
 /// The point a follow camera aims at: the character's centre of mass.
