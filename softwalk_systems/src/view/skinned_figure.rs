@@ -5,12 +5,14 @@ use engine::anim::{SkinnedVertices, skin};
 use engine::geom::TriMesh;
 use glam::{Affine3A, Mat4};
 
-use crate::character::{CharacterBody, CharacterRig, ClipWalk, Gait, Pose, RigPose};
+use crate::character::{CharacterBody, CharacterRig, ClipScratch, ClipWalk, Gait, Pose, RigPose};
 use crate::foot::FootState;
 
 /// A skinned model with its scratch buffers and the world-space mesh of the last frame.
 pub(super) struct SkinnedFigure {
     rig: CharacterRig,
+    rig_pose: RigPose,
+    clip_scratch: ClipScratch,
     globals: Vec<Mat4>,
     matrices: Vec<Affine3A>,
     skinned: SkinnedVertices,
@@ -33,6 +35,8 @@ impl SkinnedFigure {
         };
         SkinnedFigure {
             rig,
+            rig_pose: RigPose::default(),
+            clip_scratch: ClipScratch::default(),
             globals: Vec::new(),
             matrices: Vec::new(),
             skinned: SkinnedVertices::default(),
@@ -51,11 +55,12 @@ impl SkinnedFigure {
         feet: &[FootState; 2],
         clip: Option<(&ClipWalk, &Gait)>,
     ) {
-        let rig_pose = match clip {
-            Some((clip, gait)) => clip.drive(&self.rig, body, pose, feet, gait),
-            None => RigPose::drive(&self.rig, body, pose, feet),
-        };
-        rig_pose.skin_matrices(&self.rig, &mut self.globals, &mut self.matrices);
+        self.rig_pose.drive_in_place(&self.rig, body, pose, feet);
+        if let Some((clip, gait)) = clip {
+            let (rig, out) = (&self.rig, &mut self.rig_pose);
+            clip.play_upper_body(rig, out, gait.phase, gait.roll, &mut self.clip_scratch);
+        }
+        (self.rig_pose).skin_matrices(&self.rig, &mut self.globals, &mut self.matrices);
         // The matrices cover every joint of the skeleton the mesh was checked against.
         if skin(&self.rig.model().mesh, &self.matrices, &mut self.skinned).is_ok() {
             std::mem::swap(&mut self.mesh.positions, &mut self.skinned.positions);
