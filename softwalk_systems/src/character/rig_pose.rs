@@ -231,8 +231,14 @@ fn arm_aims(rig: &CharacterRig, pose: &Pose) -> LimbAims {
             ),
         };
         let out_lean = Quat::from_axis_angle(pose.forward, -side * ARM_ABDUCTION);
-        aims.set(arm.shoulder, out_lean * (pose.joint(elbow) - pose.joint(shoulder)));
-        aims.set(arm.elbow, out_lean * (pose.joint(wrist) - pose.joint(elbow)));
+        aims.set(
+            arm.shoulder,
+            out_lean * (pose.joint(elbow) - pose.joint(shoulder)),
+        );
+        aims.set(
+            arm.elbow,
+            out_lean * (pose.joint(wrist) - pose.joint(elbow)),
+        );
     }
     aims
 }
