@@ -1,6 +1,8 @@
 //! Small rendered scenes checked by pixel statistics. Each scene is also written
 //! to `target/render-previews/` for a human to look at.
 
+mod render_support;
+
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};
 use engine::render::{
@@ -8,16 +10,9 @@ use engine::render::{
     TerrainRenderer, TerrainStyle, UniformColor,
 };
 use image::RgbaImage;
+use render_support::preview;
 
 const SAND: Vec3 = Vec3::new(0.62, 0.5, 0.34);
-
-/// Writes a preview PNG (best effort: previews are for people, not for the checks).
-fn preview(name: &str, image: &RgbaImage) {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/render-previews");
-    if std::fs::create_dir_all(&dir).is_ok() {
-        let _ = image.save(dir.join(format!("{name}.png")));
-    }
-}
 
 /// A footprint: an elliptical depression `depth` deep with a raised rim.
 fn footprint(x: f32, z: f32, cx: f32, cz: f32, depth: f32) -> f32 {
