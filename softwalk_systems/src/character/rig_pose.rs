@@ -191,6 +191,9 @@ fn reset<T: Copy>(buffer: &mut Vec<T>, n: usize, value: T) {
 struct LimbAims {
     entries: [(usize, Vec3); 8],
     len: usize,
+    /// Bit `joint % 64` of every aimed joint: most joints are not aimed,
+    /// and this tells so without a search.
+    maybe: u64,
 }
 
 impl LimbAims {
@@ -198,10 +201,14 @@ impl LimbAims {
     fn set(&mut self, joint: usize, direction: Vec3) {
         self.entries[self.len] = (joint, direction);
         self.len += 1;
+        self.maybe |= 1 << (joint % 64);
     }
 
     /// The direction `joint` is aimed along, if it is.
     fn get(&self, joint: usize) -> Option<Vec3> {
+        if self.maybe & (1 << (joint % 64)) == 0 {
+            return None;
+        }
         self.entries[..self.len]
             .iter()
             .rev()
