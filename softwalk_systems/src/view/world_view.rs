@@ -60,7 +60,7 @@ enum FigureBody {
     /// part transforms (kept from frame to frame).
     Mannequin(TriMesh, Vec<Mat4>),
     /// A skinned model, re-skinned each frame from its rig's pose.
-    Skinned(SkinnedFigure),
+    Skinned(Box<SkinnedFigure>),
 }
 
 /// Draws a world as a [`CameraRig`] sees it: shaded terrain (re-meshed and
@@ -289,7 +289,7 @@ fn figures(world: &World) -> Vec<Figure> {
         .map(|(entity, body, balance, rig)| Figure {
             entity,
             body: match rig {
-                Some(rig) => FigureBody::Skinned(SkinnedFigure::new(rig.clone())),
+                Some(rig) => FigureBody::Skinned(Box::new(SkinnedFigure::new(rig.clone()))),
                 None => FigureBody::Mannequin(character_mesh(body), Vec::new()),
             },
             posed: false,
