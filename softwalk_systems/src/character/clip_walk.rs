@@ -5,10 +5,9 @@ use std::sync::Arc;
 
 use engine::anim::{BoneMap, Clip, Playback, RetargetError, Skeleton, WalkCycle, retarget};
 use glam::{Mat4, Quat};
-
-use super::clip_scratch::ClipScratch;
 use thiserror::Error;
 
+use super::clip_scratch::ClipScratch;
 use super::{CharacterBody, CharacterRig, Gait, Pose, RigPose};
 use crate::foot::FootState;
 
@@ -109,6 +108,10 @@ impl ClipWalk {
         }
         let chains = rig.chains();
         let time = self.cycle.clip_time(phase, self.clip.duration());
+        // The rest pose under the clip's channels, as `Clip::pose_at` has it.
+        let locals = &mut scratch.pose.locals;
+        locals.clear();
+        locals.extend(skeleton.joints().iter().map(|joint| joint.rest));
         self.clip
             .sample(time, Playback::Once, skeleton, &mut scratch.pose);
         scratch.pose.globals(skeleton, &mut scratch.globals);

@@ -323,3 +323,60 @@ fn leg_targets_for(
         stretch,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::character::{
+        Character, CharacterDesc, ClipScratch, ClipWalk, WalkPath, step_character,
+    };
+    use crate::ground::FlatGround;
+    use engine::anim::bvh::load_bvh;
+    use engine::anim::{BoneMap, WalkCycle};
+
+    /// A walker of `desc` `steps` steps into a straight walk.
+    fn walker(desc: CharacterDesc, steps: usize) -> Character {
+        let ground = FlatGround(0.0);
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::X, 8.0).unwrap();
+        let mut c = Character::new(desc, &path, &ground).unwrap();
+        for _ in 0..steps {
+            step_character(&mut c, &path, &ground, 1.0 / 60.0);
+        }
+        c
+    }
+
+    #[test]
+    fn a_reused_pose_is_driven_as_a_fresh_one() {
+        let rig = CharacterRig::human().unwrap();
+        let (child, adult) = (
+            walker(CharacterDesc::child(), 50),
+            walker(CharacterDesc::adult(), 80),
+        );
+        let mut reused = RigPose::default();
+        reused.drive_in_place(&rig, &child.body, &child.pose, &child.feet);
+        reused.drive_in_place(&rig, &adult.body, &adult.pose, &adult.feet);
+        let fresh = RigPose::drive(&rig, &adult.body, &adult.pose, &adult.feet);
+        assert_eq!(reused, fresh);
+        assert_ne!(
+            fresh,
+            RigPose::drive(&rig, &child.body, &child.pose, &child.feet)
+        );
+    }
+
+    #[test]
+    fn a_reused_clip_scratch_plays_as_a_fresh_one() {
+        let rig = CharacterRig::human().unwrap();
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/clips/walk.bvh");
+        let bvh = load_bvh(std::path::Path::new(path)).unwrap();
+        let map = BoneMap::detect(&bvh.skeleton);
+        let cycle = WalkCycle::analyse(&bvh.clip, &bvh.skeleton, &map).unwrap();
+        let clip = ClipWalk::new(&bvh.skeleton, &map, &bvh.clip, cycle, &rig).unwrap();
+        let c = walker(CharacterDesc::adult(), 70);
+        let mut scratch = ClipScratch::default();
+        let mut played = RigPose::drive(&rig, &c.body, &c.pose, &c.feet);
+        clip.play_upper_body(&rig, &mut played, 0.3, 1.0, &mut scratch);
+        played.drive_in_place(&rig, &c.body, &c.pose, &c.feet);
+        clip.play_upper_body(&rig, &mut played, c.gait.phase, c.gait.roll, &mut scratch);
+        assert_eq!(played, clip.drive(&rig, &c.body, &c.pose, &c.feet, &c.gait));
+    }
+}
