@@ -16,6 +16,7 @@ use softwalk_systems::character::{
 };
 use softwalk_systems::ground::FlatGround;
 use softwalk_systems::sim::WalkerMetrics;
+use softwalk_tests::sole_contact::StanceSlide;
 
 const DT: f32 = 1.0 / 60.0;
 /// The foot-slide goal: a planted heel or toe moves at most this far per stance, metres.
@@ -67,25 +68,20 @@ impl Steered {
 /// within [`TOUCHING_M`] of it touches.
 type SoleSample = [(bool, [Vec3; 2]); 2];
 
-/// The largest horizontal drift of a touching heel or toe from where it
-/// first touched, over each stance.
+/// The largest horizontal drift of a touching heel or toe (within
+/// [`TOUCHING_M`] above the ground) from where it first touched, over each
+/// stance.
 fn worst_slide(samples: &[SoleSample]) -> f32 {
     let mut worst = 0.0f32;
     for k in 0..2 {
-        let mut anchors: [Option<Vec3>; 2] = [None; 2];
+        let mut slide = StanceSlide::new(TOUCHING_M);
         for s in samples {
             let (contact, points) = s[k];
             if !contact {
-                anchors = [None; 2];
+                slide = StanceSlide::new(TOUCHING_M);
                 continue;
             }
-            for (anchor, p) in anchors.iter_mut().zip(points) {
-                if p.y.abs() > TOUCHING_M {
-                    continue;
-                }
-                let a = *anchor.get_or_insert(p);
-                worst = worst.max(Vec2::new(p.x - a.x, p.z - a.z).length());
-            }
+            worst = worst.max(slide.add_over(&points, 0.0));
         }
     }
     worst
