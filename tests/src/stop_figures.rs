@@ -12,6 +12,8 @@ use softwalk_app::paper::gait_quality::{
 };
 use softwalk_systems::sim::WalkerMetrics;
 
+use crate::sole_contact::StanceSlide;
+
 /// The foot-slide goal: a planted heel or toe moves at most this far per stance, metres.
 pub const SLIDE_GOAL_M: f32 = 0.02;
 /// A sole point within this of the ground counts as touching it, metres.
@@ -49,25 +51,20 @@ pub fn sole_samples(walked: &[WalkerMetrics]) -> Vec<SoleSample> {
         .collect()
 }
 
-/// The largest horizontal drift of a touching heel or toe from where it
-/// first touched, over each stance.
+/// The largest horizontal drift of a touching heel or toe (within
+/// [`TOUCHING_M`] above the ground) from where it first touched, over each
+/// stance.
 pub fn worst_slide(samples: &[SoleSample]) -> f32 {
     let mut worst = 0.0f32;
     for k in 0..2 {
-        let mut anchors: [Option<Vec3>; 2] = [None; 2];
+        let mut slide = StanceSlide::new(TOUCHING_M);
         for s in samples {
             let (contact, points) = s[k];
             if !contact {
-                anchors = [None; 2];
+                slide = StanceSlide::new(TOUCHING_M);
                 continue;
             }
-            for (anchor, p) in anchors.iter_mut().zip(points) {
-                if p.y.abs() > TOUCHING_M {
-                    continue;
-                }
-                let a = *anchor.get_or_insert(p);
-                worst = worst.max(Vec2::new(p.x - a.x, p.z - a.z).length());
-            }
+            worst = worst.max(slide.add_over(&points, 0.0));
         }
     }
     worst

@@ -34,6 +34,7 @@ mod balance;
 mod body;
 mod character_rig;
 mod clip_gait;
+mod clip_scratch;
 mod clip_walk;
 mod desc;
 mod error;
@@ -65,6 +66,7 @@ pub use balance::{
 pub use body::{BodyMass, CharacterBody};
 pub use character_rig::{ArmChain, CharacterRig};
 pub use clip_gait::{CLIP_DUTY_RANGE, ClipGait, ClipTiming};
+pub use clip_scratch::ClipScratch;
 pub use clip_walk::ClipWalk;
 pub use desc::{CharacterDesc, DEFAULT_PASSIVE_DAMPING};
 pub use error::CharacterError;
