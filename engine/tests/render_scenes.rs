@@ -1,6 +1,8 @@
 //! Small rendered scenes checked by pixel statistics. Each scene is also written
 //! to `target/render-previews/` for a human to look at.
 
+mod render_support;
+
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3};
 use engine::render::{
@@ -8,15 +10,17 @@ use engine::render::{
     TerrainRenderer, TerrainStyle, UniformColor,
 };
 use image::RgbaImage;
+use render_support::preview;
 
 const SAND: Vec3 = Vec3::new(0.62, 0.5, 0.34);
 
-/// Writes a preview PNG (best effort: previews are for people, not for the checks).
-fn preview(name: &str, image: &RgbaImage) {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/render-previews");
-    if std::fs::create_dir_all(&dir).is_ok() {
-        let _ = image.save(dir.join(format!("{name}.png")));
-    }
+/// `terrain` alone, default lighting, as `renderer` draws it from `camera`.
+fn terrain_only(renderer: &Renderer, terrain: &TerrainRenderer, camera: &Camera) -> RgbaImage {
+    let scene = FrameScene {
+        terrain: Some(terrain),
+        ..FrameScene::new()
+    };
+    renderer.render(&scene, camera)
 }
 
 /// A footprint: an elliptical depression `depth` deep with a raised rim.
@@ -96,20 +100,8 @@ fn footprints_are_darker_than_flat_surroundings() {
     let without = ground(false);
     let t_with = terrain_for(&with, &lighting);
     let t_without = terrain_for(&without, &lighting);
-    let img_with = renderer.render(
-        &FrameScene {
-            terrain: Some(&t_with),
-            ..FrameScene::new()
-        },
-        &cam,
-    );
-    let img_without = renderer.render(
-        &FrameScene {
-            terrain: Some(&t_without),
-            ..FrameScene::new()
-        },
-        &cam,
-    );
+    let img_with = terrain_only(&renderer, &t_with, &cam);
+    let img_without = terrain_only(&renderer, &t_without, &cam);
     preview("footprints", &img_with);
     preview("footprints_none", &img_without);
     // Around each print's centre the ground is darker than the same spot untouched.
@@ -334,20 +326,8 @@ fn only_dirty_patches_remesh_and_match_a_fresh_terrain() {
     let fresh = terrain_for(&grid, &lighting);
     let cam = camera(160, 100);
     let r = Renderer::new(160, 100).unwrap();
-    let a = r.render(
-        &FrameScene {
-            terrain: Some(&terrain),
-            ..FrameScene::new()
-        },
-        &cam,
-    );
-    let b = r.render(
-        &FrameScene {
-            terrain: Some(&fresh),
-            ..FrameScene::new()
-        },
-        &cam,
-    );
+    let a = terrain_only(&r, &terrain, &cam);
+    let b = terrain_only(&r, &fresh, &cam);
     assert!(a.as_raw() == b.as_raw());
 }
 
@@ -430,13 +410,7 @@ fn disturbed_samples_are_darker() {
             Vec3::new(1.28, 0.0, 1.28),
             Vec3::Y,
         );
-    let img = Renderer::new(128, 128).unwrap().render(
-        &FrameScene {
-            terrain: Some(&terrain),
-            ..FrameScene::new()
-        },
-        &cam,
-    );
+    let img = terrain_only(&Renderer::new(128, 128).unwrap(), &terrain, &cam);
     preview("disturbed", &img);
     let left = cam.project(Vec3::new(0.6, 0.0, 1.28)).unwrap();
     let right = cam.project(Vec3::new(1.9, 0.0, 1.28)).unwrap();

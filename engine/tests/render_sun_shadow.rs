@@ -4,6 +4,8 @@
 //! line where the geometry puts it (no stair-steps), and the lit ground
 //! around it is untouched (no acne).
 
+mod render_support;
+
 use engine::geom::{HeightGrid, TriMesh};
 use engine::glam::{Mat4, Vec2, Vec3, Vec4};
 use engine::render::{
@@ -11,6 +13,7 @@ use engine::render::{
     UniformColor,
 };
 use image::RgbaImage;
+use render_support::preview;
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 240;
@@ -105,14 +108,6 @@ fn render() -> (RgbaImage, RgbaImage) {
     );
     preview("sun_shadow_box", &frames.0);
     frames
-}
-
-/// Writes a preview PNG (best effort: previews are for people, not for the checks).
-fn preview(name: &str, image: &RgbaImage) {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/render-previews");
-    if std::fs::create_dir_all(&dir).is_ok() {
-        let _ = image.save(dir.join(format!("{name}.png")));
-    }
 }
 
 /// Where the shadow of the box's foot corner `corner` (0..4) falls when

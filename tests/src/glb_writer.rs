@@ -51,50 +51,35 @@ struct MeshData {
     indices: Vec<u32>,
 }
 
-/// Buffer views and accessors over one growing binary chunk.
-#[derive(Default)]
-struct Chunks {
-    bin: Vec<u8>,
-    views: Vec<Value>,
-    accessors: Vec<Value>,
-}
+/// The glTF buffer the writer fills.
+#[path = "../../engine/tests/anim_support/glb_buffer.rs"]
+mod glb_buffer;
+
+use glb_buffer::{GlbBuffer as Chunks, float_bytes, glb};
 
 impl Chunks {
-    /// Adds `bytes` as a view and an accessor of `count` `kind`s of `component`.
-    fn add(&mut self, bytes: Vec<u8>, component: u32, count: usize, kind: &str) -> usize {
-        self.bin.resize(self.bin.len().next_multiple_of(4), 0);
-        self.views.push(json!({
-            "buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()
-        }));
-        self.bin.extend(bytes);
-        self.accessors.push(json!({
-            "bufferView": self.views.len() - 1, "componentType": component,
-            "count": count, "type": kind
-        }));
-        self.accessors.len() - 1
-    }
-
+    /// Adds `values` as an accessor of `kind` floats.
     fn floats<const N: usize>(&mut self, values: &[[f32; N]], kind: &str) -> usize {
-        let bytes = values
-            .iter()
-            .flatten()
-            .flat_map(|f| f.to_le_bytes())
-            .collect();
-        self.add(bytes, 5126, values.len(), kind)
+        let bytes = float_bytes(values.iter().flatten().copied());
+        self.add(bytes, 5126, values.len(), kind, None)
     }
 }
 
 impl Chunks {
     /// A mesh's accessors as a glTF mesh.
     fn mesh(&mut self, data: &MeshData) -> Value {
-        let position = self.floats(&data.positions, "VEC3");
         let (lo, hi) = (data.positions.iter())
             .map(|p| Vec3::from(*p))
             .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
                 (lo.min(p), hi.max(p))
             });
-        self.accessors[position]["min"] = json!(lo.to_array());
-        self.accessors[position]["max"] = json!(hi.to_array());
+        let position = self.add(
+            float_bytes(data.positions.iter().flatten().copied()),
+            5126,
+            data.positions.len(),
+            "VEC3",
+            Some((lo.to_array(), hi.to_array())),
+        );
         let normal = self.floats(&data.normals, "VEC3");
         let joints = self.add(
             data.skin
@@ -105,6 +90,7 @@ impl Chunks {
             5123,
             data.skin.len(),
             "VEC4",
+            None,
         );
         let weights = self.floats(&data.weights, "VEC4");
         let indices = self.add(
@@ -112,6 +98,7 @@ impl Chunks {
             5125,
             data.indices.len(),
             "SCALAR",
+            None,
         );
         json!({"primitives": [{
             "attributes": {"POSITION": position, "NORMAL": normal, "JOINTS_0": joints, "WEIGHTS_0": weights},
@@ -195,8 +182,8 @@ impl RigParts {
             "nodes": nodes,
             "meshes": meshes,
             "skins": skins,
-            "bufferViews": c.views,
-            "accessors": c.accessors,
+            "bufferViews": json_values(&c.views),
+            "accessors": json_values(&c.accessors),
             "buffers": [{"byteLength": c.bin.len()}],
         });
         glb(serde_json::to_vec(&document).expect("JSON"), c.bin)
@@ -257,20 +244,9 @@ fn joint_node(joint: &Joint) -> Value {
     })
 }
 
-/// The GLB container: header, JSON chunk (space padded), BIN chunk (zero padded).
-fn glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Vec<u8> {
-    json.resize(json.len().next_multiple_of(4), b' ');
-    bin.resize(bin.len().next_multiple_of(4), 0);
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((total as u32).to_le_bytes());
-    out.extend((json.len() as u32).to_le_bytes());
-    out.extend(0x4E4F_534Au32.to_le_bytes());
-    out.extend(json);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(0x004E_4942u32.to_le_bytes());
-    out.extend(bin);
-    out
+/// JSON objects written as text, as values.
+fn json_values(objects: &[String]) -> Vec<Value> {
+    (objects.iter())
+        .map(|o| serde_json::from_str(o).expect("JSON"))
+        .collect()
 }

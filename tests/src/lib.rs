@@ -5,6 +5,7 @@
 pub mod glb_writer;
 pub mod rig_variants;
 pub mod sole_contact;
+pub mod stop_figures;
 
 use engine::schedule::App;
 use glam::{Vec2, Vec3};

@@ -76,23 +76,45 @@ impl SoleFigures {
 }
 
 /// Slide of one stance so far: how far any point of the sole has moved
-/// horizontally, while it touches the ground (within [`TOUCH_M`] of the
-/// lowest point), from where it first touched it in this stance. A foot that
-/// rolls from heel to toe touches with other points in turn and does not
-/// slide; a point that touches and moves does.
-#[derive(Default)]
+/// horizontally, while it touches the ground (within a touch distance,
+/// [`TOUCH_M`] by default, above the floor), from where it first touched it
+/// in this stance. A foot that rolls from heel to toe touches with other
+/// points in turn and does not slide; a point that touches and moves does.
 pub struct StanceSlide {
+    touch: f32,
     first_touch: Vec<Option<Vec3>>,
     worst: f32,
 }
 
+impl Default for StanceSlide {
+    fn default() -> Self {
+        StanceSlide::new(TOUCH_M)
+    }
+}
+
 impl StanceSlide {
-    /// Adds this step's sole points; returns the worst slide so far.
-    pub fn add(&mut self, points: Vec<Vec3>) -> f32 {
-        self.first_touch.resize(points.len(), None);
+    /// A stance whose points touch within `touch` metres of the floor.
+    pub fn new(touch: f32) -> Self {
+        StanceSlide {
+            touch,
+            first_touch: Vec::new(),
+            worst: 0.0,
+        }
+    }
+
+    /// Adds this step's sole points, the floor at the lowest of them;
+    /// returns the worst slide so far.
+    pub fn add(&mut self, points: &[Vec3]) -> f32 {
         let floor = points.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
-        for (first, p) in self.first_touch.iter_mut().zip(&points) {
-            if p.y < floor + TOUCH_M {
+        self.add_over(points, floor)
+    }
+
+    /// Adds this step's sole points over a floor at height `floor`; returns
+    /// the worst slide so far.
+    pub fn add_over(&mut self, points: &[Vec3], floor: f32) -> f32 {
+        self.first_touch.resize(points.len(), None);
+        for (first, p) in self.first_touch.iter_mut().zip(points) {
+            if p.y < floor + self.touch {
                 let at = *first.get_or_insert(*p);
                 self.worst = self
                     .worst
@@ -143,9 +165,9 @@ pub fn walk_soles(scene: &Scene, seconds: f64) -> SoleWalk {
             let above = |p: &Vec3| (*p - foot.sole.heel).dot(normal);
             let lowest = sole.iter().map(above).fold(f32::INFINITY, f32::min);
             figures.gap = figures.gap.max(lowest.abs());
-            figures.slide = figures.slide.max(slides[k][0].add(sole));
-            let driver = vec![foot.sole.heel, foot.sole.center(), foot.sole.toe];
-            figures.driver_slide = figures.driver_slide.max(slides[k][1].add(driver));
+            figures.slide = figures.slide.max(slides[k][0].add(&sole));
+            let driver = [foot.sole.heel, foot.sole.center(), foot.sole.toe];
+            figures.driver_slide = figures.driver_slide.max(slides[k][1].add(&driver));
         }
     }
     SoleWalk {

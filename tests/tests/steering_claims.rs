@@ -12,16 +12,15 @@ use softwalk_app::paper::recorded_run::{RecordedRun, record_run_with_inputs};
 use softwalk_app::scene::Scene;
 use softwalk_systems::character::{
     Character, CharacterBody, CharacterDesc, GaitModifiers, GaitParams, Joint, MAX_BACKWARD_ASLANT,
-    Steering, SteeringSettings, WalkPath, braking, steer_stage, step_character,
+    Steering, SteeringSettings, WalkPath, braking, cadence_hold, steer_stage, step_character,
 };
 use softwalk_systems::ground::FlatGround;
 use softwalk_systems::sim::WalkerMetrics;
+use softwalk_tests::stop_figures::{
+    SLIDE_GOAL_M, SoleSample, StopFigures, sole_samples, worst_slide,
+};
 
 const DT: f32 = 1.0 / 60.0;
-/// The foot-slide goal: a planted heel or toe moves at most this far per stance, metres.
-const SLIDE_GOAL_M: f32 = 0.02;
-/// A sole point within this of the ground counts as touching it, metres.
-const TOUCHING_M: f32 = 0.005;
 
 /// A steered adult standing at the origin facing +Z on flat ground.
 struct Steered {
@@ -55,40 +54,13 @@ impl Steered {
                 let scale = steer_stage(&mut self.steering, &c.gait, &c.body, &mut self.path, DT);
                 c.modifiers.speed_scale = scale;
                 c.modifiers.braking = braking(&self.steering, &c.gait, &self.path);
+                c.modifiers.cadence_hold = cadence_hold(&self.steering, &c.gait);
                 step_character(c, &self.path, &self.ground, DT);
                 let m = &c.metrics;
                 [0, 1].map(|k| (m.contact[k], [m.soles[k].heel, m.soles[k].toe]))
             })
             .collect()
     }
-}
-
-/// Heel and toe heights are above the ground under them: a sole point
-/// within [`TOUCHING_M`] of it touches.
-type SoleSample = [(bool, [Vec3; 2]); 2];
-
-/// The largest horizontal drift of a touching heel or toe from where it
-/// first touched, over each stance.
-fn worst_slide(samples: &[SoleSample]) -> f32 {
-    let mut worst = 0.0f32;
-    for k in 0..2 {
-        let mut anchors: [Option<Vec3>; 2] = [None; 2];
-        for s in samples {
-            let (contact, points) = s[k];
-            if !contact {
-                anchors = [None; 2];
-                continue;
-            }
-            for (anchor, p) in anchors.iter_mut().zip(points) {
-                if p.y.abs() > TOUCHING_M {
-                    continue;
-                }
-                let a = *anchor.get_or_insert(p);
-                worst = worst.max(Vec2::new(p.x - a.x, p.z - a.z).length());
-            }
-        }
-    }
-    worst
 }
 
 #[test]
@@ -146,9 +118,11 @@ fn tight_curves_start_and_stop_keep_planted_feet_still() {
 
 /// Steps of the backward walk on sand (8 s at 60 Hz).
 const BACK_STEPS: u64 = 480;
-/// The steps of the backward walk while stepping back (the wish behind
-/// starts at step 120, the walker stops, then steps back until step 280).
-const STEPPING_BACK: std::ops::Range<usize> = 150..300;
+/// The step at which the wish behind starts: the walker stops (its last
+/// step closing at the walk's cadence), then steps back until step 280.
+const WISH_BEHIND: usize = 120;
+/// The step by which stepping back has ended.
+const STEPPED_BACK: usize = 300;
 
 /// A recorded walk on sand-flat from `tests/inputs/<name>`, `steps` long:
 /// the run, each step's soles against the ground under them, and whether
@@ -161,19 +135,7 @@ fn recorded_on_sand(name: &str, steps: u64) -> (RecordedRun, Vec<SoleSample>, bo
     let inputs = InputScript::load(&file).unwrap();
     let run = record_run_with_inputs(&scene, steps, Some(&inputs)).unwrap();
     let walked = &run.walkers[0];
-    let samples: Vec<SoleSample> = walked
-        .iter()
-        .map(|m| {
-            [0, 1].map(|k| {
-                let (sole, under) = (m.character.soles[k], m.sole_ground[k]);
-                let heel = sole.heel - Vec3::Y * under.heel;
-                (
-                    m.character.contact[k],
-                    [heel, sole.toe - Vec3::Y * under.toe],
-                )
-            })
-        })
-        .collect();
+    let samples = sole_samples(walked);
     let facing_forward = walked
         .iter()
         .all(|m| m.character.soles.iter().all(|s| s.toe.x > s.heel.x));
@@ -192,7 +154,10 @@ fn landings(walked: &[WalkerMetrics]) -> usize {
 fn a_slow_wish_behind_steps_back_on_sand_facing_forward() {
     let (run, samples, facing_forward) = recorded_on_sand("steps_back_sand.toml", BACK_STEPS);
     let walked = &run.walkers[0];
-    let back = &walked[STEPPING_BACK];
+    let first_back = (WISH_BEHIND..STEPPED_BACK)
+        .find(|&s| walked[s].velocity.x < 0.0)
+        .expect("never stepped back");
+    let back = &walked[first_back..STEPPED_BACK];
     let landings = landings(back);
     let moved = back[back.len() - 1].character.com - back[0].character.com;
     let slide = worst_slide(&samples);
@@ -276,9 +241,12 @@ const STOP_STEPS: u64 = 300;
 const STOP_AT: usize = 150;
 /// The slowest the walker moves before it rests, m/s (the braking floor).
 const LAST_SPEED_M_S: f32 = 0.3;
+/// Feet at rest no further apart than this along the walk have closed
+/// side by side, metres (a foot is about 0.26 m long).
+const CLOSED_FEET_M: f32 = 0.1;
 
 #[test]
-fn a_stop_brakes_at_once_leans_back_and_rests_between_the_feet() {
+fn a_stop_brakes_at_once_leans_back_and_closes_the_feet_side_by_side() {
     let (run, samples, _) = recorded_on_sand("stop_sand.toml", STOP_STEPS);
     let walked = &run.walkers[0];
     let speed: Vec<f32> = walked.iter().map(|m| m.velocity.length()).collect();
@@ -293,18 +261,26 @@ fn a_stop_brakes_at_once_leans_back_and_rests_between_the_feet() {
     let travelled = walked[rest].character.com.x - walked[STOP_AT - 1].character.com.x;
     let seconds = (rest + 1 - STOP_AT) as f32 * run.dt;
     let at_rest = &walked[STOP_STEPS as usize - 1].character;
-    let feet = at_rest.feet.map(|f| f.x - at_rest.com.x);
+    let feet = at_rest
+        .soles
+        .map(|f| 0.5 * (f.heel.x + f.toe.x) - at_rest.com.x);
     let slide = worst_slide(&samples);
     let whole = run.quality(0);
+    let stop = StopFigures::measure(walked, run.dt, STOP_AT);
     println!(
         "stop on sand: pelvis speed every 3 steps from the key (m/s) {}\n\
          rests after {seconds:.2} s and {travelled:.2} m; tilt {walking_tilt:.2}° walking, \
-         {braking_tilt:.2}° at most braking; feet {:.2} m and {:.2} m from the COM along x; \
-         slide {:.2} cm\nwhole walk: {whole}",
+         {braking_tilt:.2}° at most braking; sole centres {:.2} m and {:.2} m from the COM along x; \
+         slide {:.2} cm\nthe stop: {stop}\nwhole walk: {whole}",
         profile.join(" "),
         feet[0],
         feet[1],
         slide * 100.0
+    );
+    assert!(stop.failures().is_empty(), "{:?}", stop.failures());
+    assert!(
+        (feet[0] - feet[1]).abs() <= CLOSED_FEET_M,
+        "the last step did not close beside the other foot: {feet:?}"
     );
     assert!(speed[STOP_AT] < speed[STOP_AT - 1], "did not slow at once");
     let slowing = speed[STOP_AT - 1..=rest]
@@ -323,7 +299,7 @@ fn a_stop_brakes_at_once_leans_back_and_rests_between_the_feet() {
     );
     assert!(
         feet[0].min(feet[1]) < 0.05 && feet[0].max(feet[1]) > -0.05,
-        "rests beside its feet, not between them: {feet:?}"
+        "the COM rests outside its feet: {feet:?}"
     );
     assert_eq!(at_rest.contact, [true, true], "a foot in the air at rest");
     assert!(slide <= SLIDE_GOAL_M, "slide {slide} m");

@@ -3,6 +3,10 @@
 //! a clip `bend` turning `tip` 90 degrees about +z over one second.
 #![allow(dead_code)]
 
+mod glb_buffer;
+
+use glb_buffer::{GlbBuffer, float_bytes as floats, glb};
+
 /// What the glTF holds; tests change fields to make bad files.
 pub struct TwoBones {
     pub positions: Vec<[f32; 3]>,
@@ -42,73 +46,45 @@ impl Default for TwoBones {
     }
 }
 
-/// Buffer views and accessors over one growing buffer.
-#[derive(Default)]
-struct Builder {
-    bin: Vec<u8>,
-    views: Vec<String>,
-    accessors: Vec<String>,
-}
-
-impl Builder {
-    fn add(&mut self, bytes: Vec<u8>, component: u32, count: usize, kind: &str) -> usize {
-        while !self.bin.len().is_multiple_of(4) {
-            self.bin.push(0);
-        }
-        self.views.push(format!(
-            r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
-            self.bin.len(),
-            bytes.len()
-        ));
-        self.bin.extend(bytes);
-        self.accessors.push(format!(
-            r#"{{"bufferView":{},"componentType":{component},"count":{count},"type":"{kind}"}}"#,
-            self.views.len() - 1
-        ));
-        self.accessors.len() - 1
-    }
-}
-
-fn floats(values: impl IntoIterator<Item = f32>) -> Vec<u8> {
-    values.into_iter().flat_map(f32::to_le_bytes).collect()
-}
-
 impl TwoBones {
     /// The glTF JSON (buffer as `uri`, or the GLB chunk when `uri` is `None`) and the buffer bytes.
     pub fn build(&self, uri: Option<&str>) -> (String, Vec<u8>) {
-        let mut b = Builder::default();
+        let mut b = GlbBuffer::default();
+        // glTF requires bounds on POSITION; these need not be tight.
         let position = b.add(
             floats(self.positions.iter().flatten().copied()),
             5126,
             self.position_count,
             "VEC3",
+            Some(([-9.0; 3], [9.0; 3])),
         );
-        // glTF requires bounds on POSITION; these need not be tight.
-        b.accessors[position] =
-            b.accessors[position].replace("}", r#","min":[-9,-9,-9],"max":[9,9,9]}"#);
         let normal = b.add(
             floats(self.positions.iter().flat_map(|_| [0.0, 0.0, 1.0])),
             5126,
             self.positions.len(),
             "VEC3",
+            None,
         );
         let joints = b.add(
             self.joints.iter().flatten().copied().collect(),
             5121,
             self.joints.len(),
             "VEC4",
+            None,
         );
         let weights = b.add(
             floats(self.weights.iter().flatten().copied()),
             5126,
             self.weights.len(),
             "VEC4",
+            None,
         );
         let indices = b.add(
             [0u16, 1, 2].iter().flat_map(|i| i.to_le_bytes()).collect(),
             5123,
             3,
             "SCALAR",
+            None,
         );
         let mut ibm = Vec::new();
         for y in [0.0f32, -1.0] {
@@ -116,18 +92,20 @@ impl TwoBones {
                 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, y, 0.0, 1.0,
             ]);
         }
-        let ibm = b.add(floats(ibm), 5126, 2, "MAT4");
+        let ibm = b.add(floats(ibm), 5126, 2, "MAT4", None);
         let times = b.add(
             floats(self.times.iter().copied()),
             5126,
             self.times.len(),
             "SCALAR",
+            None,
         );
         let rotations = b.add(
             floats(self.rotations.iter().flatten().copied()),
             5126,
             self.rotations.len(),
             "VEC4",
+            None,
         );
         let buffer = match uri {
             Some(u) => format!(r#"{{"byteLength":{},"uri":"{u}"}}"#, b.bin.len()),
@@ -161,31 +139,8 @@ impl TwoBones {
 
     /// A `.glb`.
     pub fn glb(&self) -> Vec<u8> {
-        let (json, mut bin) = self.build(None);
-        let mut json = json.into_bytes();
-        while !json.len().is_multiple_of(4) {
-            json.push(b' ');
-        }
-        while !bin.len().is_multiple_of(4) {
-            bin.push(0);
-        }
-        let total = 12 + 8 + json.len() + 8 + bin.len();
-        let mut out = Vec::with_capacity(total);
-        for word in [
-            0x4654_6C67u32,
-            2,
-            total as u32,
-            json.len() as u32,
-            0x4E4F_534A,
-        ] {
-            out.extend(word.to_le_bytes());
-        }
-        out.extend(json);
-        for word in [bin.len() as u32, 0x004E_4942] {
-            out.extend(word.to_le_bytes());
-        }
-        out.extend(bin);
-        out
+        let (json, bin) = self.build(None);
+        glb(json.into_bytes(), bin)
     }
 }
 

@@ -1,17 +1,15 @@
 //! From a validated [`Scene`] to a ready-to-run simulation, through
 //! `softwalk_systems::sim::SimBuilder`.
 
-use std::collections::BTreeMap;
-
 use engine::ecs::Entity;
 use engine::geom::TriMesh;
 use engine::schedule::App;
-use softwalk_systems::character::{Balance, CharacterRig};
+use softwalk_systems::character::Balance;
 use softwalk_systems::sim::{MassSource, SimBuilder, SimError, attach_rig};
 use softwalk_systems::terrain::{Heightfield, MaterialTable};
 
 use super::material::material_table;
-use super::{LoadedClip, Scene, SceneError};
+use super::{CharacterAssets, Scene, SceneError};
 
 /// Wraps a simulation refusal with the scene part it came from.
 fn setup(part: impl Into<String>) -> impl FnOnce(SimError) -> SceneError {
@@ -84,11 +82,8 @@ impl Scene {
                 .grass(patch.area(), patch.settings())
                 .map_err(setup(format!("grass[{k}]")))?;
         }
-        let clips = self
-            .characters
-            .iter()
-            .enumerate()
-            .map(|(k, c)| c.walk_clip(&format!("characters[{k}]"), &self.base_dir))
+        let assets = (self.characters.iter().enumerate())
+            .map(|(k, c)| (self.rigs).character(&format!("characters[{k}]"), c, &self.base_dir))
             .collect::<Result<Vec<_>, _>>()?;
         let mut walkers = Vec::with_capacity(self.characters.len());
         for (k, c) in self.characters.iter().enumerate() {
@@ -101,12 +96,12 @@ impl Scene {
                 },
             })?;
             let entity = builder
-                .character(&c.name, c.desc(clips[k].as_ref()), path)
+                .character(&c.name, c.desc(assets[k].clip.as_deref()), path)
                 .map_err(setup(part))?;
             walkers.push(entity);
         }
         let mut app = builder.build().map_err(setup("sim"))?;
-        self.attach_rigs(&mut app, &walkers, &clips)?;
+        self.attach_rigs(&mut app, &walkers, assets)?;
         for (k, (c, entity)) in self.characters.iter().zip(&walkers).enumerate() {
             let mut balance = app
                 .world
@@ -117,34 +112,24 @@ impl Scene {
         Ok((app, walkers))
     }
 
-    /// Gives each character drawn as a model its [`CharacterRig`], whose
+    /// Gives each character drawn as a model its
+    /// [`softwalk_systems::character::CharacterRig`], whose
     /// skinned volume sets its centre of mass and inertia (a mesh that is not
     /// closed keeps the capsules', with a warning), and, with a walk clip,
-    /// the [`softwalk_systems::character::ClipWalk`] its upper body plays; one
-    /// model and bone table are loaded once and shared.
+    /// the [`softwalk_systems::character::ClipWalk`] its upper body plays
+    /// (each loaded once, through the scene's [`super::RigCache`]).
     fn attach_rigs(
         &self,
         app: &mut App,
         walkers: &[Entity],
-        clips: &[Option<LoadedClip>],
+        assets: Vec<CharacterAssets>,
     ) -> Result<(), SceneError> {
-        let mut loaded: Vec<(&str, &BTreeMap<String, String>, Option<CharacterRig>)> = Vec::new();
-        for (k, (c, &entity)) in self.characters.iter().zip(walkers).enumerate() {
+        for (k, ((c, &entity), assets)) in
+            self.characters.iter().zip(walkers).zip(assets).enumerate()
+        {
             let field = format!("characters[{k}]");
-            let known = loaded
-                .iter()
-                .find(|(model, bones, _)| *model == c.model && **bones == c.bones);
-            let rig = match known {
-                Some((_, _, rig)) => rig.clone(),
-                None => {
-                    let rig = c.rig(&field, &self.base_dir)?;
-                    loaded.push((&c.model, &c.bones, rig.clone()));
-                    rig
-                }
-            };
-            let Some(rig) = rig else { continue };
-            if let Some(clip) = &clips[k] {
-                let walk = clip.on_rig(&rig)?;
+            let Some(rig) = assets.rig else { continue };
+            if let Some(walk) = assets.walk {
                 app.world
                     .insert(entity, (walk,))
                     .map_err(spawn_failed(format!("{field}.clip")))?;

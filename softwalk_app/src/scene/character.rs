@@ -9,14 +9,13 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
-use softwalk_systems::character::{
-    CharacterDesc, CharacterError, CharacterRig, PathSegment, WalkPath,
-};
+use softwalk_systems::character::{CharacterDesc, CharacterError, PathSegment, WalkPath};
 
 use super::SceneError;
-use super::character_clip::{LoadedClip, load_clip};
-use super::character_model::{default_model, load_character_rig};
+use super::character_clip::LoadedClip;
+use super::character_model::default_model;
 use super::check::{finite, identifier, in_range, on_terrain, positive};
+use super::rig_cache::RigCache;
 
 /// Default radius of the rounded corners of a waypoint path, metres.
 pub const DEFAULT_CORNER_RADIUS: f32 = 0.75;
@@ -229,12 +228,14 @@ fn default_controller() -> bool {
 }
 
 impl CharacterSpec {
-    /// Checks the character; `field` is its path (`characters[0]`).
+    /// Checks the character, its model and clip loaded through `rigs`;
+    /// `field` is its path (`characters[0]`).
     pub(crate) fn validate(
         &self,
         field: &str,
         size: [f32; 2],
         base_dir: &Path,
+        rigs: &RigCache,
     ) -> Result<(), SceneError> {
         identifier(&format!("{field}.name"), &self.name)?;
         self.body.validate().map_err(|e| match e {
@@ -245,26 +246,8 @@ impl CharacterSpec {
             other => SceneError::invalid(format!("{field}.body"), other.to_string()),
         })?;
         self.path.validate(&format!("{field}.path"), size)?;
-        let rig = self.rig(field, base_dir)?;
-        if let Some(clip) = self.walk_clip(field, base_dir)?
-            && let Some(rig) = &rig
-        {
-            clip.on_rig(rig)?;
-        }
+        rigs.character(field, self, base_dir)?;
         Ok(())
-    }
-
-    /// The walk clip the character walks like, loaded and analysed (`None`
-    /// without a `clip`); `field` is its path (`characters[0]`).
-    pub fn walk_clip(
-        &self,
-        field: &str,
-        base_dir: &Path,
-    ) -> Result<Option<LoadedClip>, SceneError> {
-        self.clip
-            .as_deref()
-            .map(|clip| load_clip(field, clip, base_dir))
-            .transpose()
     }
 
     /// The body description the simulation builds: `body`, walking with the
@@ -274,12 +257,6 @@ impl CharacterSpec {
             clip_gait: clip.map(|c| c.gait),
             ..self.body
         }
-    }
-
-    /// The rig the character is drawn as (`None` for the mannequin); `field`
-    /// is its path (`characters[0]`).
-    pub fn rig(&self, field: &str, base_dir: &Path) -> Result<Option<CharacterRig>, SceneError> {
-        load_character_rig(field, &self.model, &self.bones, base_dir)
     }
 }
 
@@ -310,10 +287,20 @@ mod tests {
         assert!((end[0] - 1.0).abs() < 1e-5 && (end[1] - 4.0).abs() < 1e-5);
         let path = c.path.walk_path().unwrap();
         assert!((path.point_at(3.0).position - Vec2::new(1.0, 4.0)).length() < 1e-5);
-        c.validate("characters[0]", [10.0, 10.0], Path::new(""))
-            .unwrap();
+        c.validate(
+            "characters[0]",
+            [10.0, 10.0],
+            Path::new(""),
+            &RigCache::default(),
+        )
+        .unwrap();
         let e = c
-            .validate("characters[0]", [10.0, 3.0], Path::new(""))
+            .validate(
+                "characters[0]",
+                [10.0, 3.0],
+                Path::new(""),
+                &RigCache::default(),
+            )
             .unwrap_err();
         assert!(
             e.to_string()
@@ -346,7 +333,12 @@ mod tests {
             points: vec![[1.0, 1.0], [5.0, 1.0], [1.0, 1.01]],
             corner_radius: 1.0,
         })
-        .validate("characters[0]", [10.0, 10.0], Path::new(""))
+        .validate(
+            "characters[0]",
+            [10.0, 10.0],
+            Path::new(""),
+            &RigCache::default(),
+        )
         .unwrap_err();
         assert_eq!(e.field(), Some("characters[0].path.points[1]"));
     }
@@ -360,7 +352,12 @@ mod tests {
         });
         c.body.alpha = f32::NAN;
         let e = c
-            .validate("characters[1]", [10.0, 10.0], Path::new(""))
+            .validate(
+                "characters[1]",
+                [10.0, 10.0],
+                Path::new(""),
+                &RigCache::default(),
+            )
             .unwrap_err();
         assert_eq!(e.field(), Some("characters[1].body.alpha"));
     }

@@ -63,8 +63,9 @@ pub fn load_clip(field: &str, clip: &str, base_dir: &Path) -> Result<LoadedClip,
 }
 
 impl LoadedClip {
-    /// The clip retargeted onto `rig`, to play its upper body.
-    pub fn on_rig(&self, rig: &CharacterRig) -> Result<ClipWalk, SceneError> {
+    /// The clip retargeted onto `rig`, to play its upper body; a refusal
+    /// names `field` (the `clip` of the character that plays it).
+    pub fn on_rig(&self, field: &str, rig: &CharacterRig) -> Result<ClipWalk, SceneError> {
         ClipWalk::new(
             &self.bvh.skeleton,
             &self.map,
@@ -73,7 +74,7 @@ impl LoadedClip {
             rig,
         )
         .map_err(|e| SceneError::BadFile {
-            field: self.field.clone(),
+            field: field.to_string(),
             path: self.path.clone(),
             reason: e.to_string(),
         })

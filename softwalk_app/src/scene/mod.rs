@@ -33,6 +33,7 @@ mod material;
 mod png_header;
 mod prop;
 mod render_settings;
+mod rig_cache;
 mod sim_settings;
 mod syntax;
 mod terrain;
@@ -61,6 +62,7 @@ pub use prop::{MAX_PROP_FILE_BYTES, MAX_PROP_SCALE, MAX_PROP_SINK, MAX_PROPS, Pr
 pub use render_settings::{
     APNG_DELAY_MS, GIF_DELAY_MS, MAX_FRAME_SIDE, RenderSettings, frame_delay_ms,
 };
+pub use rig_cache::{CharacterAssets, RigCache};
 pub use sim_settings::{MAX_DT, MAX_STEPS, MIN_DT, SimSettings};
 pub use terrain::{
     FEATURE_SIZE_RANGE, MAX_REGIONS, MAX_RESOLUTION, MAX_SINUOSITY, MAX_TERRAIN_SIZE,
@@ -109,6 +111,10 @@ pub struct Scene {
     /// Folder relative paths are resolved against (the scene file's folder).
     #[serde(skip)]
     pub base_dir: PathBuf,
+    /// The characters' models and clips, loaded once by validation and
+    /// shared with the build (no part of the scene's content).
+    #[serde(skip)]
+    pub rigs: RigCache,
 }
 
 impl Scene {
@@ -275,7 +281,7 @@ impl Scene {
         let mut seen = std::collections::HashSet::with_capacity(self.characters.len());
         for (k, c) in self.characters.iter().enumerate() {
             let field = format!("characters[{k}]");
-            c.validate(&field, size, &self.base_dir)?;
+            c.validate(&field, size, &self.base_dir, &self.rigs)?;
             if !seen.insert(c.name.as_str()) {
                 return Err(SceneError::invalid(
                     format!("{field}.name"),

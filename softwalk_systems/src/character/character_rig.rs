@@ -104,10 +104,13 @@ impl CharacterRig {
     /// vertices, and the hips must stand above the soles.
     pub fn new(name: &str, model: Model, map: BoneMap) -> Result<CharacterRig, ModelError> {
         let chains = RigChains::find(&model.skeleton, &map)?;
-        let (model, units) = in_metres(model)?;
-        let rest_globals = model.skeleton.rest_globals();
+        let RestModel {
+            model,
+            units,
+            globals: rest_globals,
+            vertices: rest_vertices,
+        } = in_metres(model)?;
         let rest_positions: Vec<Vec3> = rest_globals.iter().map(|m| m.w_axis.truncate()).collect();
-        let rest_vertices = rest_mesh(&model, &rest_globals)?;
         let (soles, ground) = soles(&model, &chains, &rest_vertices.positions)?;
         let at = |j: usize| rest_positions[j];
         let hip_mid = 0.5 * (at(chains.left.hip) + at(chains.right.hip));
@@ -241,20 +244,38 @@ impl CharacterRig {
     }
 }
 
-/// The mesh skinned by the rest pose (the bind pose when the rest pose is it).
-fn rest_mesh(model: &Model, rest_globals: &[Mat4]) -> Result<SkinnedVertices, ModelError> {
-    let mut matrices = Vec::new();
-    skin_matrices(&model.skeleton, rest_globals, &mut matrices);
-    let mut out = SkinnedVertices::default();
-    skin_serial(&model.mesh, &matrices, &mut out)?;
-    Ok(out)
+/// A model in metres with its rest pose: the joints' global matrices and
+/// the mesh skinned by them.
+struct RestModel {
+    model: Model,
+    units: ModelUnits,
+    globals: Vec<Mat4>,
+    vertices: SkinnedVertices,
+}
+
+impl RestModel {
+    /// `model` (in `units`) in its rest pose.
+    fn of(model: Model, units: ModelUnits) -> Result<RestModel, ModelError> {
+        let globals = model.skeleton.rest_globals();
+        let mut matrices = Vec::new();
+        skin_matrices(&model.skeleton, &globals, &mut matrices);
+        let mut vertices = SkinnedVertices::default();
+        skin_serial(&model.mesh, &matrices, &mut vertices)?;
+        Ok(RestModel {
+            model,
+            units,
+            globals,
+            vertices,
+        })
+    }
 }
 
 /// A model converted to metres, and the unit its file uses: told from the
 /// rest pose's standing height, once it is known to stand rather than lie.
-fn in_metres(model: Model) -> Result<(Model, ModelUnits), ModelError> {
-    let rest = rest_mesh(&model, &model.skeleton.rest_globals())?;
-    let (lo, hi) = (rest.positions.iter())
+/// A model already in metres is skinned once; a converted one again, scaled.
+fn in_metres(model: Model) -> Result<RestModel, ModelError> {
+    let rest = RestModel::of(model, ModelUnits::Metres)?;
+    let (lo, hi) = (rest.vertices.positions.iter())
         .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
             (lo.min(*p), hi.max(*p))
         });
@@ -265,8 +286,8 @@ fn in_metres(model: Model) -> Result<(Model, ModelUnits), ModelError> {
     }
     let units = ModelUnits::of_standing_height(height)?;
     match units {
-        ModelUnits::Metres => Ok((model, units)),
-        _ => Ok((model.scaled(units.metres())?, units)),
+        ModelUnits::Metres => Ok(rest),
+        _ => RestModel::of(rest.model.scaled(units.metres())?, units),
     }
 }
 

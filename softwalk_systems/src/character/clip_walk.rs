@@ -7,6 +7,7 @@ use engine::anim::{BoneMap, Clip, Playback, RetargetError, Skeleton, WalkCycle, 
 use glam::{Mat4, Quat};
 use thiserror::Error;
 
+use super::clip_scratch::ClipScratch;
 use super::{CharacterBody, CharacterRig, Gait, Pose, RigPose};
 use crate::foot::FootState;
 
@@ -18,11 +19,17 @@ pub enum ClipWalkError {
     Retarget(#[source] RetargetError),
 }
 
-/// A walk clip retargeted onto one rig, with the cycle read from it.
+/// A walk clip retargeted onto one rig, with the cycle read from it and
+/// what of the rig it plays: the upper body's joints and their rest turns.
 #[derive(Debug, Clone)]
 pub struct ClipWalk {
     clip: Arc<Clip>,
     cycle: WalkCycle,
+    /// The inverse of each joint's rest rotation (world).
+    rest_turns: Vec<Quat>,
+    /// The joints from the first spine bone up, each with its parent, in
+    /// skeleton order (parents first).
+    upper_body: Vec<(usize, usize)>,
 }
 
 impl ClipWalk {
@@ -44,9 +51,22 @@ impl ClipWalk {
             rig.bone_map(),
         )
         .map_err(ClipWalkError::Retarget)?;
+        let skeleton = &rig.model().skeleton;
+        let rest_turns = (rig.rest_globals().iter())
+            .map(|m| rotation(m).inverse())
+            .collect();
+        let upper_body = match rig.chains().spine.first() {
+            Some(&spine) => (skeleton.joints().iter().enumerate())
+                .filter(|&(j, _)| skeleton.is_ancestor(spine, j))
+                .filter_map(|(j, joint)| Some((j, joint.parent?)))
+                .collect(),
+            None => Vec::new(),
+        };
         Ok(ClipWalk {
             clip: Arc::new(on_rig),
             cycle,
+            rest_turns,
+            upper_body,
         })
     }
 
@@ -62,7 +82,8 @@ impl ClipWalk {
         gait: &Gait,
     ) -> RigPose {
         let mut out = RigPose::drive(rig, body, pose, feet);
-        self.play_upper_body(rig, &mut out, gait.phase, gait.roll);
+        let mut scratch = ClipScratch::default();
+        self.play_upper_body(rig, &mut out, gait.phase, gait.roll, &mut scratch);
         out
     }
 
@@ -70,28 +91,36 @@ impl ClipWalk {
     /// clavicles, arms, hands) as the clip has it at walk phase `phase` (0 =
     /// left heel strike) relative to its pelvis, on the pelvis `out` already
     /// has; `weight` in `[0, 1]` blends from `out`'s pose to the clip's.
-    pub fn play_upper_body(&self, rig: &CharacterRig, out: &mut RigPose, phase: f32, weight: f32) {
+    /// `rig` is the rig the clip was made for (another skeleton is left as
+    /// `out` has it); `scratch` holds the clip's pose between calls.
+    pub fn play_upper_body(
+        &self,
+        rig: &CharacterRig,
+        out: &mut RigPose,
+        phase: f32,
+        weight: f32,
+        scratch: &mut ClipScratch,
+    ) {
         let skeleton = &rig.model().skeleton;
-        let chains = rig.chains();
-        let Some(&spine) = chains.spine.first() else {
+        let n = skeleton.len();
+        if self.upper_body.is_empty() || self.rest_turns.len() != n || out.rotations.len() != n {
             return;
-        };
+        }
+        let chains = rig.chains();
         let time = self.cycle.clip_time(phase, self.clip.duration());
-        let mut globals: Vec<Mat4> = Vec::with_capacity(skeleton.len());
+        // The rest pose under the clip's channels, as `Clip::pose_at` has it.
+        let locals = &mut scratch.pose.locals;
+        locals.clear();
+        locals.extend(skeleton.joints().iter().map(|joint| joint.rest));
         self.clip
-            .pose_at(time, Playback::Once, skeleton)
-            .globals(skeleton, &mut globals);
-        let rest = rig.rest_globals();
+            .sample(time, Playback::Once, skeleton, &mut scratch.pose);
+        scratch.pose.globals(skeleton, &mut scratch.globals);
+        let globals = &scratch.globals;
         let rest_at = rig.rest_positions();
-        let rotation = |m: &Mat4| m.to_scale_rotation_translation().1;
-        let turn = |j: usize| rotation(&globals[j]) * rotation(&rest[j]).inverse();
+        let turn = |j: usize| rotation(&globals[j]) * self.rest_turns[j];
         let on_pelvis = out.rotations[chains.pelvis] * turn(chains.pelvis).inverse();
         let weight = weight.clamp(0.0, 1.0);
-        for (j, joint) in skeleton.joints().iter().enumerate() {
-            let Some(parent) = joint.parent else { continue };
-            if !skeleton.is_ancestor(spine, j) {
-                continue;
-            }
+        for &(j, parent) in &self.upper_body {
             let played: Quat = (on_pelvis * turn(j)).normalize();
             out.rotations[j] = out.rotations[j].slerp(played, weight).normalize();
             out.positions[j] = out.positions[parent]
@@ -99,4 +128,9 @@ impl ClipWalk {
                     * (out.stretch[parent] * (rest_at[j] - rest_at[parent]) * out.scale);
         }
     }
+}
+
+/// The rotation part of a joint's global matrix.
+fn rotation(m: &Mat4) -> Quat {
+    m.to_scale_rotation_translation().1
 }

@@ -107,6 +107,11 @@ pub struct GaitModifiers {
     /// Deceleration of the walk along its path, m/s² (0 at a steady speed;
     /// steering sets it while braking for a stop; clamped to `[0, 10]`).
     pub braking: f32,
+    /// How many times faster than `speed_scale` the walk's timing runs (its
+    /// cycle time and stance fraction; clamped to `[1, 10]`, 1 by default):
+    /// while braking for a stop, steering keeps the cadence of the walk
+    /// before the stop, so the steps shorten instead of slowing down.
+    pub cadence_hold: f32,
 }
 
 impl GaitModifiers {
@@ -127,6 +132,7 @@ impl Default for GaitModifiers {
             extra_clearance: 0.0,
             grade: 0.0,
             braking: 0.0,
+            cadence_hold: 1.0,
         }
     }
 }
@@ -196,35 +202,20 @@ impl GaitParams {
     /// Boulic's walk for this body: v = sqrt(Fr g Ht), RV = v / Ht,
     /// stride = 1.346 sqrt(RV) Ht, support time 0.752 Dc - 0.143; or, when
     /// its description has a [`super::ClipGait`], the clip's walk scaled to it.
-    /// The modifiers scale either.
+    /// The modifiers scale either. A [`GaitModifiers::cadence_hold`] times
+    /// the walk at the held speed and shortens its stride to the real one.
     pub fn new(body: &CharacterBody, modifiers: &GaitModifiers) -> Self {
         let ht = body.hip_height;
         let speed_scale = sane(modifiers.speed_scale, 0.1, 2.0, 1.0);
-        let length_scale = sane(modifiers.step_length_scale, 0.3, 1.5, 1.0);
-        let grade = sane(modifiers.grade, -2.0, 2.0, 0.0);
-        let slope_scale = 1.0 / (1.0 + DOWNHILL_STEP_SHORTENING * (-grade).max(0.0));
-        let (speed, stride, duty) = match body.desc.clip_gait {
-            Some(clip) => {
-                let walk = clip.timing(body.leg_reach(), body.hip_height);
-                let stride = walk.stride * length_scale * slope_scale;
-                (walk.speed * speed_scale, stride, walk.duty)
-            }
-            None => {
-                let speed = (body.desc.froude * GRAVITY * ht).sqrt() * speed_scale;
-                let rv = speed / ht;
-                let stride = 1.346 * rv.sqrt() * ht * length_scale * slope_scale;
-                let cycle = stride / speed;
-                (
-                    speed,
-                    stride,
-                    ((0.752 * cycle - 0.143) / cycle).clamp(CLIP_DUTY_RANGE.0, CLIP_DUTY_RANGE.1),
-                )
-            }
-        };
+        let hold = sane(modifiers.cadence_hold, 1.0, 10.0, 1.0);
+        let timing_scale = sane(speed_scale * hold, 0.1, 2.0, 1.0);
+        let (timed_speed, timed_stride, duty) = walk_timing(body, modifiers, timing_scale);
+        let shorter = speed_scale / timing_scale;
+        let speed = timed_speed * shorter;
         let rv = speed / ht;
         GaitParams {
             speed,
-            stride,
+            stride: timed_stride * shorter,
             duty,
             clearance: 0.1 * ht + sane(modifiers.extra_clearance, 0.0, 0.5, 0.0),
             bob_amplitude: 0.015 * rv * ht,
@@ -484,6 +475,37 @@ impl Gait {
         }
     }
 
+    /// Brings the landing of a foot still rising in its swing back to the
+    /// path's end when it was planned beyond it (the path was cut short: a
+    /// stop), so the walker's feet come to rest side by side. The swing
+    /// stays continuous: its start is moved so the foot is where it was.
+    /// A foot already coming down keeps its landing: moving the start of a
+    /// swing that far along would swing it backward first.
+    fn shorten_rising_swings(&mut self, body: &CharacterBody, path: &WalkPath) {
+        let travel = self.travel_heading();
+        let left = path.end_distance() - self.distance;
+        for k in 0..2 {
+            let plan = &self.feet[k];
+            let ahead = (plan.foothold - self.pelvis.position).dot(travel);
+            if plan.phase != FootPhase::SwingUp || ahead <= left + 1.0e-4 {
+                continue;
+            }
+            let (end, end_heading) = self.foothold_at(body, path, k, f32::INFINITY);
+            let beyond = (plan.foothold - end).dot(travel) > 1.0e-4;
+            if !beyond || (end - plan.target).dot(travel) <= 0.0 {
+                continue;
+            }
+            let eased = smoothstep(plan.swing);
+            let keep = |now: Vec2, to: Vec2| (now - to * eased) / (1.0 - eased);
+            let plan = &mut self.feet[k];
+            plan.from = keep(plan.target, end);
+            plan.from_heading = keep(plan.heading, end_heading)
+                .try_normalize()
+                .unwrap_or(end_heading);
+            (plan.foothold, plan.foothold_heading) = (end, end_heading);
+        }
+    }
+
     /// Pelvis bob and sway and arm swing from the cycle phase (Boulic's
     /// curves); sway and arms as far as the foot roll is applied (they
     /// settle with the feet at a stop), the arms against the legs, so
@@ -495,6 +517,38 @@ impl Gait {
         self.sway = r * -p.sway_amplitude * (TAU * (phi - 0.1)).sin();
         let arms = if self.backward { -r } else { r };
         self.arm_swing = arms * p.arm_amplitude * (TAU * (phi - 0.15)).sin();
+    }
+}
+
+/// The walk's speed (m/s), stride (m) and stance fraction at `speed_scale`
+/// (see [`GaitParams::new`]).
+fn walk_timing(
+    body: &CharacterBody,
+    modifiers: &GaitModifiers,
+    speed_scale: f32,
+) -> (f32, f32, f32) {
+    let ht = body.hip_height;
+    let length_scale = sane(modifiers.step_length_scale, 0.3, 1.5, 1.0);
+    let grade = sane(modifiers.grade, -2.0, 2.0, 0.0);
+    let slope_scale = 1.0 / (1.0 + DOWNHILL_STEP_SHORTENING * (-grade).max(0.0));
+    match body.desc.clip_gait {
+        Some(clip) => {
+            let walk = clip.timing(body.leg_reach(), body.hip_height);
+            let stride = walk.stride * length_scale * slope_scale;
+            (walk.speed * speed_scale, stride, walk.duty)
+        }
+        None => {
+            let speed = (body.desc.froude * GRAVITY * ht).sqrt() * speed_scale;
+            let rv = speed / ht;
+            let stride = 1.346 * rv.sqrt() * ht * length_scale * slope_scale;
+            let cycle = stride / speed;
+            let duty = (0.752 * cycle - 0.143) / cycle;
+            (
+                speed,
+                stride,
+                duty.clamp(CLIP_DUTY_RANGE.0, CLIP_DUTY_RANGE.1),
+            )
+        }
     }
 }
 
@@ -512,13 +566,32 @@ fn walk_params(body: &CharacterBody, path: &WalkPath, modifiers: &GaitModifiers)
     }
 }
 
+/// The foot roll after a step of `dt` of the last step of a stop (the
+/// pelvis at the path's end, a foot still swinging): it falls in
+/// proportion to the time left until that foot lands, so the closing foot
+/// lands flat and the planted one keeps its heel down.
+fn closing_roll(gait: &Gait, dt: f32) -> f32 {
+    let cycle = gait.params.cycle_time();
+    let left = (0..2)
+        .filter(|&k| gait.feet[k].phase != FootPhase::Stance)
+        .map(|k| (1.0 - gait.local_phase(k)) * cycle)
+        .fold(0.0f32, f32::max);
+    if left > dt {
+        gait.roll * (1.0 - dt / left)
+    } else {
+        0.0
+    }
+}
+
 /// Stage 1: advances the walk cycle by `dt` (see [`clamp_dt`]) along `path`.
 ///
 /// The phase advances with the distance walked (`speed * dt / stride`). At the
 /// end of a path that does not loop the pelvis stops and the phase runs on
-/// until both feet are planted; then the gait is `stopped`, until the path
-/// reaches further (a steered path), when the walk starts again and the feet
-/// roll back in over a quarter second. When the path's direction of travel
+/// until both feet are planted, the feet rolling flat by that landing; then
+/// the gait is `stopped` and keeps its timing, so no change of the ground
+/// under a standing walker lifts a planted foot, until the path reaches
+/// further (a steered path), when the walk starts again and the feet roll
+/// back in over a quarter second. When the path's direction of travel
 /// turns round (forward to backward or back), the cycle runs backward in
 /// time from where it stands: the phase is mirrored about the stance, so the
 /// foot that just landed ahead is the next to lift.
@@ -530,9 +603,8 @@ pub fn gait_stage(
     dt: f32,
 ) {
     let dt = clamp_dt(dt);
-    gait.params = walk_params(body, path, modifiers);
-    if gait.stopped {
-        gait.keep_feet_planted();
+    if !(gait.stopped && path.is_finished(gait.distance)) {
+        gait.params = walk_params(body, path, modifiers);
     }
     if gait.backward != path.is_backward() {
         gait.backward = path.is_backward();
@@ -567,12 +639,17 @@ pub fn gait_stage(
             gait.distance = gait.distance.min(path.end_distance());
         }
     }
-    if gait.roll < 1.0 {
+    if finishing {
+        gait.roll = closing_roll(gait, dt);
+    } else if gait.roll < 1.0 {
         gait.roll = (gait.roll + dt / STOP_SETTLE_TIME).min(1.0);
     }
     gait.phase = (gait.phase + step / gait.params.stride).fract();
     gait.pelvis = path.point_at(gait.distance);
     gait.velocity = (gait.pelvis.position - before) / dt;
+    if !path.is_looped() {
+        gait.shorten_rising_swings(body, path);
+    }
     gait.update_feet(body, path);
     gait.update_body();
 }
@@ -605,6 +682,46 @@ mod tests {
         assert_eq!(gait.distance, before.distance);
         gait_stage(&mut gait, &body, &path, &mods, 100.0);
         assert!((gait.distance - gait.params.speed * MAX_STEP_DT).abs() < 1e-5);
+    }
+
+    #[test]
+    fn a_standing_walker_keeps_both_feet_planted_whatever_the_ground_asks() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let mods = GaitModifiers::default();
+        let asked = [
+            GaitModifiers {
+                speed_scale: 2.0,
+                step_length_scale: 0.3,
+                ..mods
+            },
+            GaitModifiers {
+                speed_scale: 0.3,
+                ..mods
+            },
+            GaitModifiers {
+                grade: -1.0,
+                ..mods
+            },
+        ];
+        let long = WalkPath::straight(Vec3::ZERO, Vec3::Z, 20.0).unwrap();
+        let mut gait = Gait::new(&body, &long, &mods);
+        // Double support late in the left foot's stance, where a shorter
+        // stance fraction would end it.
+        while gait.distance < 3.0 || (gait.phase - 0.6).abs() > 0.01 {
+            gait_stage(&mut gait, &body, &long, &mods, 1.0 / 60.0);
+        }
+        assert!(gait.double_support());
+        let here = WalkPath::straight(Vec3::ZERO, Vec3::Z, gait.distance).unwrap();
+        gait_stage(&mut gait, &body, &here, &mods, 1.0 / 60.0);
+        assert!(gait.stopped && gait.roll > 0.0);
+        let planted = gait.feet.map(|f| f.foothold);
+        for m in &asked {
+            for _ in 0..30 {
+                gait_stage(&mut gait, &body, &here, m, 1.0 / 60.0);
+                assert!(gait.double_support(), "{m:?}: a foot lifted");
+                assert_eq!(gait.feet.map(|f| f.foothold), planted);
+            }
+        }
     }
 
     #[test]

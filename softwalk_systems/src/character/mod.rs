@@ -34,6 +34,7 @@ mod balance;
 mod body;
 mod character_rig;
 mod clip_gait;
+mod clip_scratch;
 mod clip_walk;
 mod desc;
 mod error;
@@ -66,6 +67,7 @@ pub use balance::{
 pub use body::{BodyMass, CharacterBody};
 pub use character_rig::{ArmChain, CharacterRig};
 pub use clip_gait::{CLIP_DUTY_RANGE, ClipGait, ClipTiming};
+pub use clip_scratch::ClipScratch;
 pub use clip_walk::ClipWalk;
 pub use desc::{CharacterDesc, DEFAULT_PASSIVE_DAMPING};
 pub use error::CharacterError;
@@ -85,7 +87,8 @@ pub use rays::{FootRays, GroundKey, foot_raycast_stage};
 pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use steering::{
-    Brake, Steering, SteeringSettings, braking, curve_radius, steer_stage, stop_distance,
+    Brake, Steering, SteeringSettings, braking, cadence_hold, closing_time, curve_radius,
+    steer_stage, stop_distance,
 };
 pub use step::{Character, step_character};
 pub use support::{FootSupport, RIM_CLEARANCE, SupportPoint};

@@ -55,7 +55,15 @@ impl Pose {
     /// One world transform per mesh part, in [`Bone::ALL`] order (the order of
     /// [`super::character_mesh`]'s parts).
     pub fn part_transforms(&self) -> Vec<Mat4> {
-        Bone::ALL.iter().map(|&b| self.bone_transform(b)).collect()
+        let mut out = Vec::with_capacity(Bone::ALL.len());
+        self.write_part_transforms(&mut out);
+        out
+    }
+
+    /// [`Pose::part_transforms`] into `out` (cleared first, its capacity kept).
+    pub fn write_part_transforms(&self, out: &mut Vec<Mat4>) {
+        out.clear();
+        out.extend(Bone::ALL.iter().map(|&b| self.bone_transform(b)));
     }
 
     /// Whole-body centre of mass of this pose (segment masses at their centres).

@@ -63,15 +63,27 @@ impl RigPose {
         pose: &Pose,
         feet: &[FootState; 2],
     ) -> RigPose {
-        let scale = body.hip_height / rig.hip_height();
+        let mut out = RigPose::default();
+        out.drive_in_place(rig, body, pose, feet);
+        out
+    }
+
+    /// [`RigPose::drive`] into this pose, reusing its buffers (no allocation
+    /// once they have the rig's size).
+    pub fn drive_in_place(
+        &mut self,
+        rig: &CharacterRig,
+        body: &CharacterBody,
+        pose: &Pose,
+        feet: &[FootState; 2],
+    ) {
         let rest = rig.rest_positions();
         let n = rest.len();
-        let mut out = RigPose {
-            positions: vec![Vec3::ZERO; n],
-            rotations: vec![Quat::IDENTITY; n],
-            scale,
-            stretch: vec![Mat3::IDENTITY; n],
-        };
+        self.scale = body.hip_height / rig.hip_height();
+        reset(&mut self.positions, n, Vec3::ZERO);
+        reset(&mut self.rotations, n, Quat::IDENTITY);
+        reset(&mut self.stretch, n, Mat3::IDENTITY);
+        let scale = self.scale;
         let chains = rig.chains();
         let pelvis_turn = pelvis_rotation(rig, pose);
         let hip_mid = 0.5 * (rest[chains.left.hip] + rest[chains.right.hip]);
@@ -90,72 +102,56 @@ impl RigPose {
             },
         ];
         let mut leg_targets: [Option<LegTargets>; 2] = [None, None];
-        let mut aims: Vec<Option<Vec3>> = vec![None; n];
-        for (k, arm) in rig.arms().iter().enumerate() {
-            let Some(arm) = arm else { continue };
-            let (shoulder, elbow, wrist, side) = match k {
-                0 => (
-                    Joint::ShoulderLeft,
-                    Joint::ElbowLeft,
-                    Joint::WristLeft,
-                    -1.0,
-                ),
-                _ => (
-                    Joint::ShoulderRight,
-                    Joint::ElbowRight,
-                    Joint::WristRight,
-                    1.0,
-                ),
-            };
-            let out_lean = Quat::from_axis_angle(pose.forward, -side * ARM_ABDUCTION);
-            aims[arm.shoulder] = Some(out_lean * (pose.joint(elbow) - pose.joint(shoulder)));
-            aims[arm.elbow] = Some(out_lean * (pose.joint(wrist) - pose.joint(elbow)));
-        }
+        let mut aims = arm_aims(rig, pose);
         let skeleton = rig.model().skeleton.joints();
         for j in 0..n {
             // The pelvis and the joints above it move with the pelvis.
             if rig.model().skeleton.is_ancestor(j, chains.pelvis) {
-                out.rotations[j] = pelvis_turn;
-                out.positions[j] =
+                self.rotations[j] = pelvis_turn;
+                self.positions[j] =
                     pelvis_at + pelvis_turn * ((rest[j] - rest[chains.pelvis]) * scale);
                 continue;
             }
             let parent = skeleton[j].parent;
             let (parent_at, parent_turn, parent_stretch, parent_rest) = match parent {
-                Some(p) => (out.positions[p], out.rotations[p], out.stretch[p], rest[p]),
+                Some(p) => (
+                    self.positions[p],
+                    self.rotations[p],
+                    self.stretch[p],
+                    rest[p],
+                ),
                 None => (rest[j] * scale, Quat::IDENTITY, Mat3::IDENTITY, rest[j]),
             };
-            out.positions[j] =
+            self.positions[j] =
                 parent_at + parent_turn * (parent_stretch * (rest[j] - parent_rest) * scale);
-            out.rotations[j] = parent_turn;
-            out.stretch[j] = parent_stretch;
+            self.rotations[j] = parent_turn;
+            self.stretch[j] = parent_stretch;
             for leg in &legs {
                 let (chain, side) = (leg.chain, leg.side);
                 if j == chain.hip {
-                    let hip_at = out.positions[j];
+                    let hip_at = self.positions[j];
                     let targets = leg_targets_for(rig, body, pose, &feet[side], leg, hip_at);
-                    aims[chain.hip] = Some(targets.knee - hip_at);
-                    aims[chain.knee] = Some(targets.ankle - targets.knee);
+                    aims.set(chain.hip, targets.knee - hip_at);
+                    aims.set(chain.knee, targets.ankle - targets.knee);
                     leg_targets[side] = Some(targets);
                 } else if j == chain.ankle
                     && let Some(targets) = &leg_targets[side]
                 {
-                    out.rotations[j] = targets.foot;
-                    out.stretch[j] = targets.stretch;
+                    self.rotations[j] = targets.foot;
+                    self.stretch[j] = targets.stretch;
                 }
             }
-            if let Some(aim) = aims[j] {
+            if let Some(aim) = aims.get(j) {
                 let child = child_of(rig, j);
                 if let Some(child) = child {
                     let from = parent_turn * (rest[child] - rest[j]);
                     if let (Some(from), Some(to)) = (from.try_normalize(), aim.try_normalize()) {
-                        out.rotations[j] =
+                        self.rotations[j] =
                             (Quat::from_rotation_arc(from, to) * parent_turn).normalize();
                     }
                 }
             }
         }
-        out
     }
 
     /// Each joint's world matrix: its rest global matrix moved by the pose.
@@ -181,6 +177,77 @@ impl RigPose {
         self.globals(rig, globals);
         engine::anim::skin_matrices(&rig.model().skeleton, globals, out);
     }
+}
+
+/// Clears `buffer` and fills it with `n` copies of `value`, keeping its capacity.
+fn reset<T: Copy>(buffer: &mut Vec<T>, n: usize, value: T) {
+    buffer.clear();
+    buffer.resize(n, value);
+}
+
+/// Where the driver points the rig's limb bones: joint and direction, at
+/// most two per limb; a later entry for a joint overrides an earlier one.
+#[derive(Default)]
+struct LimbAims {
+    entries: [(usize, Vec3); 8],
+    len: usize,
+    /// Bit `joint % 64` of every aimed joint: most joints are not aimed,
+    /// and this tells so without a search.
+    maybe: u64,
+}
+
+impl LimbAims {
+    /// Aims `joint` along `direction`.
+    fn set(&mut self, joint: usize, direction: Vec3) {
+        self.entries[self.len] = (joint, direction);
+        self.len += 1;
+        self.maybe |= 1 << (joint % 64);
+    }
+
+    /// The direction `joint` is aimed along, if it is.
+    fn get(&self, joint: usize) -> Option<Vec3> {
+        if self.maybe & (1 << (joint % 64)) == 0 {
+            return None;
+        }
+        self.entries[..self.len]
+            .iter()
+            .rev()
+            .find(|(j, _)| *j == joint)
+            .map(|&(_, direction)| direction)
+    }
+}
+
+/// The rig's upper and lower arms aimed along the driver's arm segments,
+/// leaning out by [`ARM_ABDUCTION`].
+fn arm_aims(rig: &CharacterRig, pose: &Pose) -> LimbAims {
+    let mut aims = LimbAims::default();
+    for (k, arm) in rig.arms().iter().enumerate() {
+        let Some(arm) = arm else { continue };
+        let (shoulder, elbow, wrist, side) = match k {
+            0 => (
+                Joint::ShoulderLeft,
+                Joint::ElbowLeft,
+                Joint::WristLeft,
+                -1.0,
+            ),
+            _ => (
+                Joint::ShoulderRight,
+                Joint::ElbowRight,
+                Joint::WristRight,
+                1.0,
+            ),
+        };
+        let out_lean = Quat::from_axis_angle(pose.forward, -side * ARM_ABDUCTION);
+        aims.set(
+            arm.shoulder,
+            out_lean * (pose.joint(elbow) - pose.joint(shoulder)),
+        );
+        aims.set(
+            arm.elbow,
+            out_lean * (pose.joint(wrist) - pose.joint(elbow)),
+        );
+    }
+    aims
 }
 
 /// The joint a limb bone points at: the mapped joint of its role's child.
@@ -254,5 +321,62 @@ fn leg_targets_for(
         ankle: solved.end,
         foot: turn,
         stretch,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::character::{
+        Character, CharacterDesc, ClipScratch, ClipWalk, WalkPath, step_character,
+    };
+    use crate::ground::FlatGround;
+    use engine::anim::bvh::load_bvh;
+    use engine::anim::{BoneMap, WalkCycle};
+
+    /// A walker of `desc` `steps` steps into a straight walk.
+    fn walker(desc: CharacterDesc, steps: usize) -> Character {
+        let ground = FlatGround(0.0);
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::X, 8.0).unwrap();
+        let mut c = Character::new(desc, &path, &ground).unwrap();
+        for _ in 0..steps {
+            step_character(&mut c, &path, &ground, 1.0 / 60.0);
+        }
+        c
+    }
+
+    #[test]
+    fn a_reused_pose_is_driven_as_a_fresh_one() {
+        let rig = CharacterRig::human().unwrap();
+        let (child, adult) = (
+            walker(CharacterDesc::child(), 50),
+            walker(CharacterDesc::adult(), 80),
+        );
+        let mut reused = RigPose::default();
+        reused.drive_in_place(&rig, &child.body, &child.pose, &child.feet);
+        reused.drive_in_place(&rig, &adult.body, &adult.pose, &adult.feet);
+        let fresh = RigPose::drive(&rig, &adult.body, &adult.pose, &adult.feet);
+        assert_eq!(reused, fresh);
+        assert_ne!(
+            fresh,
+            RigPose::drive(&rig, &child.body, &child.pose, &child.feet)
+        );
+    }
+
+    #[test]
+    fn a_reused_clip_scratch_plays_as_a_fresh_one() {
+        let rig = CharacterRig::human().unwrap();
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/clips/walk.bvh");
+        let bvh = load_bvh(std::path::Path::new(path)).unwrap();
+        let map = BoneMap::detect(&bvh.skeleton);
+        let cycle = WalkCycle::analyse(&bvh.clip, &bvh.skeleton, &map).unwrap();
+        let clip = ClipWalk::new(&bvh.skeleton, &map, &bvh.clip, cycle, &rig).unwrap();
+        let c = walker(CharacterDesc::adult(), 70);
+        let mut scratch = ClipScratch::default();
+        let mut played = RigPose::drive(&rig, &c.body, &c.pose, &c.feet);
+        clip.play_upper_body(&rig, &mut played, 0.3, 1.0, &mut scratch);
+        played.drive_in_place(&rig, &c.body, &c.pose, &c.feet);
+        clip.play_upper_body(&rig, &mut played, c.gait.phase, c.gait.roll, &mut scratch);
+        assert_eq!(played, clip.drive(&rig, &c.body, &c.pose, &c.feet, &c.gait));
     }
 }

@@ -15,10 +15,14 @@
 //!   slower (`backward_speed_factor`, at most `backward_top_speed`) and in
 //!   the gait's short backward steps;
 //! - a speed below `stop_speed` brakes: a stop is placed where the walker
-//!   can come to rest ([`stop_distance`]: from its speed and the step it
-//!   is in) and the walking speed falls from the first step, at a constant
-//!   deceleration, to the stop (a [`Brake`]); the gait halts there with
-//!   both feet planted, and starts again on the next desired velocity.
+//!   comes to rest as its closing foot lands ([`stop_distance`]: from its
+//!   speed and the time until that landing, [`closing_time`]) and the
+//!   walking speed falls from the first step, at a constant deceleration,
+//!   to the stop (a [`Brake`]), while the walk keeps its cadence
+//!   ([`cadence_hold`]): the steps shorten, the step being taken ends, and
+//!   the closing step lands beside it; the gait halts there with both feet
+//!   flat, and starts again on the next desired velocity, speeding up from
+//!   its braked speed at `speed_change_rate` (the bob grows with it).
 //!
 //! Switching between walking forward and backward goes through a stop:
 //! the walker halts, its feet roll flat, and then it walks the other way.
@@ -54,20 +58,13 @@ pub struct SteeringSettings {
     /// Length of the straight run after the turn, metres (beyond the
     /// farthest foothold the gait plans).
     pub lookahead: f32,
-    /// The deceleration a stop asks for, m/s²: sets the shortest distance
-    /// to a stop, `v² / (2 a)` at speed `v`.
+    /// The hardest deceleration a stop asks for, m/s²: sets the shortest
+    /// distance to a stop, `v² / (2 a)` at speed `v`.
     pub stop_deceleration: f32,
     /// The shortest distance to a stop, metres.
     pub stop_min_distance: f32,
     /// The smallest speed scale while braking.
     pub stop_speed_floor: f32,
-    /// How fast the speed scale returns to where braking began while the
-    /// walker, at its stop, closes its last step, per second: the pelvis no
-    /// longer moves, and the last foot closes at a walking cadence (the bob,
-    /// which scales with speed, changes by under 2 mm a step at 60 Hz). Once
-    /// both feet are planted the scale holds (the stance fraction, which
-    /// follows the speed, must not move a planted foot into a swing).
-    pub stop_close_rate: f32,
     /// Desired speeds below this stop the walk, m/s.
     pub stop_speed: f32,
     /// How fast the speed scale follows the wish, per second (a sudden
@@ -94,10 +91,9 @@ impl Default for SteeringSettings {
             pivot_reach: 0.9,
             pivot_min_speed_scale: 0.7,
             lookahead: 5.0,
-            stop_deceleration: 2.0,
+            stop_deceleration: 3.0,
             stop_min_distance: 0.05,
             stop_speed_floor: 0.25,
-            stop_close_rate: 3.0,
             stop_speed: 0.05,
             speed_change_rate: 1.0,
             backward_start: 120f32.to_radians(),
@@ -189,23 +185,27 @@ impl Brake {
     }
 }
 
-/// How far ahead a walker at `speed` m/s comes to rest, metres: at least
-/// `speed² / (2 stop_deceleration)`; while a foot swings, as far as the
-/// middle between the planted foot and the swing foot's landing when that
-/// is no more than twice as far, so the walker comes to rest between its
-/// feet after the step it is taking.
+/// How far ahead a walker at `speed` m/s comes to rest, metres: where a
+/// constant deceleration brings it to rest as its closing foot lands
+/// (`speed · t / 2`, with `t` from [`closing_time`]), so the stop takes the
+/// step being taken and one more at the walk's cadence; but at least
+/// `speed² / (2 stop_deceleration)` and `stop_min_distance`.
 pub fn stop_distance(settings: &SteeringSettings, gait: &Gait, speed: f32) -> f32 {
-    let braking = (speed * speed / (2.0 * settings.stop_deceleration.max(1.0e-3)))
+    let shortest = (speed * speed / (2.0 * settings.stop_deceleration.max(1.0e-3)))
         .max(settings.stop_min_distance);
-    let travel = gait.travel_heading();
-    let ahead = |at: glam::Vec2| (at - gait.pelvis.position).dot(travel);
-    let [a, b] = gait.feet.each_ref().map(|f| f.foothold);
-    let between = 0.5 * (ahead(a) + ahead(b));
-    if !gait.double_support() && (braking..=2.0 * braking).contains(&between) {
-        between
-    } else {
-        braking
-    }
+    (0.5 * speed * closing_time(gait)).max(shortest)
+}
+
+/// Seconds until the foot that closes a stop lands, at the walk's cadence:
+/// the planted foot that lifts next (the one furthest into its stance)
+/// swings to the stop, landing when its phase comes round.
+pub fn closing_time(gait: &Gait) -> f32 {
+    let duty = gait.params.duty;
+    let latest = (0..2)
+        .map(|k| gait.local_phase(k))
+        .filter(|&p| p < duty)
+        .fold(0.0f32, f32::max);
+    (1.0 - latest) * gait.params.cycle_time()
 }
 
 /// The curve radius at `speed`: `speed² / max_lateral_acceleration`, at
@@ -230,11 +230,8 @@ pub fn steer_stage(
     let dt = clamp_dt(dt);
     if let Some(brake) = &steering.brake {
         let s = &steering.settings;
-        *scale = if gait.stopped {
+        *scale = if gait.stopped || path.is_finished(gait.distance) {
             *scale
-        } else if path.is_finished(gait.distance) {
-            let most = s.stop_close_rate.max(0.0) * dt;
-            *scale + (brake.from_scale - *scale).clamp(-most, most)
         } else {
             let moved = gait.velocity.length() * dt;
             let left = path.end_distance() - gait.distance - moved;
@@ -253,6 +250,17 @@ pub fn braking(steering: &Steering, gait: &Gait, path: &WalkPath) -> f32 {
     match &steering.brake {
         Some(b) if !path.is_finished(gait.distance) => b.deceleration,
         _ => 0.0,
+    }
+}
+
+/// The [`GaitModifiers::cadence_hold`] of `steering` this step: until the
+/// stop is reached and both feet are planted, the walk keeps the cadence it
+/// had when braking began (`from_scale` over the braked speed scale); 1
+/// otherwise.
+pub fn cadence_hold(steering: &Steering, gait: &Gait) -> f32 {
+    match &steering.brake {
+        Some(b) if !gait.stopped => b.from_scale / steering.speed_scale.max(1.0e-3),
+        _ => 1.0,
     }
 }
 
@@ -417,6 +425,7 @@ fn walk_path(
 mod tests {
     use super::*;
     use crate::character::{CharacterDesc, MAX_BACKWARD_ASLANT};
+    use crate::foot::FootPhase;
 
     const DT: f32 = 1.0 / 60.0;
 
@@ -588,31 +597,40 @@ mod tests {
     }
 
     #[test]
-    fn a_stop_brakes_from_the_first_step_to_where_the_walker_can_rest() {
+    fn a_stop_brakes_from_the_first_step_and_closes_in_one_step_at_the_cadence() {
         let s = SteeringSettings::default();
         for phase in [0.05, 0.2, 0.4, 0.7] {
             let (body, mut gait, mut path) = walking_at(phase);
             let speed = gait.velocity.length();
             let shortest = speed * speed / (2.0 * s.stop_deceleration);
+            let closing = closing_time(&gait);
             let distance = stop_distance(&s, &gait, speed);
             assert!(
-                (shortest..=2.0 * shortest + 1e-6).contains(&distance),
+                (distance - (0.5 * speed * closing).max(shortest)).abs() < 1e-6,
                 "phase {phase}: {distance} m"
             );
             let mut steering = Steering::new();
             steering.set_desired_velocity(Vec2::ZERO).unwrap();
             let mut speeds = vec![speed];
+            let (mut landings, mut stopped_after) = (0, None);
             let mods = GaitModifiers::default();
-            for _ in 0..240 {
+            for step in 1..=240 {
                 let scale = steer_stage(&mut steering, &gait, &body, &mut path, DT);
-                let braked = braking(&steering, &gait, &path);
                 let m = GaitModifiers {
                     speed_scale: scale,
-                    braking: braked,
+                    braking: braking(&steering, &gait, &path),
+                    cadence_hold: cadence_hold(&steering, &gait),
                     ..mods
                 };
+                let swinging = gait.feet.map(|f| f.phase != FootPhase::Stance);
                 crate::character::gait_stage(&mut gait, &body, &path, &m, DT);
+                landings += (0..2)
+                    .filter(|&k| swinging[k] && gait.feet[k].phase == FootPhase::Stance)
+                    .count();
                 speeds.push(gait.velocity.length());
+                if gait.stopped && stopped_after.is_none() {
+                    stopped_after = Some(step as f32 * DT);
+                }
             }
             assert!(speeds[1] < speeds[0], "phase {phase}: slows at once");
             assert!(gait.stopped && gait.double_support(), "phase {phase}");
@@ -620,6 +638,12 @@ mod tests {
             assert!(
                 (rested - distance).abs() < 1e-4,
                 "phase {phase}: {rested} m"
+            );
+            let seconds = stopped_after.unwrap();
+            assert!(
+                (seconds - closing).abs() <= 2.5 * DT && landings <= 2,
+                "phase {phase}: at rest after {seconds} s and {landings} landings, \
+                 closing in {closing} s"
             );
             let floor = s.stop_speed_floor * speed;
             let slowing = speeds.windows(2).all(|w| w[1] <= w[0] + 1e-4);

@@ -46,13 +46,13 @@ impl TerrainPaint {
         }
     }
 
-    /// Re-reads the material and disturbance of the samples in `rect` (after
-    /// the ground changed there, or was repainted).
-    pub fn refresh(&mut self, hf: &Heightfield, rect: engine::geom::GridRect) {
+    /// Re-reads the material and disturbance of the samples in `rects`
+    /// (after the ground changed there, or was repainted).
+    pub fn refresh(&mut self, hf: &Heightfield, rects: &[engine::geom::GridRect]) {
         let (nx, marks) = (hf.grid().nx(), hf.disturbed());
         let palette = palette(hf);
         let map = hf.material_map();
-        for (i, j) in rect.iter() {
+        for (i, j) in rects.iter().flat_map(|rect| rect.iter()) {
             let k = j * nx + i;
             self.disturbed[k] = disturbance(marks[k]);
             if let Some(&albedo) = palette.get(usize::from(map[k])) {

@@ -7,7 +7,7 @@ use engine::anim::{SkinnedMesh, SkinnedVertices, skin};
 use engine::geom::TriMesh;
 use glam::{Affine3A, Mat4, Vec3};
 
-use crate::character::{CharacterBody, CharacterRig, ClipWalk, Gait, Pose, RigPose};
+use crate::character::{CharacterBody, CharacterRig, ClipScratch, ClipWalk, Gait, Pose, RigPose};
 use crate::foot::FootState;
 
 /// The coarse copy's cubes, as a fraction of the model's largest extent.
@@ -28,6 +28,8 @@ pub(super) struct SkinnedFigure {
     rig: CharacterRig,
     /// The model's mesh clustered, for [`Detail::Coarse`].
     coarse: SkinnedMesh,
+    rig_pose: RigPose,
+    clip_scratch: ClipScratch,
     globals: Vec<Mat4>,
     matrices: Vec<Affine3A>,
     skinned: SkinnedVertices,
@@ -52,6 +54,8 @@ impl SkinnedFigure {
         SkinnedFigure {
             rig,
             coarse,
+            rig_pose: RigPose::default(),
+            clip_scratch: ClipScratch::default(),
             globals: Vec::new(),
             matrices: Vec::new(),
             skinned: SkinnedVertices::default(),
@@ -72,11 +76,12 @@ impl SkinnedFigure {
         clip: Option<(&ClipWalk, &Gait)>,
         detail: Detail,
     ) {
-        let rig_pose = match clip {
-            Some((clip, gait)) => clip.drive(&self.rig, body, pose, feet, gait),
-            None => RigPose::drive(&self.rig, body, pose, feet),
-        };
-        rig_pose.skin_matrices(&self.rig, &mut self.globals, &mut self.matrices);
+        self.rig_pose.drive_in_place(&self.rig, body, pose, feet);
+        if let Some((clip, gait)) = clip {
+            let (rig, out) = (&self.rig, &mut self.rig_pose);
+            clip.play_upper_body(rig, out, gait.phase, gait.roll, &mut self.clip_scratch);
+        }
+        (self.rig_pose).skin_matrices(&self.rig, &mut self.globals, &mut self.matrices);
         self.detail = detail;
         let (source, mesh) = match detail {
             Detail::Full => (&self.rig.model().mesh, &mut self.meshes[0]),

@@ -48,17 +48,20 @@ pub enum ViewError {
     NoTerrain,
 }
 
-/// One character as drawn: its mesh and colour.
+/// One character as drawn: its mesh and colour, and whether the last
+/// frame found its pose.
 struct Figure {
     entity: Entity,
     body: FigureBody,
     color: Vec3,
+    posed: bool,
 }
 
 /// What a character is drawn as.
 enum FigureBody {
-    /// The capsule mannequin: one capsule per bone, placed by the pose.
-    Mannequin(TriMesh),
+    /// The capsule mannequin: one capsule per bone, placed by the pose's
+    /// part transforms (kept from frame to frame).
+    Mannequin(TriMesh, Vec<Mat4>),
     /// A skinned model, re-skinned each frame from its rig's pose.
     Skinned(Box<SkinnedFigure>),
 }
@@ -148,16 +151,13 @@ impl WorldView {
         }
         self.update_terrain(world)?;
         self.collect_blades(world);
-        let mut poses: Vec<(&Figure, Vec<Mat4>)> = Vec::with_capacity(self.figures.len());
         for figure in &mut self.figures {
-            if let Some(parts) = figure.pose(world, &self.camera) {
-                poses.push((figure, parts));
-            }
+            figure.posed = figure.pose(world, &self.camera);
         }
-        let figures = poses.iter().map(|(f, parts)| {
-            let mesh = match &f.body {
-                FigureBody::Mannequin(mesh) => mesh,
-                FigureBody::Skinned(skinned) => skinned.mesh(),
+        let figures = self.figures.iter().filter(|f| f.posed).map(|f| {
+            let (mesh, parts): (&TriMesh, &[Mat4]) = match &f.body {
+                FigureBody::Mannequin(mesh, parts) => (mesh, parts),
+                FigureBody::Skinned(skinned) => (skinned.mesh(), &[]),
             };
             MeshInstance::new(mesh, Mat4::IDENTITY, f.color).with_parts(parts)
         });
@@ -213,8 +213,8 @@ impl WorldView {
             return Ok(());
         }
         let hf = ground.terrain();
+        self.paint.refresh(hf, &changed);
         for &rect in &changed {
-            self.paint.refresh(hf, rect);
             self.terrain.mark_dirty(rect);
         }
         let colors = colors(&self.paint, hf);
@@ -250,22 +250,31 @@ fn colors<'a>(paint: &'a TerrainPaint, hf: &Heightfield) -> SampleColors<'a> {
 
 impl Figure {
     /// Poses the figure as the world has it now: the mannequin's part
-    /// transforms, or nothing for a skinned model (its mesh is re-skinned in
-    /// world space, coarse when `camera` sees it small). `None` when the
-    /// entity has no pose.
-    fn pose(&mut self, world: &World, camera: &Camera) -> Option<Vec<Mat4>> {
-        let pose = world.get::<Pose>(self.entity).ok()?;
+    /// transforms, or the skinned model's mesh re-skinned in world space
+    /// (coarse when `camera` sees it small). False when the entity has no
+    /// pose.
+    fn pose(&mut self, world: &World, camera: &Camera) -> bool {
+        let Ok(pose) = world.get::<Pose>(self.entity) else {
+            return false;
+        };
         match &mut self.body {
-            FigureBody::Mannequin(_) => Some(pose.part_transforms()),
+            FigureBody::Mannequin(_, parts) => {
+                pose.write_part_transforms(parts);
+                true
+            }
             FigureBody::Skinned(skinned) => {
-                let body = world.get::<CharacterBody>(self.entity).ok()?;
-                let feet = world.get::<Feet>(self.entity).ok()?;
+                let (Ok(body), Ok(feet)) = (
+                    world.get::<CharacterBody>(self.entity),
+                    world.get::<Feet>(self.entity),
+                ) else {
+                    return false;
+                };
                 let clip = world.get::<ClipWalk>(self.entity).ok();
                 let gait = world.get::<Gait>(self.entity).ok();
                 let playing = clip.as_deref().zip(gait.as_deref());
                 let detail = detail_seen(world, self.entity, body.desc.height, camera);
                 skinned.update(&body, &pose, &feet.0, playing, detail);
-                Some(Vec::new())
+                true
             }
         }
     }
@@ -286,8 +295,9 @@ fn figures(world: &World) -> Vec<Figure> {
             entity,
             body: match rig {
                 Some(rig) => FigureBody::Skinned(Box::new(SkinnedFigure::new(rig.clone()))),
-                None => FigureBody::Mannequin(character_mesh(body)),
+                None => FigureBody::Mannequin(character_mesh(body), Vec::new()),
             },
+            posed: false,
             color: match balance.is_none_or(|b| b.enabled) {
                 true => WITH_CONTROLLER,
                 false => WITHOUT_CONTROLLER,

@@ -20,6 +20,14 @@ pub(crate) struct TriangleGroup<'a> {
     pub first_vertex: u32,
 }
 
+/// A vertex after the vertex pass: on the screen, its outcode, and where
+/// it lies in the sun shadow map's light coordinates (zero without one).
+struct ProjectedVertex {
+    screen: ScreenVertex,
+    outcode: u8,
+    light: Vec3,
+}
+
 /// Screen-space triangles ready to fill, binned by the bands of rows they touch.
 #[derive(Debug, Default)]
 pub(crate) struct TriangleBatch {
@@ -43,9 +51,15 @@ impl TriangleBatch {
         shadow: Option<&PixelShadow<'_>>,
         vp: Viewport,
     ) -> TriangleBatch {
-        let projected: Vec<(ScreenVertex, u8)> = verts
+        // Only a batch with a sun part needs its vertices in light coordinates.
+        let light = shadow.filter(|_| verts.iter().any(|v| v.sun != Vec3::ZERO));
+        let projected: Vec<ProjectedVertex> = verts
             .iter()
-            .map(|v| (ScreenVertex::project(v, vp), outcode(v.pos)))
+            .map(|v| ProjectedVertex {
+                screen: ScreenVertex::project(v, vp),
+                outcode: outcode(v.pos),
+                light: light.map_or(Vec3::ZERO, |s| s.light_point(v.pos)),
+            })
             .collect();
         let mut batch = TriangleBatch {
             triangles: Vec::new(),
@@ -57,16 +71,17 @@ impl TriangleBatch {
             for tri in group.triangles {
                 let tri = tri.map(|k| k - group.first_vertex);
                 let [a, b, c] = tri.map(|k| &projected[k as usize]);
-                if a.1 & b.1 & c.1 & OUT_FRUSTUM != 0 {
+                if a.outcode & b.outcode & c.outcode & OUT_FRUSTUM != 0 {
                     continue;
                 }
                 let corners = tri.map(|k| &verts[k as usize]);
                 let shaded = shadow.filter(|s| {
                     corners.iter().any(|v| v.sun != Vec3::ZERO)
-                        && s.may_shade(corners.map(|v| v.pos))
+                        && s.may_shade([a.light, b.light, c.light])
                 });
-                if (a.1 | b.1 | c.1) & (OUT_NEAR | OUT_GUARD) == 0 {
-                    batch.set_up([&a.0, &b.0, &c.0], group.cull, shaded.is_some(), vp);
+                if (a.outcode | b.outcode | c.outcode) & (OUT_NEAR | OUT_GUARD) == 0 {
+                    let screen = [&a.screen, &b.screen, &c.screen];
+                    batch.set_up(screen, group.cull, shaded.is_some(), vp);
                     continue;
                 }
                 clip_triangle(corners.map(|v| *v), &mut polygon);

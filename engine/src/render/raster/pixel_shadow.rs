@@ -50,13 +50,17 @@ impl<'a> PixelShadow<'a> {
         }
     }
 
-    /// Whether a caster may shade some point of the triangle with clip
-    /// positions `corners` (conservative).
-    pub fn may_shade(&self, corners: [Vec4; 3]) -> bool {
-        let [a, b, c] = corners.map(|p| {
-            self.clip_to_light
-                .transform_point3(Vec3::new(p.x, p.y, p.w))
-        });
+    /// The light coordinates of clip position `clip`, for [`Self::may_shade`].
+    #[inline]
+    pub fn light_point(&self, clip: Vec4) -> Vec3 {
+        self.clip_to_light
+            .transform_point3(Vec3::new(clip.x, clip.y, clip.w))
+    }
+
+    /// Whether a caster may shade some point of the triangle whose corners
+    /// have light coordinates `corners` ([`Self::light_point`]; conservative).
+    pub fn may_shade(&self, corners: [Vec3; 3]) -> bool {
+        let [a, b, c] = corners;
         self.map.may_shade(a.min(b).min(c), a.max(b).max(c))
     }
 
@@ -107,8 +111,8 @@ mod tests {
                 "{ground}: {got} vs {expected}"
             );
             assert_eq!(got.round(), lit, "{ground}");
-            let clip3 = [clip, clip, clip];
-            assert_eq!(pixels.may_shade(clip3), lit == 0.0, "{ground}");
+            let corner = pixels.light_point(clip);
+            assert_eq!(pixels.may_shade([corner; 3]), lit == 0.0, "{ground}");
         }
     }
 }
