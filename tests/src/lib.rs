@@ -140,3 +140,12 @@ pub fn world_hash_after(
         .expect("the scene runs");
     summary.world_hash.expect("a hash was asked for")
 }
+
+/// A walker of `height` metres (mass by the square of the height, a body
+/// mass index of 22) walking at Froude number `froude`.
+pub fn walker_body(height: f32, froude: f32) -> CharacterDesc {
+    CharacterDesc {
+        froude,
+        ..CharacterDesc::new(height, 22.0 * height * height)
+    }
+}

@@ -9,6 +9,7 @@ use glam::{Vec2, Vec3};
 use softwalk_app::paper::gait_figures::within;
 use softwalk_app::paper::gait_quality::{
     KNEE_MAX_GOAL_DEG, KNEE_STEP_GOAL_DEG, PELVIS_STEP_GOAL_CM, SOLE_BELOW_GOAL_CM, deepest_sole,
+    pelvis_step,
 };
 use softwalk_systems::sim::WalkerMetrics;
 
@@ -120,14 +121,10 @@ impl StopFigures {
             slide_cm: 100.0 * worst_slide(&sole_samples(&walked[key.saturating_sub(60)..])),
             rest_drift_cm: 0.0,
         };
-        let rise = |m: &WalkerMetrics| m.velocity.length() * m.character.ground_slope.tan();
         for s in key..walked.len() {
             let (now, before) = (&walked[s], &walked[s - 1]);
             let (c, b) = (&now.character, &before.character);
-            let climb = 0.5 * (rise(now) + rise(before)) * dt;
-            f.pelvis_step_cm = f
-                .pelvis_step_cm
-                .max(100.0 * (c.pelvis_y - b.pelvis_y - climb).abs());
+            f.pelvis_step_cm = f.pelvis_step_cm.max(100.0 * pelvis_step(now, before, dt));
             for k in 0..2 {
                 let knee = (c.knee_flexion[k] - b.knee_flexion[k]).abs().to_degrees();
                 f.knee_step_deg = f.knee_step_deg.max(knee);

@@ -90,7 +90,7 @@ fn the_cadence_is_the_clips() {
         (plain.cycle_time() - CLIP_PERIOD_S).abs() < 0.02,
         "{plain:?}"
     );
-    let leg = body.thigh + body.shank;
+    let leg = body.leg_reach();
     assert!((plain.stride / leg - 1.56 / 0.85).abs() < 0.05, "{plain:?}");
     // On sand the material's modifiers apply on top; the walk keeps that cadence.
     let starts = cycle_starts(&mut app, walkers[0], scene.sim.dt);

@@ -26,32 +26,24 @@ use softwalk_app::paper::variants::{
 };
 use softwalk_app::scene::{MaterialRegion, PathSpec, Scene, TerrainShape};
 use softwalk_systems::character::CharacterDesc;
+use softwalk_tests::walker_body;
 
 /// Length of each measured walk, seconds.
 const WALK_S: f32 = 6.0;
 
-/// A walker of `height` metres (mass by the square of the height, a body
-/// mass index of 22) walking at Froude number `froude`.
-fn body(height: f32, froude: f32) -> CharacterDesc {
-    CharacterDesc {
-        froude,
-        ..CharacterDesc::new(height, 22.0 * height * height)
-    }
-}
-
 /// The small walker of the probes: 1.0 m at the default Froude number.
 fn small() -> CharacterDesc {
-    body(1.0, 0.15)
+    walker_body(1.0, 0.15)
 }
 
 /// The quick walker of the probes: 1.3 m at Froude 0.22.
 fn quick() -> CharacterDesc {
-    body(1.3, 0.22)
+    walker_body(1.3, 0.22)
 }
 
 /// The tall walker of the probes: 1.9 m at the default Froude number.
 fn tall() -> CharacterDesc {
-    body(1.9, 0.15)
+    walker_body(1.9, 0.15)
 }
 
 /// `material` sloped `angle_deg` along +X (10 × 8 m, 512 samples), with
@@ -160,8 +152,8 @@ fn scenes() -> Vec<Scene> {
     fine.terrain.resolution = 1024;
     scenes.push(checked(fine).unwrap());
     let bodies = [
-        ("child", body(1.0, 0.15)),
-        ("teen", body(1.4, 0.15)),
+        ("child", walker_body(1.0, 0.15)),
+        ("teen", walker_body(1.4, 0.15)),
         ("tall", tall()),
     ];
     scenes.push(slope_walk("mud", -6.0, &bodies));

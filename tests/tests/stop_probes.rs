@@ -16,6 +16,7 @@ use softwalk_systems::character::{CharacterBody, CharacterDesc, GaitModifiers, G
 use softwalk_tests::stop_figures::{
     FLAT_AFTER_GOAL_S, FLAT_FIGURE, SLIDE_GOAL_M, StopFigures, sole_samples, worst_slide,
 };
+use softwalk_tests::walker_body;
 
 /// The probe whose closing foot is not held to [`FLAT_FIGURE`], a known
 /// limit: in snow the closing step is short (slow, short steps), so the
@@ -76,15 +77,6 @@ fn with_body(mut scene: Scene, body: CharacterDesc) -> Scene {
     checked(scene).unwrap()
 }
 
-/// A walker of `height` metres (mass by the square of the height, a body
-/// mass index of 22) walking at Froude number `froude`.
-fn body(height: f32, froude: f32) -> CharacterDesc {
-    CharacterDesc {
-        froude,
-        ..CharacterDesc::new(height, 22.0 * height * height)
-    }
-}
-
 fn sand() -> Scene {
     builtin("sand-flat").unwrap()
 }
@@ -112,9 +104,9 @@ fn probes() -> Vec<Probe> {
         Probe::straight("sand up 15°", checked(with_slope(sand(), 15.0)).unwrap()),
         Probe::straight("sand down 15°", checked(with_slope(sand(), -15.0)).unwrap()),
         mid_turn,
-        Probe::straight("Froude 0.35", with_body(sand(), body(1.75, 0.35))),
-        Probe::straight("1.0 m walker", with_body(sand(), body(1.0, 0.15))),
-        Probe::straight("1.9 m walker", with_body(sand(), body(1.9, 0.15))),
+        Probe::straight("Froude 0.35", with_body(sand(), walker_body(1.75, 0.35))),
+        Probe::straight("1.0 m walker", with_body(sand(), walker_body(1.0, 0.15))),
+        Probe::straight("1.9 m walker", with_body(sand(), walker_body(1.9, 0.15))),
         twice,
     ]
 }

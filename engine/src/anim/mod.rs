@@ -52,4 +52,4 @@ pub use skeleton::{Joint, Skeleton};
 pub use skinned_mesh::SkinnedMesh;
 pub use skinning::{SkinnedVertices, skin, skin_matrices, skin_serial};
 pub use transform::Transform;
-pub use walk_cycle::{ANALYSIS_RATE, MAX_ANALYSIS_SAMPLES, WalkCycle, WalkCycleError};
+pub use walk_cycle::{WalkCycle, WalkCycleError};

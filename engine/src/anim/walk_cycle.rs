@@ -7,7 +7,7 @@ use thiserror::Error;
 use super::{BoneMap, Clip, LegChain, Playback, RigChains, RigError, Skeleton};
 
 /// Samples per second at which a clip is analysed.
-pub const ANALYSIS_RATE: f32 = 120.0;
+const ANALYSIS_RATE: f32 = 120.0;
 /// An ankle counts as low within this fraction of its height range above its lowest.
 const LOW_FRACTION: f32 = 0.2;
 /// An ankle counts as slow below this fraction of the root's mean speed.
@@ -17,7 +17,7 @@ const IN_PLACE_SPEED: f32 = 0.1;
 /// Largest spread of the strike-to-strike intervals around their median.
 const PERIOD_TOLERANCE: f32 = 0.2;
 /// Most samples one analysis takes (a clip over about 2.3 hours is refused).
-pub const MAX_ANALYSIS_SAMPLES: usize = 1 << 20;
+const MAX_ANALYSIS_SAMPLES: usize = 1 << 20;
 
 /// Why a clip could not be read as a walk.
 #[derive(Debug, Error, PartialEq)]

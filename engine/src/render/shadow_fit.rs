@@ -70,7 +70,7 @@ impl MapFrame {
                 covered.add(part.hi);
             }
         }
-        let covered = covered.intersect(&covered)?;
+        let covered = covered.non_empty()?;
         // Rows are shorter than columns are wide, so that a texel covers a
         // square of level ground: a row across the rays stretches over
         // `1 / sin(elevation)` of ground.
@@ -130,11 +130,16 @@ impl Bounds {
     /// The common part of two boxes, `None` when they do not meet (or one
     /// holds a NaN).
     fn intersect(&self, other: &Bounds) -> Option<Bounds> {
-        let b = Bounds {
+        Bounds {
             lo: self.lo.max(other.lo),
             hi: self.hi.min(other.hi),
-        };
-        (b.lo.x <= b.hi.x && b.lo.y <= b.hi.y).then_some(b)
+        }
+        .non_empty()
+    }
+
+    /// The bounds, unless they are empty (or not numbers).
+    fn non_empty(self) -> Option<Bounds> {
+        (self.lo.x <= self.hi.x && self.lo.y <= self.hi.y).then_some(self)
     }
 }
 
@@ -174,7 +179,7 @@ fn view_footprint(
             }
         }
     }
-    seen.intersect(&seen)
+    seen.non_empty()
 }
 
 #[cfg(test)]

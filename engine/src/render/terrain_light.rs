@@ -84,9 +84,6 @@ impl TerrainLight {
         reach: LightReach,
     ) -> Vec<GridRect> {
         let (nx, nz) = (grid.nx(), grid.nz());
-        for rect in rects {
-            self.note_heights(grid, rect);
-        }
         let near: Vec<GridRect> = rects
             .iter()
             .map(|r| r.expand(reach.sky + 1, nx, nz))

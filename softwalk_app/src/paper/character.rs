@@ -32,8 +32,9 @@ pub const LOOP_FLOAT_LIMIT: f32 = 0.075;
 /// Down a slope, and up a steep one, the pelvis, which moves at a bounded
 /// speed, reaches the height a foot needs a little after the foot arrives:
 /// a foot a straight leg cannot reach is held above the ground rather than
-/// dragged (it never slides) for a few steps, at most about 4 cm down 10°
-/// and 5.5 cm up or down 20° (a known limit of the bounded pelvis).
+/// dragged (it never slides) for a few steps (a known limit of the bounded
+/// pelvis): held to 6 cm down 15° and steeper, and to 5.5 cm elsewhere off
+/// the range from 5° down to 15° up.
 pub fn float_limit(angle_deg: f32) -> f32 {
     if angle_deg <= -15.0 {
         0.06

@@ -135,8 +135,7 @@ impl GaitQuality {
             }
             if s > 0 && walking[s - 1] {
                 let before = &series[s - 1].character;
-                let rise = 0.5 * (slope_rise_rate(m) + slope_rise_rate(&series[s - 1])) * dt;
-                let pelvis = (c.pelvis_y - before.pelvis_y - rise).abs();
+                let pelvis = pelvis_step(m, &series[s - 1], dt);
                 q.pelvis_step_cm = q.pelvis_step_cm.max(100.0 * pelvis);
                 for k in 0..2 {
                     let knee = (c.knee_flexion[k] - before.knee_flexion[k]).abs();
@@ -227,6 +226,13 @@ impl fmt::Display for GaitQuality {
             self.walking_samples
         )
     }
+}
+
+/// How far the pelvis moves up or down from `before` to `now`, a step of
+/// `dt` seconds apart, beyond the rise of the slope it walks on, metres.
+pub fn pelvis_step(now: &WalkerMetrics, before: &WalkerMetrics, dt: f32) -> f32 {
+    let rise = 0.5 * (slope_rise_rate(now) + slope_rise_rate(before)) * dt;
+    (now.character.pelvis_y - before.character.pelvis_y - rise).abs()
 }
 
 /// How fast the ground's slope under the pelvis rises along the walk, m/s:

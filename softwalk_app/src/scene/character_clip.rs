@@ -12,8 +12,6 @@ use super::SceneError;
 /// A loaded and analysed walk clip.
 #[derive(Debug, Clone)]
 pub struct LoadedClip {
-    /// The field it came from (`characters[0].clip`).
-    pub field: String,
     /// The file, resolved against the scene's folder.
     pub path: PathBuf,
     /// The clip's skeleton and motion.
@@ -55,7 +53,6 @@ pub fn load_clip(field: &str, clip: &str, base_dir: &Path) -> Result<LoadedClip,
     Ok(LoadedClip {
         gait: ClipGait::from_cycle(&cycle),
         cycle,
-        field,
         path,
         bvh,
         map,

@@ -9,6 +9,7 @@ use engine::anim::gltf::load_gltf_from_slice;
 use engine::anim::{
     BoneMap, BoneRole, LegChain, Model, RigChains, SkinnedVertices, skin_matrices, skin_serial,
 };
+use engine::geom::Aabb;
 use glam::{Mat3, Mat4, Quat, Vec3};
 
 use super::model_error::ModelError;
@@ -275,11 +276,8 @@ impl RestModel {
 /// A model already in metres is skinned once; a converted one again, scaled.
 fn in_metres(model: Model) -> Result<RestModel, ModelError> {
     let rest = RestModel::of(model, ModelUnits::Metres)?;
-    let (lo, hi) = (rest.vertices.positions.iter())
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(*p), hi.max(*p))
-        });
-    let extent = hi - lo;
+    let bounds = Aabb::from_points(&rest.vertices.positions);
+    let extent = bounds.max - bounds.min;
     let (width, height) = (extent.x.max(extent.z), extent.y);
     if width > MAX_WIDTH_PER_HEIGHT * height {
         return Err(ModelError::LyingDown { width, height });
@@ -419,14 +417,9 @@ fn foot_vertices(model: &Model, leg: &LegChain) -> Vec<u32> {
 
 /// The middle of a sole's vertices' extent, at their lowest height.
 fn sole_centre(positions: &[Vec3], sole: &[u32]) -> Vec3 {
-    let (lo, hi) = sole
-        .iter()
-        .map(|&v| positions[v as usize])
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(p), hi.max(p))
-        });
-    let mid = 0.5 * (lo + hi);
-    Vec3::new(mid.x, lo.y, mid.z)
+    let bounds = (sole.iter()).fold(Aabb::EMPTY, |b, &v| b.grown_to(positions[v as usize]));
+    let mid = 0.5 * (bounds.min + bounds.max);
+    Vec3::new(mid.x, bounds.min.y, mid.z)
 }
 
 /// A sole's extent from heel to toe along the rest frame's forward.

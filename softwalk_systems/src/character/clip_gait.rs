@@ -76,12 +76,11 @@ fn within(value: f32, range: (f32, f32)) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::character::CharacterBody;
+    use crate::character::{CharacterBody, CharacterDesc};
 
     fn timing_on(gait: &ClipGait, body: &CharacterBody) -> ClipTiming {
         gait.timing(body.leg_reach(), body.hip_height)
     }
-    use crate::character::CharacterDesc;
 
     #[test]
     fn the_stride_scales_with_the_legs_and_the_cadence_stays() {
@@ -93,7 +92,7 @@ mod tests {
         let adult = CharacterBody::new(CharacterDesc::adult()).unwrap();
         let tall = CharacterBody::new(CharacterDesc::tall()).unwrap();
         let (a, t) = (timing_on(&gait, &adult), timing_on(&gait, &tall));
-        let leg = |b: &CharacterBody| b.thigh + b.shank;
+        let leg = CharacterBody::leg_reach;
         assert!((a.stride - 1.6 * leg(&adult)).abs() < 1e-5);
         assert!((t.stride / a.stride - leg(&tall) / leg(&adult)).abs() < 1e-5);
         assert!((a.stride / a.speed - 1.1).abs() < 1e-5);
@@ -110,7 +109,7 @@ mod tests {
             duty: 0.3,
         };
         let t = timing_on(&sprint, &adult);
-        assert!((t.stride - 2.5 * (adult.thigh + adult.shank)).abs() < 1e-5);
+        assert!((t.stride - 2.5 * adult.leg_reach()).abs() < 1e-5);
         let froude = t.speed * t.speed / (GRAVITY * adult.hip_height);
         assert!((froude - 0.5).abs() < 1e-4, "{froude}");
         assert_eq!(t.duty, 0.55);

@@ -72,7 +72,10 @@ impl ClipWalk {
 
     /// The rig posed by the driver ([`RigPose::drive`]), then its upper body
     /// played from the clip at the gait's phase, as much as the gait's foot
-    /// roll is applied (so it settles with the feet at a stop).
+    /// roll is applied (so it settles with the feet at a stop). It allocates
+    /// a pose and a scratch; per frame, keep both and call
+    /// [`RigPose::drive_in_place`] and [`ClipWalk::play_upper_body`], as the
+    /// view does.
     pub fn drive(
         &self,
         rig: &CharacterRig,

@@ -48,10 +48,6 @@ pub struct FootIK {
     /// Knee flexion of each leg last step, radians: it changes by at most
     /// [`MAX_KNEE_SPEED`].
     pub knee_flexion: Option<[f32; 2]>,
-    /// Whether each swinging foot has ploughed in this swing (see
-    /// [`ploughs`]): from then on its knee is bound to straighten in time
-    /// for the landing (see [`knee_limit`]). Cleared while the foot is planted.
-    pub ploughed: [bool; 2],
 }
 
 impl Default for FootIK {
@@ -65,7 +61,6 @@ impl Default for FootIK {
             last_ankles: [Vec3::ZERO; 2],
             flat_heights: None,
             knee_flexion: None,
-            ploughed: [false; 2],
         }
     }
 }
@@ -290,7 +285,9 @@ pub fn foot_ik_stage(
     pelvis.y -= ik.pelvis_drop;
     let planted = gait.feet.map(|f| f.phase == FootPhase::Stance);
     let knee_limits = [0, 1].map(|k| {
-        if !ik.ploughed[k] {
+        // Once a swinging foot has ploughed (see [`ploughs`]), its knee is
+        // bound to straighten in time for the landing.
+        if !rays.support[k].landing_held {
             return MAX_KNEE_FLEXION;
         }
         let hip = hips[k] - Vec3::Y * ik.pelvis_drop;
@@ -309,8 +306,7 @@ pub fn foot_ik_stage(
     pose.forward = forward;
     pose.right = right;
     let ploughing = [0, 1].map(|k| !planted[k] && ploughs(&feet[k], &placed[k]));
-    ik.ploughed = [0, 1].map(|k| !planted[k] && (ik.ploughed[k] || ploughing[k]));
-    for (support, &ploughed) in rays.support.iter_mut().zip(&ik.ploughed) {
+    for (support, &ploughed) in rays.support.iter_mut().zip(&ploughing) {
         support.landing_held |= ploughed;
     }
     foot_states(ik, pose, gait, rays, &placed, ploughing, dt)

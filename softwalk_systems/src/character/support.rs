@@ -86,7 +86,8 @@ impl SupportPoint {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootSupport {
     /// The ground at the foothold, aimed during the swing and locked once
-    /// the foot starts pressing it.
+    /// the foot starts pressing it or ploughs towards it (see
+    /// [`Self::landing_held`]).
     pub landing: SupportPoint,
     /// The floor the foot left at lift-off, and its normal.
     pub left: SupportPoint,
@@ -98,7 +99,8 @@ pub struct FootSupport {
     pub hit: bool,
     /// True once the swinging foot has ploughed towards its landing (set by
     /// the foot IK): the landing is no longer re-aimed, so the ground the
-    /// foot pressed on its way is not read back as a shallower landing.
+    /// foot pressed on its way is not read back as a shallower landing, and
+    /// the knee is bound to straighten in time for it.
     pub landing_held: bool,
 }
 

@@ -4,8 +4,8 @@
 //! default human) that skins, casts shadows and draws that much faster.
 
 use engine::anim::{SkinnedMesh, SkinnedVertices, skin};
-use engine::geom::TriMesh;
-use glam::{Affine3A, Mat4, Vec3};
+use engine::geom::{Aabb, TriMesh};
+use glam::{Affine3A, Mat4};
 
 use crate::character::{CharacterBody, CharacterRig, ClipScratch, ClipWalk, Gait, Pose, RigPose};
 use crate::foot::FootState;
@@ -17,9 +17,9 @@ const COARSE_CELL: f32 = 1.0 / 40.0;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Detail {
     /// Every triangle of the model.
-    Full,
+    Full = 0,
     /// The model's vertices clustered into cubes of [`COARSE_CELL`] of its size.
-    Coarse,
+    Coarse = 1,
 }
 
 /// A skinned model with its scratch buffers and the world-space meshes of
@@ -33,7 +33,7 @@ pub(super) struct SkinnedFigure {
     globals: Vec<Mat4>,
     matrices: Vec<Affine3A>,
     skinned: SkinnedVertices,
-    /// The world-space mesh of each detail, as last skinned.
+    /// The world-space mesh of each detail (indexed by [`Detail`]), as last skinned.
     meshes: [TriMesh; 2],
     /// The detail of the last update.
     detail: Detail,
@@ -43,12 +43,9 @@ impl SkinnedFigure {
     /// A figure of `rig`, in its rest pose until the first update.
     pub(super) fn new(rig: CharacterRig) -> SkinnedFigure {
         let full = &rig.model().mesh;
-        let (lo, hi) = (full.positions().iter())
-            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(*p), hi.max(*p))
-            });
+        let bounds = Aabb::from_points(full.positions());
         let coarse = full
-            .clustered((hi - lo).max_element() * COARSE_CELL)
+            .clustered((bounds.max - bounds.min).max_element() * COARSE_CELL)
             .unwrap_or_else(|_| full.clone());
         let meshes = [rest_mesh(full), rest_mesh(&coarse)];
         SkinnedFigure {
@@ -83,10 +80,11 @@ impl SkinnedFigure {
         }
         (self.rig_pose).skin_matrices(&self.rig, &mut self.globals, &mut self.matrices);
         self.detail = detail;
-        let (source, mesh) = match detail {
-            Detail::Full => (&self.rig.model().mesh, &mut self.meshes[0]),
-            Detail::Coarse => (&self.coarse, &mut self.meshes[1]),
+        let source = match detail {
+            Detail::Full => &self.rig.model().mesh,
+            Detail::Coarse => &self.coarse,
         };
+        let mesh = &mut self.meshes[detail as usize];
         // The matrices cover every joint of the skeleton the mesh was checked against.
         if skin(source, &self.matrices, &mut self.skinned).is_ok() {
             std::mem::swap(&mut mesh.positions, &mut self.skinned.positions);
@@ -96,10 +94,7 @@ impl SkinnedFigure {
 
     /// The mesh as skinned by the last update, in world space.
     pub(super) fn mesh(&self) -> &TriMesh {
-        match self.detail {
-            Detail::Full => &self.meshes[0],
-            Detail::Coarse => &self.meshes[1],
-        }
+        &self.meshes[self.detail as usize]
     }
 }
 
@@ -121,22 +116,18 @@ fn rest_mesh(source: &SkinnedMesh) -> TriMesh {
 mod tests {
     use super::*;
 
-    /// The corners of the box around `mesh`'s vertices.
-    fn bounds(mesh: &TriMesh) -> (Vec3, Vec3) {
-        (mesh.positions.iter()).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(*p), hi.max(*p))
-        })
-    }
-
     #[test]
     fn the_coarse_human_fills_the_same_box_with_a_fifth_of_the_triangles() {
         let figure = SkinnedFigure::new(CharacterRig::human().unwrap());
         let [full, coarse] = &figure.meshes;
         assert!(coarse.triangles.len() * 4 < full.triangles.len());
-        let ((lo, hi), (coarse_lo, coarse_hi)) = (bounds(full), bounds(coarse));
-        let cell = (hi - lo).max_element() * COARSE_CELL;
-        assert!((coarse_lo - lo).abs().max_element() < cell);
-        assert!((coarse_hi - hi).abs().max_element() < cell);
+        let (fine, rough) = (
+            Aabb::from_points(&full.positions),
+            Aabb::from_points(&coarse.positions),
+        );
+        let cell = (fine.max - fine.min).max_element() * COARSE_CELL;
+        assert!((rough.min - fine.min).abs().max_element() < cell);
+        assert!((rough.max - fine.max).abs().max_element() < cell);
         assert_eq!(figure.mesh().triangles.len(), full.triangles.len());
     }
 }

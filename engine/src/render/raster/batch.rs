@@ -75,13 +75,13 @@ impl TriangleBatch {
                     continue;
                 }
                 let corners = tri.map(|k| &verts[k as usize]);
-                let shaded = shadow.filter(|s| {
+                let shaded = light.is_some_and(|s| {
                     corners.iter().any(|v| v.sun != Vec3::ZERO)
                         && s.may_shade([a.light, b.light, c.light])
                 });
                 if (a.outcode | b.outcode | c.outcode) & (OUT_NEAR | OUT_GUARD) == 0 {
                     let screen = [&a.screen, &b.screen, &c.screen];
-                    batch.set_up(screen, group.cull, shaded.is_some(), vp);
+                    batch.set_up(screen, group.cull, shaded, vp);
                     continue;
                 }
                 clip_triangle(corners.map(|v| *v), &mut polygon);
@@ -91,7 +91,7 @@ impl TriangleBatch {
                     .collect();
                 for k in 1..fan.len().saturating_sub(1) {
                     let v = [&fan[0], &fan[k], &fan[k + 1]];
-                    batch.set_up(v, group.cull, shaded.is_some(), vp);
+                    batch.set_up(v, group.cull, shaded, vp);
                 }
             }
         }

@@ -6,8 +6,9 @@
 //!    fogged ([`ClipVertex`]); the terrain also gives the part of it the sun
 //!    adds, for caster shadows resolved per pixel.
 //! 2. **Vertex pass.** [`TriangleBatch::build`] projects every vertex once:
-//!    its 16.8 fixed-point pixel position, `1/w` and colour / w
-//!    ([`triangle::ScreenVertex`]), and its outcode ([`clip`]).
+//!    its 16.8 fixed-point pixel position, `1/w`, colour / w and sun part / w
+//!    ([`triangle::ScreenVertex`]), its outcode ([`clip`]) and, in a batch
+//!    with a sun part, its light coordinates ([`PixelShadow::light_point`]).
 //! 3. **Set-up.** Each triangle outside one frustum plane is dropped; one
 //!    crossing the near plane or the guard band is clipped into a fan. Then
 //!    [`triangle::Triangle::set_up`] drops the culled facing, winds it clockwise, clips

@@ -320,7 +320,7 @@ impl Triangle {
     /// stored, perspective-correct colour.
     #[inline]
     pub fn draw(&self, band: &mut Band<'_>) {
-        self.fill(band, |_, _, a| display_rgba(a.x, a.yzw()));
+        self.fill(band, |_, _, a| display_rgba(1.0 / a.x, a.yzw()));
     }
 
     /// Draws the triangle's pixels in `band` like [`Triangle::draw`], less
@@ -331,7 +331,7 @@ impl Triangle {
             let w = 1.0 / a.x;
             let hidden = 1.0 - shadow.visibility(x, y, w);
             let sun_w = sun.at(x - self.x0, y - self.y0);
-            display_rgba(a.x, a.yzw() - sun_w * hidden)
+            display_rgba(w, a.yzw() - sun_w * hidden)
         });
     }
 }
@@ -342,14 +342,13 @@ pub(crate) fn to_u8(v: f32) -> u8 {
     (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8
 }
 
-/// The opaque RGBA8 pixel of an interpolated `1/w` and colour / w.
+/// The opaque RGBA8 pixel of a pixel's `w` and interpolated colour / w.
 #[inline]
-fn display_rgba(inv_w: f32, color_w: Vec3) -> [u8; 4] {
-    let inv = 1.0 / inv_w;
+fn display_rgba(w: f32, color_w: Vec3) -> [u8; 4] {
     [
-        to_u8(color_w.x * inv),
-        to_u8(color_w.y * inv),
-        to_u8(color_w.z * inv),
+        to_u8(color_w.x * w),
+        to_u8(color_w.y * w),
+        to_u8(color_w.z * w),
         255,
     ]
 }
