@@ -298,22 +298,7 @@ pub fn run_with_inputs(
         }
         softwalk_systems::sim::step(&mut app).map_err(SimError::Step)?;
         let t = options.time_after(step);
-        let volume = app.world.resource::<GroundState>().volume();
-        for (character, &entity) in walkers.iter().enumerate() {
-            let Ok(m) = app.world.get::<WalkerMetrics>(entity) else {
-                continue;
-            };
-            prints.observe(character, &m);
-            observer
-                .on_step(&StepRecord {
-                    step,
-                    t,
-                    character,
-                    walker: *m,
-                    terrain_volume: volume,
-                })
-                .map_err(SimError::Observer)?;
-        }
+        report_step(&app.world, &walkers, &mut prints, observer, step, t)?;
         if let Some(view) = view.as_mut()
             && options.renders_step(step)
         {
@@ -337,8 +322,50 @@ pub fn run_with_inputs(
         Ok(prints.depths(t.initial(), t.grid()))
     })
     .map_err(SimError::Observer)?;
-    let timings = app
-        .world
+    Ok(RunSummary {
+        steps: options.steps,
+        sim_seconds: options.steps as f64 * options.dt,
+        world_hash: options.hash.then(|| world_hash(&app.world)),
+        setup_seconds,
+        stepping_seconds,
+        print_depth,
+        timings: system_timings(&app.world),
+    })
+}
+
+/// Reports each walker's metrics after `step` (ending at `t` seconds) to
+/// `observer`, in scene order, and follows their prints.
+fn report_step(
+    world: &World,
+    walkers: &[Entity],
+    prints: &mut PrintTracker,
+    observer: &mut dyn RunObserver,
+    step: u64,
+    t: f64,
+) -> Result<(), SimError> {
+    let volume = world.resource::<GroundState>().volume();
+    for (character, &entity) in walkers.iter().enumerate() {
+        let Ok(m) = world.get::<WalkerMetrics>(entity) else {
+            continue;
+        };
+        prints.observe(character, &m);
+        observer
+            .on_step(&StepRecord {
+                step,
+                t,
+                character,
+                walker: *m,
+                terrain_volume: volume,
+            })
+            .map_err(SimError::Observer)?;
+    }
+    Ok(())
+}
+
+/// The mean cost of each system so far, in schedule order; empty when the
+/// world does not measure them.
+fn system_timings(world: &World) -> Vec<SystemTiming> {
+    world
         .get_resource::<SystemTimings>()
         .map(|t| {
             t.means()
@@ -349,16 +376,7 @@ pub fn run_with_inputs(
                 })
                 .collect()
         })
-        .unwrap_or_default();
-    Ok(RunSummary {
-        steps: options.steps,
-        sim_seconds: options.steps as f64 * options.dt,
-        world_hash: options.hash.then(|| world_hash(&app.world)),
-        setup_seconds,
-        stepping_seconds,
-        print_depth,
-        timings,
-    })
+        .unwrap_or_default()
 }
 
 /// Runs `f` with the terrain of a world built by [`Scene::build_sim`].

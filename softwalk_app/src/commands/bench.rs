@@ -25,72 +25,9 @@ pub fn bench(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     for _ in 0..args.repeats {
         runs.push(pool.install(|| runner::run(&scene, &options, &mut ()))?);
     }
+    write_table(out, &scene, &options, &runs)?;
     let first = &runs[0];
     let same_world = runs.iter().all(|s| s.world_hash == first.world_hash);
-    let print =
-        |out: &mut dyn Write, line: String| writeln!(out, "{line}").map_err(CliError::Stdout);
-    let steps = first.steps.max(1) as f64;
-    let setup: Vec<f64> = runs.iter().map(|s| s.setup_seconds * 1e3).collect();
-    let wall: Vec<f64> = runs
-        .iter()
-        .map(|s| s.stepping_seconds * 1e6 / steps)
-        .collect();
-    let systems: Vec<f64> = runs
-        .iter()
-        .map(|s| s.timings.iter().map(|t| t.mean_ns / 1000.0).sum())
-        .collect();
-    print(
-        out,
-        format!(
-            "scene {}: {} walkers, {} steps on {} thread(s), {} run(s)",
-            scene.name,
-            scene.characters.len(),
-            first.steps,
-            options.threads,
-            runs.len(),
-        ),
-    )?;
-    print(
-        out,
-        format!("  {:<24} {:>10} {:>10}", "per run", "median", "fastest"),
-    )?;
-    for (label, values) in [
-        ("set-up (ms)", &setup),
-        ("step, wall (us)", &wall),
-        ("sum of systems (us/step)", &systems),
-    ] {
-        print(
-            out,
-            format!(
-                "  {label:<24} {:>10.1} {:>10.1}",
-                median(values),
-                fastest(values)
-            ),
-        )?;
-    }
-    print(
-        out,
-        format!(
-            "  {:<24} {:>10} {:>10}",
-            "system (us/step)", "median", "fastest"
-        ),
-    )?;
-    for (k, timing) in first.timings.iter().enumerate() {
-        let costs: Vec<f64> = runs
-            .iter()
-            .filter_map(|s| s.timings.get(k))
-            .map(|t| t.mean_ns / 1000.0)
-            .collect();
-        print(
-            out,
-            format!(
-                "  {:<24} {:>10.1} {:>10.1}",
-                timing.name,
-                median(&costs),
-                fastest(&costs)
-            ),
-        )?;
-    }
     let hash = first
         .world_hash
         .map_or_else(|| "none".to_string(), |h| format!("{h:016x}"));
@@ -99,12 +36,62 @@ pub fn bench(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         "DIFFERS between runs"
     };
-    print(out, format!("world hash {hash}: {verdict}"))?;
+    writeln!(out, "world hash {hash}: {verdict}").map_err(CliError::Stdout)?;
     if same_world {
         Ok(())
     } else {
         Err(CliError::Nondeterministic { scene: scene.name })
     }
+}
+
+/// Prints the runs' costs: set-up, wall time per step and the sum of the
+/// systems, then each system, as the median and the fastest run.
+fn write_table(
+    out: &mut dyn Write,
+    scene: &Scene,
+    options: &RunOptions,
+    runs: &[RunSummary],
+) -> Result<(), CliError> {
+    let first = &runs[0];
+    let steps = first.steps.max(1) as f64;
+    let per_run = |f: &dyn Fn(&RunSummary) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
+    let setup = per_run(&|s| s.setup_seconds * 1e3);
+    let wall = per_run(&|s| s.stepping_seconds * 1e6 / steps);
+    let systems = per_run(&|s| s.timings.iter().map(|t| t.mean_ns / 1000.0).sum());
+    let mut text = format!(
+        "scene {}: {} walkers, {} steps on {} thread(s), {} run(s)\n",
+        scene.name,
+        scene.characters.len(),
+        first.steps,
+        options.threads,
+        runs.len(),
+    );
+    text += &format!("  {:<24} {:>10} {:>10}\n", "per run", "median", "fastest");
+    text += &cost_row("set-up (ms)", &setup);
+    text += &cost_row("step, wall (us)", &wall);
+    text += &cost_row("sum of systems (us/step)", &systems);
+    text += &format!(
+        "  {:<24} {:>10} {:>10}\n",
+        "system (us/step)", "median", "fastest"
+    );
+    for (k, timing) in first.timings.iter().enumerate() {
+        let costs: Vec<f64> = runs
+            .iter()
+            .filter_map(|s| s.timings.get(k))
+            .map(|t| t.mean_ns / 1000.0)
+            .collect();
+        text += &cost_row(&timing.name, &costs);
+    }
+    out.write_all(text.as_bytes()).map_err(CliError::Stdout)
+}
+
+/// One line of the table: `label`, then the median and the fastest of `values`.
+fn cost_row(label: &str, values: &[f64]) -> String {
+    format!(
+        "  {label:<24} {:>10.1} {:>10.1}\n",
+        median(values),
+        fastest(values)
+    )
 }
 
 /// The scene to measure: the named one, or the crowd generated from the

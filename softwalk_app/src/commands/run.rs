@@ -1,7 +1,7 @@
 //! `softwalk run`: run a scene and write its outputs.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::{check_memory, scene_and_options, thread_pool};
@@ -14,7 +14,8 @@ use crate::output::{
     MetricsCsv, PlotCollector, RunReport, StatsCollector, text_summary, write_summary_json,
 };
 use crate::progress::Progress;
-use crate::runner::{self, Frame, ObserverError, Observers, RunObserver};
+use crate::runner::{self, Frame, ObserverError, Observers, RunObserver, RunOptions, RunSummary};
+use crate::scene::Scene;
 
 /// What a run writes of its frames: the PNG files, the animation and the
 /// contact sheet's thumbnails.
@@ -49,51 +50,16 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     options.width = args.width.unwrap_or(options.width);
     options.height = args.height.unwrap_or(options.height);
     check_memory(&scene, &options, &args.scene)?;
-
-    let dir = prepare_output_dir(&args.out)?;
-    let frames_dir = dir.join("frames");
-    if options.render {
-        prepare_output_dir(&frames_dir)?;
-    } else {
-        remove_partial_files(&frames_dir)?;
-    }
-    let plots_dir = prepare_output_dir(&dir.join("plots"))?;
-    let render = &scene.render;
-    let gif = (options.render && render.gif).then(|| dir.join("animation.gif"));
-    let apng = (options.render && render.apng).then(|| dir.join("animation.apng"));
-    let sheet_path = dir.join("contact_sheet.png");
-    let mut files: Vec<PathBuf> = ["metrics.csv", "summary.json"]
-        .into_iter()
-        .chain(["terrain_initial.png", "terrain_final.png"])
-        .map(|f| dir.join(f))
-        .chain(gif.clone())
-        .chain(apng.clone())
-        .chain(PlotCollector::files().map(|f| plots_dir.join(f)))
-        .collect();
-    if options.render {
-        files.push(sheet_path.clone());
-    }
-    check_output_files(files.iter().map(PathBuf::as_path))?;
+    let paths = OutputPaths::prepare(&args.out, &scene, &options)?;
     let pool = thread_pool(options.threads)?;
 
     let names = scene.characters.iter().map(|c| c.name.clone()).collect();
-    let mut metrics = MetricsCsv::create(&dir.join("metrics.csv"), names)?;
+    let mut metrics = MetricsCsv::create(&paths.dir.join("metrics.csv"), names)?;
     let mut stats = StatsCollector::new(scene.characters.len());
     let mut plots = PlotCollector::new(scene.characters.iter().map(|c| c.name.clone()).collect());
-    let mut heightmaps = HeightmapWriter::new(&dir);
-    let frame_ms = (options.dt * f64::from(options.render_every) * 1000.0).round() as u32;
-    let animation = AnimationWriter::create(gif.as_deref(), apng.as_deref(), frame_ms)
-        .map_err(CliError::Output)?;
-    let expected_frames = options
-        .steps
-        .div_ceil(u64::from(options.render_every.max(1)));
-    let sheet = ContactSheet::new(expected_frames, 12, render.contact_sheet_columns);
+    let mut heightmaps = HeightmapWriter::new(&paths.dir);
     // Frames are encoded on their own thread while the next ones are drawn.
-    let mut frame_outputs = FrameThread::spawn(FrameOutputs {
-        files: FrameWriter::new(&frames_dir),
-        animation,
-        sheet,
-    });
+    let mut frame_outputs = FrameThread::spawn(frame_outputs(&paths, &scene, &options)?);
     let mut progress = Progress::new(options.steps);
 
     let start = Instant::now();
@@ -119,24 +85,127 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     metrics.finish()?;
     if options.render {
         animation.finish().map_err(CliError::Output)?;
-        sheet.save(&sheet_path).map_err(CliError::Output)?;
+        sheet.save(&paths.sheet).map_err(CliError::Output)?;
     }
     let wall = start.elapsed().as_secs_f64();
-    for warning in plots.save(&plots_dir).skipped {
+    for warning in plots.save(&paths.plots).skipped {
         eprintln!("warning: {warning}");
     }
 
-    let mut report = RunReport::new(&scene, &options, &summary, &stats.stats(), wall);
+    let text = write_report(
+        &paths,
+        &scene,
+        &options,
+        &summary,
+        &stats,
+        &heightmaps,
+        wall,
+    )?;
+    out.write_all(text.as_bytes()).map_err(CliError::Stdout)
+}
+
+/// Writes `summary.json` and returns the text summary printed at the end.
+fn write_report(
+    paths: &OutputPaths,
+    scene: &Scene,
+    options: &RunOptions,
+    summary: &RunSummary,
+    stats: &StatsCollector,
+    heightmaps: &HeightmapWriter,
+    wall: f64,
+) -> Result<String, CliError> {
+    let mut report = RunReport::new(scene, options, summary, &stats.stats(), wall);
     report.heightmaps = heightmaps
         .written
         .iter()
         .map(|(path, info)| HeightmapReport::new(path, info))
         .collect();
-    write_summary_json(&dir.join("summary.json"), &report)?;
+    write_summary_json(&paths.dir.join("summary.json"), &report)?;
     let mut text = text_summary(&report);
     if options.hash && summary.world_hash.is_none() {
         text.push_str("world hash: not computed by this simulation\n");
     }
-    text.push_str(&format!("outputs in {}\n", dir.display()));
-    out.write_all(text.as_bytes()).map_err(CliError::Stdout)
+    text.push_str(&format!("outputs in {}\n", paths.dir.display()));
+    Ok(text)
+}
+
+/// Where a run's outputs go.
+struct OutputPaths {
+    /// The output folder.
+    dir: PathBuf,
+    /// `frames/`, the PNG frames.
+    frames: PathBuf,
+    /// `plots/`.
+    plots: PathBuf,
+    /// `animation.gif`, when one is written.
+    gif: Option<PathBuf>,
+    /// `animation.apng`, when one is written.
+    apng: Option<PathBuf>,
+    /// `contact_sheet.png`.
+    sheet: PathBuf,
+}
+
+impl OutputPaths {
+    /// Creates the output folder `out` and its sub-folders, removes the
+    /// frames a run without rendering would leave stale, and checks every
+    /// file the run will write, before any work.
+    fn prepare(out: &Path, scene: &Scene, options: &RunOptions) -> Result<Self, CliError> {
+        let dir = prepare_output_dir(out)?;
+        let frames = dir.join("frames");
+        if options.render {
+            prepare_output_dir(&frames)?;
+        } else {
+            remove_partial_files(&frames)?;
+        }
+        let plots = prepare_output_dir(&dir.join("plots"))?;
+        let animation =
+            |wanted: bool, file: &str| (options.render && wanted).then(|| dir.join(file));
+        let paths = OutputPaths {
+            gif: animation(scene.render.gif, "animation.gif"),
+            apng: animation(scene.render.apng, "animation.apng"),
+            sheet: dir.join("contact_sheet.png"),
+            frames,
+            plots,
+            dir,
+        };
+        check_output_files(paths.files(options.render).iter().map(PathBuf::as_path))?;
+        Ok(paths)
+    }
+
+    /// Every file the run writes.
+    fn files(&self, render: bool) -> Vec<PathBuf> {
+        [
+            "metrics.csv",
+            "summary.json",
+            "terrain_initial.png",
+            "terrain_final.png",
+        ]
+        .into_iter()
+        .map(|f| self.dir.join(f))
+        .chain(self.gif.clone())
+        .chain(self.apng.clone())
+        .chain(PlotCollector::files().map(|f| self.plots.join(f)))
+        .chain(render.then(|| self.sheet.clone()))
+        .collect()
+    }
+}
+
+/// The frame writers of a run: PNG files, the animation (GIF and APNG, each
+/// when asked for) and the contact sheet.
+fn frame_outputs(
+    paths: &OutputPaths,
+    scene: &Scene,
+    options: &RunOptions,
+) -> Result<FrameOutputs, CliError> {
+    let frame_ms = (options.dt * f64::from(options.render_every) * 1000.0).round() as u32;
+    let animation = AnimationWriter::create(paths.gif.as_deref(), paths.apng.as_deref(), frame_ms)
+        .map_err(CliError::Output)?;
+    let expected_frames = options
+        .steps
+        .div_ceil(u64::from(options.render_every.max(1)));
+    Ok(FrameOutputs {
+        files: FrameWriter::new(&paths.frames),
+        animation,
+        sheet: ContactSheet::new(expected_frames, 12, scene.render.contact_sheet_columns),
+    })
 }

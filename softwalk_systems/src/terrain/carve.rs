@@ -6,7 +6,7 @@ use glam::Vec2;
 
 use super::error::TerrainError;
 use super::footprint::Footprint;
-use super::heightfield::{DISTURBED_PRESSED, DISTURBED_RIM, Heightfield};
+use super::heightfield::{DISTURBED_PRESSED, DISTURBED_RIM, Heightfield, TerrainParts};
 use super::units::REFERENCE_CELL_M;
 use crate::foot::FootSole;
 
@@ -180,17 +180,7 @@ pub fn press(
     }
     let foot = Footprint::from_sole(sole)?;
     if !contact {
-        let released = print.release();
-        let changes = hf.parts_mut().changes;
-        changes.released.add(released);
-        if !released.is_empty() {
-            changes.carved.push(released);
-        }
-        return Ok(Pressed {
-            rect: released,
-            released: true,
-            ..Pressed::default()
-        });
+        return Ok(release(hf, print));
     }
     let grid = hf.grid();
     let (origin, cell, nx, nz) = (grid.origin(), grid.cell_size(), grid.nx(), grid.nz());
@@ -208,7 +198,7 @@ pub fn press(
     }
     print.cover(rect, nx, nz);
 
-    let parts = hf.parts_mut();
+    let mut parts = hf.parts_mut();
     let mut removed = 0.0f64;
     let mut compacted = 0.0f64;
     print.rim.clear();
@@ -224,39 +214,18 @@ pub fn press(
                 }
                 continue;
             }
-            let h = parts.heights[k];
             let sole_y = foot.sole_height(p);
-            if sole_y > h + CONTACT_TOLERANCE {
+            if sole_y > parts.heights[k] + CONTACT_TOLERANCE {
                 continue;
             }
             let local = print.local(i, j);
             if print.reference[local].is_nan() {
-                print.reference[local] = h;
+                print.reference[local] = parts.heights[k];
                 print.pressed.push(k);
             }
-            let material = parts.material(k);
-            let step = material.sink_speed() * dt;
-            // A fully covered sample stops at the print depth or the firm
-            // floor; a partly covered one, at that share of the way.
-            let reference = print.reference[local];
-            let full = (reference - material.print_depth()).max(parts.floor(k));
-            let floor = (reference - cover * (reference - full))
-                .max(sole_y)
-                .max(parts.floor(k));
-            // A fully covered sample goes down with the sole (the foot sets
-            // the pace); a partly covered one sinks at the material's speed.
-            let new_h = if cover >= 1.0 {
-                floor
-            } else {
-                (h - step).max(floor)
-            };
-            parts.disturbed[k] = DISTURBED_PRESSED;
-            if new_h < h {
-                parts.heights[k] = new_h;
-                let dh = (h - new_h) as f64;
-                removed += dh;
-                compacted += material.compression as f64 * dh;
-            }
+            let dh = press_sample(&mut parts, k, print.reference[local], sole_y, cover, dt);
+            removed += dh;
+            compacted += parts.material(k).compression as f64 * dh;
         }
     }
     // Everything this contact has pressed stays held until the foot lifts, not
@@ -271,6 +240,58 @@ pub fn press(
         compacted,
         released: false,
     })
+}
+
+/// Releases a foot no longer in contact: nothing is pressed, and the whole
+/// rectangle its contact touched is noted as released and carved, so that
+/// smoothing and settling run once more without the foot holding the walls.
+fn release(hf: &mut Heightfield, print: &mut FootPrint) -> Pressed {
+    let released = print.release();
+    let changes = hf.parts_mut().changes;
+    changes.released.add(released);
+    if !released.is_empty() {
+        changes.carved.push(released);
+    }
+    Pressed {
+        rect: released,
+        released: true,
+        ..Pressed::default()
+    }
+}
+
+/// Presses sample `k`, under a sole at `sole_y` covering `cover` of its
+/// cell, for `dt` seconds: a fully covered sample goes down with the sole
+/// (the foot sets the pace) and stops at the print depth below `reference`
+/// (its height when this contact first touched it) or at the firm floor; a
+/// partly covered one sinks at the material's speed and stops that share
+/// of the way. Marks the sample pressed and returns how far it went down.
+fn press_sample(
+    parts: &mut TerrainParts<'_>,
+    k: usize,
+    reference: f32,
+    sole_y: f32,
+    cover: f32,
+    dt: f32,
+) -> f64 {
+    let h = parts.heights[k];
+    let material = parts.material(k);
+    let firm = parts.floor(k);
+    let full = (reference - material.print_depth()).max(firm);
+    let floor = (reference - cover * (reference - full))
+        .max(sole_y)
+        .max(firm);
+    let new_h = if cover >= 1.0 {
+        floor
+    } else {
+        (h - material.sink_speed() * dt).max(floor)
+    };
+    parts.disturbed[k] = DISTURBED_PRESSED;
+    if new_h < h {
+        parts.heights[k] = new_h;
+        (h - new_h) as f64
+    } else {
+        0.0
+    }
 }
 
 /// The second half of [`carve`]: spreads what `pressed` displaced and did
