@@ -203,12 +203,38 @@ impl LinePlot {
     /// Draws the plot on an opaque background into `rect` of `image` (clipped
     /// to the image), for example as an inset on a rendered frame.
     pub fn draw_onto(&self, image: &mut RgbaImage, rect: PixelRect) {
+        let Some(layout) = self.layout(image, rect) else {
+            return;
+        };
+        let mut overlay = Overlay::new(image);
+        let box_ = &layout.bounds;
+        overlay.fill_rect(
+            Vec2::new(box_.x0, box_.y0),
+            Vec2::new(box_.w, box_.h),
+            BACKGROUND,
+        );
+        if layout.right - layout.left < 4.0 || layout.bottom - layout.top < 4.0 {
+            return;
+        }
+        layout.draw_grid(&mut overlay);
+        self.draw_titles(&mut overlay, &layout);
+        self.draw_curves(&mut overlay, &layout);
+        self.draw_legend(
+            &mut overlay,
+            layout.font,
+            Vec2::new(layout.right, layout.top),
+        );
+    }
+
+    /// Where everything of the plot goes in `rect` of `image`: `None` when
+    /// the part of `rect` on the image is too small to draw in.
+    fn layout(&self, image: &RgbaImage, rect: PixelRect) -> Option<PlotLayout> {
         let x0 = rect.x.min(image.width()) as f32;
         let y0 = rect.y.min(image.height()) as f32;
         let w = (rect.width.min(image.width().saturating_sub(rect.x))) as f32;
         let h = (rect.height.min(image.height().saturating_sub(rect.y))) as f32;
         if w < 2.0 || h < 2.0 {
-            return;
+            return None;
         }
         let font = (h.min(w * 0.75) / 18.0).clamp(9.0, 16.0).round();
         let line = line_height(font);
@@ -230,52 +256,28 @@ impl LinePlot {
         };
         let y_label_height = if self.y_label.is_empty() { 0.0 } else { line };
         let x_label_height = if self.x_label.is_empty() { 0.0 } else { line };
-        let left = x0 + pad + tick_label_width + pad * 0.7;
-        let right = x0 + w - pad - 0.5 * text_width(font, &xs.label(xs.max));
-        let top = y0 + pad + title_height + y_label_height + 0.5 * line;
-        let bottom = y0 + h - pad - x_label_height - line - pad * 0.3;
-        let to_px = |x: f32, y: f32| {
-            Vec2::new(
-                left + xs.fraction(f64::from(x)) * (right - left),
-                bottom - ys.fraction(f64::from(y)) * (bottom - top),
-            )
-        };
+        Some(PlotLayout {
+            left: x0 + pad + tick_label_width + pad * 0.7,
+            right: x0 + w - pad - 0.5 * text_width(font, &xs.label(xs.max)),
+            top: y0 + pad + title_height + y_label_height + 0.5 * line,
+            bottom: y0 + h - pad - x_label_height - line - pad * 0.3,
+            bounds: Bounds { x0, y0, w, h },
+            font,
+            line,
+            pad,
+            y_label_height,
+            xs,
+            ys,
+        })
+    }
 
-        let mut overlay = Overlay::new(image);
-        overlay.fill_rect(Vec2::new(x0, y0), Vec2::new(w, h), BACKGROUND);
-        if right - left < 4.0 || bottom - top < 4.0 {
-            return;
-        }
-        // Grid and tick labels.
-        for &t in &xs.ticks {
-            let px = (left + xs.fraction(t) * (right - left)).round() + 0.5;
-            overlay.line(Vec2::new(px, top), Vec2::new(px, bottom), GRID, 1.0);
-            let label = xs.label(t);
-            let lw = text_width(font, &label);
-            overlay.text(
-                Vec2::new(px - 0.5 * lw, bottom + pad * 0.4),
-                font,
-                INK,
-                &label,
-            );
-        }
-        for &t in &ys.ticks {
-            let py = (bottom - ys.fraction(t) * (bottom - top)).round() + 0.5;
-            overlay.line(Vec2::new(left, py), Vec2::new(right, py), GRID, 1.0);
-            let label = ys.label(t);
-            let lw = text_width(font, &label);
-            overlay.text(
-                Vec2::new(left - pad * 0.5 - lw, py - 0.55 * line),
-                font,
-                INK,
-                &label,
-            );
-        }
-        // Axes.
-        let (ax, ay) = (left.round() + 0.5, bottom.round() + 0.5);
-        overlay.line(Vec2::new(ax, top), Vec2::new(ax, ay), INK, 1.0);
-        overlay.line(Vec2::new(ax, ay), Vec2::new(right, ay), INK, 1.0);
-        // Titles.
+    /// The title above the plot, the y label above its axis and the x label
+    /// below the plot area.
+    fn draw_titles(&self, overlay: &mut Overlay<'_>, layout: &PlotLayout) {
+        let PlotLayout {
+            font, line, pad, ..
+        } = *layout;
+        let Bounds { x0, y0, w, h } = layout.bounds;
         if !self.title.is_empty() {
             let tw = text_width(font, &self.title);
             overlay.text(
@@ -287,7 +289,7 @@ impl LinePlot {
         }
         if !self.y_label.is_empty() {
             overlay.text(
-                Vec2::new(x0 + pad, top - 0.5 * line - y_label_height),
+                Vec2::new(x0 + pad, layout.top - 0.5 * line - layout.y_label_height),
                 font,
                 INK,
                 &self.y_label,
@@ -296,20 +298,23 @@ impl LinePlot {
         if !self.x_label.is_empty() {
             let tw = text_width(font, &self.x_label);
             overlay.text(
-                Vec2::new(0.5 * (left + right - tw), y0 + h - pad - line),
+                Vec2::new(0.5 * (layout.left + layout.right - tw), y0 + h - pad - line),
                 font,
                 INK,
                 &self.x_label,
             );
         }
-        // Curves: runs of finite points; lone points become dots.
-        let curve_width = (font / 6.0).clamp(1.5, 2.5);
+    }
+
+    /// The curves: runs of finite points as lines; lone points as dots.
+    fn draw_curves(&self, overlay: &mut Overlay<'_>, layout: &PlotLayout) {
+        let curve_width = (layout.font / 6.0).clamp(1.5, 2.5);
         for series in &self.series {
             for run in series
                 .points
                 .split(|p| !(p.0.is_finite() && p.1.is_finite()))
             {
-                let run: Vec<Vec2> = run.iter().map(|&(x, y)| to_px(x, y)).collect();
+                let run: Vec<Vec2> = run.iter().map(|&(x, y)| layout.to_px(x, y)).collect();
                 match run.as_slice() {
                     [] => {}
                     [single] => overlay.point(*single, series.color, 2.5 * curve_width),
@@ -317,7 +322,6 @@ impl LinePlot {
                 }
             }
         }
-        self.draw_legend(&mut overlay, font, Vec2::new(right, top));
     }
 
     /// The legend box in the top-right corner of the plot area.
@@ -364,6 +368,74 @@ impl LinePlot {
             .iter()
             .flat_map(|s| s.points.iter().copied())
             .filter(|p| p.0.is_finite() && p.1.is_finite())
+    }
+}
+
+/// The part of the image a plot is drawn in, pixels.
+#[derive(Debug, Clone, Copy)]
+struct Bounds {
+    x0: f32,
+    y0: f32,
+    w: f32,
+    h: f32,
+}
+
+/// Where a plot's parts go: its bounds, the plot area's edges, the text
+/// sizes and the two axes.
+struct PlotLayout {
+    bounds: Bounds,
+    left: f32,
+    right: f32,
+    top: f32,
+    bottom: f32,
+    font: f32,
+    line: f32,
+    pad: f32,
+    y_label_height: f32,
+    xs: Axis,
+    ys: Axis,
+}
+
+impl PlotLayout {
+    /// The pixel of data point `(x, y)`.
+    fn to_px(&self, x: f32, y: f32) -> Vec2 {
+        Vec2::new(
+            self.left + self.xs.fraction(f64::from(x)) * (self.right - self.left),
+            self.bottom - self.ys.fraction(f64::from(y)) * (self.bottom - self.top),
+        )
+    }
+
+    /// The grid lines with their tick labels, and the two axes.
+    fn draw_grid(&self, overlay: &mut Overlay<'_>) {
+        let (font, line, pad) = (self.font, self.line, self.pad);
+        let (left, right, top, bottom) = (self.left, self.right, self.top, self.bottom);
+        for &t in &self.xs.ticks {
+            let px = (left + self.xs.fraction(t) * (right - left)).round() + 0.5;
+            overlay.line(Vec2::new(px, top), Vec2::new(px, bottom), GRID, 1.0);
+            let label = self.xs.label(t);
+            let lw = text_width(font, &label);
+            overlay.text(
+                Vec2::new(px - 0.5 * lw, bottom + pad * 0.4),
+                font,
+                INK,
+                &label,
+            );
+        }
+        for &t in &self.ys.ticks {
+            let py = (bottom - self.ys.fraction(t) * (bottom - top)).round() + 0.5;
+            overlay.line(Vec2::new(left, py), Vec2::new(right, py), GRID, 1.0);
+            let label = self.ys.label(t);
+            let lw = text_width(font, &label);
+            overlay.text(
+                Vec2::new(left - pad * 0.5 - lw, py - 0.55 * line),
+                font,
+                INK,
+                &label,
+            );
+        }
+        let (ax, ay) = (left.round() + 0.5, bottom.round() + 0.5);
+        overlay.line(Vec2::new(ax, top), Vec2::new(ax, ay), INK, 1.0);
+        overlay.line(Vec2::new(ax, ay), Vec2::new(right, ay), INK, 1.0);
     }
 }
 
