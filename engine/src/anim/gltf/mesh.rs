@@ -52,6 +52,8 @@ struct Merged {
 }
 
 impl Merged {
+    /// Reads `primitive` (named `part` in errors) and appends it, its skin
+    /// joints mapped onto skeleton joints through `skin_to_joint`.
     fn append(
         &mut self,
         primitive: &gltf::Primitive,
@@ -59,6 +61,53 @@ impl Merged {
         skin_to_joint: &[usize],
         reader: &AccessorReader,
     ) -> Result<(), GltfError> {
+        let path = reader.path;
+        let read = Primitive::read(primitive, part, reader)?;
+        read.check(path, part)?;
+        let base = self.positions.len() as u32;
+        let first_vertex = self.positions.len();
+        self.indices.extend(read.indices.iter().map(|&i| base + i));
+        self.positions.extend(read.positions);
+        self.normals.extend(read.normals);
+        self.weights.extend(read.weights);
+        for (vertex, js) in read.joints.iter().enumerate() {
+            let mapped = map_joints(js, skin_to_joint).ok_or_else(|| {
+                let joint = js
+                    .iter()
+                    .copied()
+                    .find(|&j| j as usize >= skin_to_joint.len())
+                    .unwrap_or(0);
+                GltfError::JointOutOfRange {
+                    path: path.to_path_buf(),
+                    part: format!("{part} JOINTS_0"),
+                    vertex: first_vertex + vertex,
+                    joint: joint as usize,
+                    joints: skin_to_joint.len(),
+                }
+            })?;
+            self.joints.push(mapped);
+        }
+        Ok(())
+    }
+}
+
+/// One triangle primitive's vertices as read, joints still skin-joint indices.
+struct Primitive {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    indices: Vec<u32>,
+    joints: Vec<[u32; 4]>,
+    weights: Vec<[f32; 4]>,
+}
+
+impl Primitive {
+    /// Reads a triangle primitive's positions, skin joints and weights,
+    /// indices (or one per vertex) and normals (or smooth ones computed).
+    fn read(
+        primitive: &gltf::Primitive,
+        part: &str,
+        reader: &AccessorReader,
+    ) -> Result<Self, GltfError> {
         let path = reader.path;
         if primitive.mode() != Mode::Triangles {
             return Err(GltfError::Unsupported {
@@ -83,7 +132,6 @@ impl Merged {
             .into_iter()
             .map(Vec3::from)
             .collect();
-        let n = positions.len();
         let joints = reader.uints::<4>(
             &attribute(Semantic::Joints(0), "JOINTS_0")?,
             &format!("{part} JOINTS_0"),
@@ -98,7 +146,7 @@ impl Merged {
                 .into_iter()
                 .map(|[i]| i)
                 .collect(),
-            None => (0..n as u32).collect::<Vec<u32>>(),
+            None => (0..positions.len() as u32).collect::<Vec<u32>>(),
         };
         let normals = match primitive.get(&Semantic::Normals) {
             Some(a) => reader
@@ -108,10 +156,22 @@ impl Merged {
                 .collect(),
             None => smooth_normals(&positions, &indices),
         };
+        Ok(Primitive {
+            positions,
+            normals,
+            indices,
+            joints,
+            weights,
+        })
+    }
+
+    /// Every attribute has one value per position, and every index names a vertex.
+    fn check(&self, path: &Path, part: &str) -> Result<(), GltfError> {
+        let n = self.positions.len();
         for (what, len) in [
-            ("NORMAL", normals.len()),
-            ("JOINTS_0", joints.len()),
-            ("WEIGHTS_0", weights.len()),
+            ("NORMAL", self.normals.len()),
+            ("JOINTS_0", self.joints.len()),
+            ("WEIGHTS_0", self.weights.len()),
         ] {
             if len != n {
                 return Err(invalid(
@@ -121,35 +181,15 @@ impl Merged {
                 ));
             }
         }
-        if let Some(k) = indices.iter().position(|&i| i as usize >= n) {
+        if let Some(k) = self.indices.iter().position(|&i| i as usize >= n) {
             return Err(invalid(
                 path,
                 part,
-                format!("index {k} names vertex {}, past {n} vertices", indices[k]),
+                format!(
+                    "index {k} names vertex {}, past {n} vertices",
+                    self.indices[k]
+                ),
             ));
-        }
-        let base = self.positions.len() as u32;
-        let first_vertex = self.positions.len();
-        self.indices.extend(indices.iter().map(|&i| base + i));
-        self.positions.extend(positions);
-        self.normals.extend(normals);
-        self.weights.extend(weights);
-        for (vertex, js) in joints.iter().enumerate() {
-            let mapped = map_joints(js, skin_to_joint).ok_or_else(|| {
-                let joint = js
-                    .iter()
-                    .copied()
-                    .find(|&j| j as usize >= skin_to_joint.len())
-                    .unwrap_or(0);
-                GltfError::JointOutOfRange {
-                    path: path.to_path_buf(),
-                    part: format!("{part} JOINTS_0"),
-                    vertex: first_vertex + vertex,
-                    joint: joint as usize,
-                    joints: skin_to_joint.len(),
-                }
-            })?;
-            self.joints.push(mapped);
         }
         Ok(())
     }
