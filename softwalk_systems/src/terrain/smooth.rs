@@ -282,45 +282,62 @@ impl SmoothBuffers {
         self.give.clear();
         self.give.resize(len, 0.0);
         for _ in 0..passes {
-            // The give of the span and of its neighbours one row away.
-            let near = span.start..(span.end + 2 * s).min(len);
-            for ((g, &h), &f) in self.give[near.clone()]
-                .iter_mut()
-                .zip(&patch.heights[near.clone()])
-                .zip(&patch.floor[near])
-            {
-                *g = 0.25 * (h - f).max(0.0);
-            }
-            let h = &patch.heights;
-            let (up, down) = (&h[..n], &h[2 * s..2 * s + n]);
-            let (left, centre, right) = (&h[s - 1..s - 1 + n], &h[s..s + n], &h[s + 1..s + 1 + n]);
-            let g = &self.give;
-            let (g_up, g_down) = (&g[..n], &g[2 * s..2 * s + n]);
-            let (g_left, g_centre, g_right) =
-                (&g[s - 1..s - 1 + n], &g[s..s + n], &g[s + 1..s + 1 + n]);
-            let (ex_left, ex) = (&self.edge_x[s - 1..s - 1 + n], &self.edge_x[s..s + n]);
-            let (ez_up, ez) = (&self.edge_z[..n], &self.edge_z[s..s + n]);
-            let out = &mut self.next[s..s + n];
-            let changed = &mut self.changed[..n];
-            // The flux from `a` into `b` over an edge of rate `r`, limited by
-            // what each side may give; the same float for both samples.
-            // `max`/`min` rather than `clamp`: this form lets the loop vectorise.
-            let flux =
-                |r: f32, ha: f32, hb: f32, ga: f32, gb: f32| (r * (hb - ha)).max(-ga).min(gb);
-            for k in span.clone() {
-                let (hc, gc) = (centre[k], g_centre[k]);
-                let flux_right = flux(ex[k], hc, right[k], gc, g_right[k]);
-                let flux_left = flux(ex_left[k], left[k], hc, g_left[k], gc);
-                let flux_down = flux(ez[k], hc, down[k], gc, g_down[k]);
-                let flux_up = flux(ez_up[k], up[k], hc, g_up[k], gc);
-                let v = hc + flux_right - flux_left + flux_down - flux_up;
-                out[k] = v;
-                changed[k] |= u8::from(v != hc);
-            }
-            std::mem::swap(&mut patch.heights, &mut self.next);
+            self.pass(patch, span.clone());
         }
         let changed = &self.changed;
         let rect = patch.bounds_of(|l| changed[l - s] != 0);
+        self.spread_trodden_levels(patch);
+        (rect, capped)
+    }
+
+    /// One diffusion pass over the inner-row indices `span` of `patch`:
+    /// each edge moves height between its two samples at its rate, limited
+    /// by what each side may give; marks the samples it changed.
+    fn pass(&mut self, patch: &mut Patch, span: std::ops::Range<usize>) {
+        let (s, len) = (patch.stride, patch.heights.len());
+        let n = len - 2 * s;
+        // The give of the span and of its neighbours one row away.
+        let near = span.start..(span.end + 2 * s).min(len);
+        for ((g, &h), &f) in self.give[near.clone()]
+            .iter_mut()
+            .zip(&patch.heights[near.clone()])
+            .zip(&patch.floor[near])
+        {
+            *g = 0.25 * (h - f).max(0.0);
+        }
+        let h = &patch.heights;
+        let (up, down) = (&h[..n], &h[2 * s..2 * s + n]);
+        let (left, centre, right) = (&h[s - 1..s - 1 + n], &h[s..s + n], &h[s + 1..s + 1 + n]);
+        let g = &self.give;
+        let (g_up, g_down) = (&g[..n], &g[2 * s..2 * s + n]);
+        let (g_left, g_centre, g_right) =
+            (&g[s - 1..s - 1 + n], &g[s..s + n], &g[s + 1..s + 1 + n]);
+        let (ex_left, ex) = (&self.edge_x[s - 1..s - 1 + n], &self.edge_x[s..s + n]);
+        let (ez_up, ez) = (&self.edge_z[..n], &self.edge_z[s..s + n]);
+        let out = &mut self.next[s..s + n];
+        let changed = &mut self.changed[..n];
+        // The flux from `a` into `b` over an edge of rate `r`, limited by
+        // what each side may give; the same float for both samples.
+        // `max`/`min` rather than `clamp`: this form lets the loop vectorise.
+        let flux = |r: f32, ha: f32, hb: f32, ga: f32, gb: f32| (r * (hb - ha)).max(-ga).min(gb);
+        for k in span {
+            let (hc, gc) = (centre[k], g_centre[k]);
+            let flux_right = flux(ex[k], hc, right[k], gc, g_right[k]);
+            let flux_left = flux(ex_left[k], left[k], hc, g_left[k], gc);
+            let flux_down = flux(ez[k], hc, down[k], gc, g_down[k]);
+            let flux_up = flux(ez_up[k], up[k], hc, g_up[k], gc);
+            let v = hc + flux_right - flux_left + flux_down - flux_up;
+            out[k] = v;
+            changed[k] |= u8::from(v != hc);
+        }
+        std::mem::swap(&mut patch.heights, &mut self.next);
+    }
+
+    /// Gives each sample the passes changed half the largest trodden level
+    /// of its 4 neighbours, if that is more than its own.
+    fn spread_trodden_levels(&mut self, patch: &mut Patch) {
+        let (s, len) = (patch.stride, patch.heights.len());
+        let n = len - 2 * s;
         self.levels.clear();
         self.levels.extend_from_slice(&patch.disturbed);
         let t = &self.levels;
@@ -329,14 +346,13 @@ impl SmoothBuffers {
         let neighbours = up.iter().zip(down).zip(left.iter().zip(right));
         for ((d, &c), ((&u, &dn), (&l, &r))) in patch.disturbed[s..len - s]
             .iter_mut()
-            .zip(changed)
+            .zip(&self.changed)
             .zip(neighbours)
         {
             if c != 0 {
                 *d = (*d).max(u.max(dn).max(l.max(r)) / 2);
             }
         }
-        (rect, capped)
     }
 
     /// Fills the full passes each edge of `patch` needs; returns the largest
