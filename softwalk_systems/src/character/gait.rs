@@ -372,6 +372,12 @@ impl Gait {
         (self.phase + 0.5 * foot as f32).fract()
     }
 
+    /// Seconds until `foot`'s phase comes round to its landing (the end of
+    /// its swing), at the walk's cadence.
+    pub fn time_to_landing(&self, foot: usize) -> f32 {
+        (1.0 - self.local_phase(foot)) * self.params.cycle_time()
+    }
+
     /// The unit direction of travel (x, z): the facing direction, or (while
     /// walking backward) away from it.
     pub fn travel_heading(&self) -> Vec2 {
@@ -571,10 +577,9 @@ fn walk_params(body: &CharacterBody, path: &WalkPath, modifiers: &GaitModifiers)
 /// proportion to the time left until that foot lands, so the closing foot
 /// lands flat and the planted one keeps its heel down.
 fn closing_roll(gait: &Gait, dt: f32) -> f32 {
-    let cycle = gait.params.cycle_time();
     let left = (0..2)
         .filter(|&k| gait.feet[k].phase != FootPhase::Stance)
-        .map(|k| (1.0 - gait.local_phase(k)) * cycle)
+        .map(|k| gait.time_to_landing(k))
         .fold(0.0f32, f32::max);
     if left > dt {
         gait.roll * (1.0 - dt / left)

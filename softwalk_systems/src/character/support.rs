@@ -18,7 +18,7 @@ use super::body::CharacterBody;
 use super::gait::{FootPlan, GaitParams, smoothstep};
 use super::ground_cross::{GroundCross, SOLE_RAYS};
 use crate::foot::FootPhase;
-use crate::ground::{Ground, GroundHit};
+use crate::ground::{Ground, GroundHit, rise_along};
 use crate::terrain::SINK_TIME_S;
 
 /// Least height of a swinging foot over the higher of the print's rim it
@@ -299,12 +299,11 @@ fn lowest_clear_centre(
     normal: Vec3,
 ) -> Option<ClearCentre> {
     let half = plan.heading * (0.5 * body.foot_length);
-    let rise = |offset: Vec2| -(normal.x * offset.x + normal.z * offset.y) / normal.y.max(1e-3);
     [-half, Vec2::ZERO, half]
         .into_iter()
         .filter_map(|offset| {
             cast(plan.target + offset).map(|hit| {
-                let surface = hit.point.y - rise(offset);
+                let surface = hit.point.y - rise_along(normal, offset);
                 ClearCentre {
                     surface,
                     floor: surface - hit.give.max(0.0),
