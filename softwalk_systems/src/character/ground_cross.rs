@@ -236,19 +236,31 @@ mod tests {
         assert!((c.typical_floor + 0.3).abs() < 1e-6, "{}", c.typical_floor);
     }
 
+    /// An old print ahead of x = -0.1, its surface at `print[0]` giving
+    /// `print[1]`, and fresh ground behind it at 0 giving `fresh`.
+    fn print_edge(print: [f32; 2], fresh: f32) -> impl Fn(Vec2) -> Option<GroundHit> {
+        move |p| {
+            if p.x > -0.1 {
+                hit(p, print[0], print[1])
+            } else {
+                hit(p, 0.0, fresh)
+            }
+        }
+    }
+
     #[test]
     fn a_sole_over_a_print_edge_lands_on_the_edge_and_stops_on_every_floor() {
         // An old print 5 cm deep (pressed firm, giving 1 cm) ahead of x = -0.1,
         // loose sand giving 4 cm behind it; the sole centre is over the print.
         // The surface falls 5 cm over the cross, the floors 2 cm.
-        let ground = |p: Vec2| {
-            if p.x > -0.1 {
-                hit(p, -0.05, 0.01)
-            } else {
-                hit(p, 0.0, 0.04)
-            }
-        };
-        let c = GroundCross::sample(ground, Vec2::ZERO, Vec2::X, [0.13, 0.05], &[]).unwrap();
+        let c = GroundCross::sample(
+            print_edge([-0.05, 0.01], 0.04),
+            Vec2::ZERO,
+            Vec2::X,
+            [0.13, 0.05],
+            &[],
+        )
+        .unwrap();
         let tilt = 0.02 / 0.26;
         let expected = Vec3::new(tilt, 1.0, 0.0).normalize();
         assert!(c.normal.distance(expected) < 1e-5, "{}", c.normal);
@@ -268,13 +280,7 @@ mod tests {
         // to the floor (its surface 0.3 m down, giving nothing), fresh snow
         // behind. A sole there comes to rest level on the floor, not on the
         // print's wall.
-        let print = |p: Vec2| {
-            if p.x > -0.1 {
-                hit(p, -0.3, 0.0)
-            } else {
-                hit(p, 0.0, 0.3)
-            }
-        };
+        let print = print_edge([-0.3, 0.0], 0.3);
         let c = GroundCross::sample(print, Vec2::ZERO, Vec2::X, [0.13, 0.05], SOLE_RAYS).unwrap();
         assert_eq!(c.normal, Vec3::Y);
         assert_eq!((c.rest_top, c.rest_floor), (0.0, -0.3));
