@@ -7,14 +7,9 @@
 /// Time constant of the follower, seconds (critically damped: no overshoot
 /// without the bounds).
 pub const PELVIS_RESPONSE_TIME: f32 = 0.08;
-/// Fastest the pelvis base goes down relative to the ground's own rise
-/// under the walk, m/s (the gait's bob comes on top).
+/// Fastest the pelvis base moves relative to the ground's own rise under
+/// the walk, m/s (the gait's bob comes on top).
 pub const PELVIS_MAX_SPEED: f32 = 0.2;
-/// Fastest the pelvis base rises relative to the ground's own rise under
-/// the walk, m/s: a body stepping up out of a deep print onto firm ground
-/// straightens its bent standing leg at about a stair climber's pace (with
-/// the bob, under a centimetre per step at 60 Hz).
-pub const PELVIS_MAX_RISE_SPEED: f32 = 0.3;
 /// Largest acceleration of the pelvis base, m/s².
 pub const PELVIS_MAX_ACCELERATION: f32 = 6.0;
 
@@ -50,7 +45,7 @@ impl PelvisFollower {
         }
         let (lo, hi) = (
             ground_rate - PELVIS_MAX_SPEED,
-            ground_rate + PELVIS_MAX_RISE_SPEED,
+            ground_rate + PELVIS_MAX_SPEED,
         );
         let w = 1.0 / PELVIS_RESPONSE_TIME;
         let target_speed = ((target - self.last_target) / dt).clamp(lo, hi);
@@ -75,32 +70,11 @@ mod tests {
         let mut last = p.height;
         for _ in 0..120 {
             let h = p.follow(0.7, 0.0, dt);
-            assert!(last - h <= PELVIS_MAX_SPEED * dt + 1e-6);
+            assert!((last - h).abs() <= PELVIS_MAX_SPEED * dt + 1e-6);
             assert!(h >= 0.7 - 1e-3, "no undershoot: {h}");
             last = h;
         }
         assert!((p.height - 0.7).abs() < 1e-3);
-    }
-
-    #[test]
-    fn a_step_up_is_followed_faster_than_a_step_down() {
-        let dt = 1.0 / 60.0;
-        let steps_to = |from: f32, to: f32| {
-            let mut p = PelvisFollower::default();
-            p.follow(from, 0.0, 0.0);
-            let mut last = p.height;
-            (1..=120)
-                .find(|_| {
-                    let h = p.follow(to, 0.0, dt);
-                    assert!((h - last).abs() <= PELVIS_MAX_RISE_SPEED * dt + 1e-6);
-                    last = h;
-                    (h - to).abs() < 0.01
-                })
-                .unwrap()
-        };
-        let (up, down) = (steps_to(0.0, 0.3), steps_to(0.3, 0.0));
-        assert!(up < down, "up in {up} steps, down in {down}");
-        assert!(up as f32 * dt < 0.3 / PELVIS_MAX_SPEED, "{up} steps");
     }
 
     #[test]
