@@ -12,7 +12,7 @@ use softwalk_app::paper::recorded_run::{RecordedRun, record_run_with_inputs};
 use softwalk_app::scene::Scene;
 use softwalk_systems::character::{
     Character, CharacterBody, CharacterDesc, GaitModifiers, GaitParams, Joint, MAX_BACKWARD_ASLANT,
-    Steering, SteeringSettings, WalkPath, braking, cadence_hold, steer_stage, step_character,
+    Steering, SteeringSettings, WalkPath, brake_modifiers, step_character,
 };
 use softwalk_systems::ground::FlatGround;
 use softwalk_systems::sim::WalkerMetrics;
@@ -51,10 +51,9 @@ impl Steered {
         (0..steps)
             .map(|_| {
                 let c = &mut self.character;
-                let scale = steer_stage(&mut self.steering, &c.gait, &c.body, &mut self.path, DT);
-                c.modifiers.speed_scale = scale;
-                c.modifiers.braking = braking(&self.steering, &c.gait, &self.path);
-                c.modifiers.cadence_hold = cadence_hold(&self.steering, &c.gait);
+                let (steering, path) = (&mut self.steering, &mut self.path);
+                let base = GaitModifiers::default();
+                c.modifiers = brake_modifiers(steering, &c.gait, &c.body, path, base, DT);
                 step_character(c, &self.path, &self.ground, DT);
                 let m = &c.metrics;
                 [0, 1].map(|k| (m.contact[k], [m.soles[k].heel, m.soles[k].toe]))

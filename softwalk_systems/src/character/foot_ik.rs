@@ -283,6 +283,7 @@ pub fn foot_ik_stage(
     let feet = place_feet(ik, body, gait, rays, &hips, forward, dt);
     ik.pelvis_drop = follow_pelvis(ik, body, gait, rays, &hips, &feet, dt);
     pelvis.y -= ik.pelvis_drop;
+    let lowered_hips = hips.map(|hip| hip - Vec3::Y * ik.pelvis_drop);
     let planted = gait.feet.map(|f| f.phase == FootPhase::Stance);
     let knee_limits = [0, 1].map(|k| {
         // Once a swinging foot has ploughed (see [`ploughs`]), its knee is
@@ -290,13 +291,12 @@ pub fn foot_ik_stage(
         if !rays.support[k].landing_held {
             return MAX_KNEE_FLEXION;
         }
-        let hip = hips[k] - Vec3::Y * ik.pelvis_drop;
         let floor = reachable_floor(&rays.feet[k], dt);
-        let (ankle, lowest) = (feet[k].ankle, feet[k].lowest.y);
+        let (hip, ankle, lowest) = (lowered_hips[k], feet[k].ankle, feet[k].lowest.y);
         knee_limit(body, &gait.params, &gait.feet[k], hip, ankle, lowest, floor)
     });
     let legs = Legs {
-        hips: &hips,
+        hips: &lowered_hips,
         feet: &feet,
         planted,
         knee_limits,
@@ -426,7 +426,7 @@ fn reachable_floor(key: &GroundKey, dt: f32) -> f32 {
 
 /// What the legs are solved for this step (left first).
 struct Legs<'a> {
-    /// The hips before the pelvis drop.
+    /// The hips, lowered by the pelvis drop.
     hips: &'a [Vec3; 2],
     /// The feet as placed on their keys.
     feet: &'a [FootPlacement; 2],
@@ -436,7 +436,7 @@ struct Legs<'a> {
     knee_limits: [f32; 2],
 }
 
-/// Solves both legs from the hips (lowered by `ik.pelvis_drop`) to their
+/// Solves both legs from the (lowered) hips to their
 /// ankles, the knees within their limits and speed, into `pose`; returns the
 /// feet as placed on the ankles the legs really reached (unrolled where a
 /// knee could not bend fast enough, see [`unroll_to_length`]). A `planted`
@@ -475,7 +475,7 @@ fn solve_legs(
     let mut placed = *feet;
     let mut knees = [0.0; 2];
     for (k, &(hip, knee, ankle, toe)) in joints.iter().enumerate() {
-        let hip_at = hips[k] - Vec3::Y * ik.pelvis_drop;
+        let hip_at = hips[k];
         let pole = hip_at + forward * body.leg_reach();
         let (l1, l2) = (body.thigh, body.shank);
         // The knee's range, then its speed.

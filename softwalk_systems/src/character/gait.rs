@@ -35,6 +35,10 @@ const DOWNHILL_STEP_SHORTENING: f32 = 1.5;
 const PLANTED_MARGIN: f32 = 1.0e-4;
 /// Time over which the feet roll flat once the walk has stopped, seconds.
 const STOP_SETTLE_TIME: f32 = 0.25;
+/// Fastest change of the pelvis bob's amplitude, m/s: a ground that changes
+/// the walking speed at once (stepping from snow onto rigid ground) changes
+/// the bob over a few steps, so the pelvis does not jump.
+pub const BOB_AMPLITUDE_RATE: f32 = 0.05;
 /// Stride factor while walking backward: people step back in short steps.
 pub const BACKWARD_STEP_SCALE: f32 = 0.7;
 /// Fraction of the scheduled foot roll applied while walking backward (the
@@ -300,6 +304,9 @@ pub struct Gait {
     pub sway: f32,
     /// Vertical pelvis offset (<= 0), metres.
     pub bob: f32,
+    /// Amplitude of the bob, metres: it follows the walk's
+    /// [`GaitParams::bob_amplitude`] at [`BOB_AMPLITUDE_RATE`].
+    pub bob_amplitude: f32,
     /// Left arm swing angle, radians (positive forward; the right arm is opposite).
     pub arm_swing: f32,
     /// Horizontal velocity of the pelvis along the path, m/s (x, z).
@@ -341,6 +348,7 @@ impl Gait {
             backward: path.is_backward(),
             sway: 0.0,
             bob: 0.0,
+            bob_amplitude: params.bob_amplitude,
             arm_swing: 0.0,
             velocity: Vec2::ZERO,
             stopped: false,
@@ -363,13 +371,19 @@ impl Gait {
             }
         }
         gait.update_feet(body, path);
-        gait.update_body();
+        gait.update_body(0.0);
         gait
     }
 
     /// The foot's own phase: the right foot runs half a cycle behind the left.
     pub fn local_phase(&self, foot: usize) -> f32 {
         (self.phase + 0.5 * foot as f32).fract()
+    }
+
+    /// Seconds until `foot`'s phase comes round to its landing (the end of
+    /// its swing), at the walk's cadence.
+    pub fn time_to_landing(&self, foot: usize) -> f32 {
+        (1.0 - self.local_phase(foot)) * self.params.cycle_time()
     }
 
     /// The unit direction of travel (x, z): the facing direction, or (while
@@ -510,10 +524,13 @@ impl Gait {
     /// curves); sway and arms as far as the foot roll is applied (they
     /// settle with the feet at a stop), the arms against the legs, so
     /// backward the other way round.
-    fn update_body(&mut self) {
+    fn update_body(&mut self, dt: f32) {
         let p = &self.params;
         let (phi, r) = (self.phase, self.roll);
-        self.bob = -p.bob_amplitude + p.bob_amplitude * (TAU * (2.0 * phi - 0.35)).sin();
+        let most = BOB_AMPLITUDE_RATE * dt;
+        self.bob_amplitude += (p.bob_amplitude - self.bob_amplitude).clamp(-most, most);
+        let a = self.bob_amplitude;
+        self.bob = -a + a * (TAU * (2.0 * phi - 0.35)).sin();
         self.sway = r * -p.sway_amplitude * (TAU * (phi - 0.1)).sin();
         let arms = if self.backward { -r } else { r };
         self.arm_swing = arms * p.arm_amplitude * (TAU * (phi - 0.15)).sin();
@@ -571,10 +588,9 @@ fn walk_params(body: &CharacterBody, path: &WalkPath, modifiers: &GaitModifiers)
 /// proportion to the time left until that foot lands, so the closing foot
 /// lands flat and the planted one keeps its heel down.
 fn closing_roll(gait: &Gait, dt: f32) -> f32 {
-    let cycle = gait.params.cycle_time();
     let left = (0..2)
         .filter(|&k| gait.feet[k].phase != FootPhase::Stance)
-        .map(|k| (1.0 - gait.local_phase(k)) * cycle)
+        .map(|k| gait.time_to_landing(k))
         .fold(0.0f32, f32::max);
     if left > dt {
         gait.roll * (1.0 - dt / left)
@@ -651,7 +667,7 @@ pub fn gait_stage(
         gait.shorten_rising_swings(body, path);
     }
     gait.update_feet(body, path);
-    gait.update_body();
+    gait.update_body(dt);
 }
 
 #[cfg(test)]
@@ -666,6 +682,39 @@ mod tests {
         assert!((1.0..1.4).contains(&p.speed), "speed {}", p.speed);
         assert!((1.2..1.6).contains(&p.stride), "stride {}", p.stride);
         assert!((0.55..0.7).contains(&p.duty));
+    }
+
+    #[test]
+    fn a_sudden_change_of_walking_speed_changes_the_bob_gradually() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 20.0).unwrap();
+        let (dt, slow) = (
+            1.0 / 60.0,
+            GaitModifiers {
+                speed_scale: 0.65,
+                ..GaitModifiers::default()
+            },
+        );
+        let mut gait = Gait::new(&body, &path, &slow);
+        for _ in 0..120 {
+            gait_stage(&mut gait, &body, &path, &slow, dt);
+        }
+        // Onto ground that lets it walk at its own speed: the bob's
+        // amplitude follows at its rate, so the pelvis does not jump.
+        let fast = GaitModifiers::default();
+        let mut worst = 0.0f32;
+        for _ in 0..60 {
+            let (bob, phase) = (gait.bob, gait.phase);
+            gait_stage(&mut gait, &body, &path, &fast, dt);
+            let steady = {
+                let a = gait.bob_amplitude;
+                let at = |phi: f32| -a + a * (TAU * (2.0 * phi - 0.35)).sin();
+                at(gait.phase) - at(phase)
+            };
+            worst = worst.max((gait.bob - bob - steady).abs());
+        }
+        assert!(worst <= 2.0 * BOB_AMPLITUDE_RATE * dt + 1e-6, "{worst}");
+        assert_eq!(gait.bob_amplitude, gait.params.bob_amplitude);
     }
 
     #[test]

@@ -8,13 +8,20 @@ use glam::{Vec2, Vec3};
 use crate::ground::GroundHit;
 
 /// The ground over a patch: the mean of the heights found, the unit normal
-/// of the plane through them, and the heights at the patch's centre where a
+/// of the plane it lies in, and the heights at the patch's centre where a
 /// sole with that normal first touches the ground and where it stops.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct GroundCross {
     /// Mean of the heights found, metres.
     pub mean: f32,
-    /// Unit normal of the patch's plane (up where a pair of rays missed).
+    /// Unit normal of the patch's plane (up where a pair of rays missed):
+    /// along and across, the gentler of the slopes of its surfaces and of its
+    /// floors (surface less give), level where they disagree. A sole pressed
+    /// into the patch ends between the two. Across a deep print's edge in
+    /// loose snow the surfaces slope by the print's depth but the floors (the
+    /// firm ground under the layer) are level; across the edge between two
+    /// grounds of different give the floors slope but the surface is level.
+    /// Neither is a slope a sole rests on or a body walks up.
     pub normal: Vec3,
     /// Height at the centre of a plane with [`Self::normal`] lowered onto the
     /// patch until it touches the highest surface found, metres: where a
@@ -99,13 +106,10 @@ impl GroundCross {
         let floors = &mut floors[..count];
         floors.sort_by(f32::total_cmp);
         let typical_floor = floors[count / 2];
-        let height = |i: usize| ends[i].map(|s| s.height);
-        let grade = |ahead: Option<f32>, behind: Option<f32>, reach: f32| match (ahead, behind) {
-            (Some(a), Some(b)) if reach > 0.0 => (a - b) / (2.0 * reach),
-            _ => 0.0,
-        };
-        let along = grade(height(1), height(2), reach_along);
-        let across = grade(height(3), height(4), reach_across);
+        let reach = [reach_along, reach_across];
+        let surfaces = grades(&ends, |s| s.height, reach);
+        let floors = grades(&ends, |s| s.height - s.give, reach);
+        let [along, across] = [0, 1].map(|i| gentler(surfaces[i], floors[i]));
         let rise = forward * along + right * across;
         // The plane through the centre (or the mean) with the patch's slope;
         // each sample's surface and floor above it say how far the plane must
@@ -136,6 +140,33 @@ impl GroundCross {
     }
 }
 
+/// The grades along and across of the `height`s of the four ends of a
+/// cross (ahead, behind, right, left, at `reach` along and across); 0 where
+/// one of a line's two ends missed.
+fn grades(
+    ends: &[Option<Sample>; 5],
+    height: impl Fn(&Sample) -> f32,
+    [reach_along, reach_across]: [f32; 2],
+) -> [f32; 2] {
+    let grade = |ahead: usize, behind: usize, reach: f32| match (&ends[ahead], &ends[behind]) {
+        (Some(a), Some(b)) if reach > 0.0 => (height(a) - height(b)) / (2.0 * reach),
+        _ => 0.0,
+    };
+    [grade(1, 2, reach_along), grade(3, 4, reach_across)]
+}
+
+/// The gentler of two grades of the same line: the one nearer level when
+/// they rise the same way, level when they do not.
+fn gentler(a: f32, b: f32) -> f32 {
+    if a * b <= 0.0 {
+        0.0
+    } else if a.abs() <= b.abs() {
+        a
+    } else {
+        b
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -152,7 +183,7 @@ mod tests {
     #[test]
     fn a_plane_is_read_exactly_and_a_pit_under_one_ray_is_averaged_out() {
         let height = |p: Vec2| 0.2 * p.x - 0.1 * p.y + 1.0;
-        let plane = |p: Vec2| hit(p, height(p), 0.1 + 0.01 * p.x);
+        let plane = |p: Vec2| hit(p, height(p), 0.1);
         let c = GroundCross::sample(plane, Vec2::new(1.0, 2.0), Vec2::Y, [0.3, 0.2], &[]).unwrap();
         assert!((c.mean - height(Vec2::new(1.0, 2.0))).abs() < 1e-5);
         let centre = height(Vec2::new(1.0, 2.0));
@@ -160,10 +191,7 @@ mod tests {
             (c.rest_top - centre).abs() < 1e-5,
             "a plane rests on itself"
         );
-        assert!(
-            (c.rest_floor - (centre - (0.1 + 0.01 * 0.8))).abs() < 1e-5,
-            "on the floor of the firmest sample"
-        );
+        assert!((c.rest_floor - (centre - 0.1)).abs() < 1e-5, "on its floor");
         let expected = Vec3::new(-0.2, 1.0, 0.1).normalize();
         assert!(c.normal.distance(expected) < 1e-5, "{}", c.normal);
         let pit = |p: Vec2| hit(p, if p.length() < 0.01 { -0.5 } else { 0.0 }, 0.0);
@@ -208,29 +236,61 @@ mod tests {
         assert!((c.typical_floor + 0.3).abs() < 1e-6, "{}", c.typical_floor);
     }
 
+    /// An old print ahead of x = -0.1, its surface at `print[0]` giving
+    /// `print[1]`, and fresh ground behind it at 0 giving `fresh`.
+    fn print_edge(print: [f32; 2], fresh: f32) -> impl Fn(Vec2) -> Option<GroundHit> {
+        move |p| {
+            if p.x > -0.1 {
+                hit(p, print[0], print[1])
+            } else {
+                hit(p, 0.0, fresh)
+            }
+        }
+    }
+
     #[test]
-    fn a_sole_over_a_print_edge_rests_on_the_edge_and_stops_on_the_firmer_floor() {
+    fn a_sole_over_a_print_edge_lands_on_the_edge_and_stops_on_every_floor() {
         // An old print 5 cm deep (pressed firm, giving 1 cm) ahead of x = -0.1,
         // loose sand giving 4 cm behind it; the sole centre is over the print.
-        let ground = |p: Vec2| {
-            if p.x > -0.1 {
-                hit(p, -0.05, 0.01)
-            } else {
-                hit(p, 0.0, 0.04)
-            }
-        };
-        let c = GroundCross::sample(ground, Vec2::ZERO, Vec2::X, [0.13, 0.05], &[]).unwrap();
-        let tilt = 0.05 / 0.26;
-        // The sole tilts with the patch and its heel meets the sand at 0.
-        let heel_on_sand = -0.05 + 0.13 * tilt;
-        assert!((c.rest_top - (-0.05 + (0.0 - heel_on_sand))).abs() < 1e-6);
-        assert!(c.rest_top > -0.05, "{}", c.rest_top);
-        // Pressed down, the tilted sole stops when its toe meets the print's
-        // firm floor, 1 cm lower: the sand under the heel gives 1 cm of its 4.
-        assert!((c.rest_floor - (c.rest_top - 0.01)).abs() < 1e-6);
-        // Untilted, the sole would have gone to the print's floor (-0.06)
-        // through the sand's edge.
-        assert!(c.rest_floor > -0.06 + 0.02);
+        // The surface falls 5 cm over the cross, the floors 2 cm.
+        let c = GroundCross::sample(
+            print_edge([-0.05, 0.01], 0.04),
+            Vec2::ZERO,
+            Vec2::X,
+            [0.13, 0.05],
+            &[],
+        )
+        .unwrap();
+        let tilt = 0.02 / 0.26;
+        let expected = Vec3::new(tilt, 1.0, 0.0).normalize();
+        assert!(c.normal.distance(expected) < 1e-5, "{}", c.normal);
+        // The sole tilts with the floors and its heel meets the sand at 0.
+        let heel_rise = 0.13 * tilt;
+        assert!((c.rest_top + heel_rise).abs() < 1e-6, "{}", c.rest_top);
+        // Pressed down, it stops with its heel on the sand's floor and its
+        // toe on the print's, neither through the sand's edge nor above
+        // either floor.
+        assert!((c.rest_floor + heel_rise - (-0.04)).abs() < 1e-6);
+        assert!((c.rest_floor - heel_rise - (-0.06)).abs() < 1e-6);
+    }
+
+    #[test]
+    fn neither_a_deep_print_nor_the_edge_of_a_softer_ground_tilts_the_patch() {
+        // Snow 0.3 m deep over a firm floor: a print ahead of x = -0.1 pressed
+        // to the floor (its surface 0.3 m down, giving nothing), fresh snow
+        // behind. A sole there comes to rest level on the floor, not on the
+        // print's wall.
+        let print = print_edge([-0.3, 0.0], 0.3);
+        let c = GroundCross::sample(print, Vec2::ZERO, Vec2::X, [0.13, 0.05], SOLE_RAYS).unwrap();
+        assert_eq!(c.normal, Vec3::Y);
+        assert_eq!((c.rest_top, c.rest_floor), (0.0, -0.3));
+        // Level sand beside level snow: the floors differ, the ground is level.
+        let edge = |p: Vec2| hit(p, 0.0, if p.y > 0.0 { 0.3 } else { 0.02 });
+        let c = GroundCross::sample(edge, Vec2::ZERO, Vec2::X, [0.13, 0.13], &[]).unwrap();
+        assert_eq!(c.normal, Vec3::Y);
+        assert_eq!(gentler(0.2, 0.1), 0.1);
+        assert_eq!(gentler(-0.2, -0.3), -0.2);
+        assert_eq!(gentler(0.2, -0.1), 0.0);
     }
 
     #[test]

@@ -87,8 +87,8 @@ pub use rays::{FootRays, GroundKey, foot_raycast_stage};
 pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use steering::{
-    Brake, Steering, SteeringSettings, braking, cadence_hold, closing_time, curve_radius,
-    steer_stage, stop_distance,
+    Brake, Steering, SteeringSettings, brake_modifiers, closing_time, curve_radius, steer_stage,
+    stop_distance,
 };
 pub use step::{Character, step_character};
 pub use support::{FootSupport, RIM_CLEARANCE, SupportPoint};

@@ -115,8 +115,9 @@ impl FootRays {
 
 /// The body's ground: the median floor (surface minus give) of the pelvis
 /// and four points around it ([`GroundCross::typical_floor`]), with the
-/// normal of the surface's plane through them (so the edge between two
-/// grounds of different give is not read as a slope).
+/// normal of the patch's plane ([`GroundCross::normal`]: neither the edge
+/// between two grounds of different give nor a print's wall is read as a
+/// slope).
 /// When every ray misses, `last` moves along.
 fn body_ground(gait: &Gait, ground: &dyn Ground, from_y: f32, last: GroundKey) -> GroundKey {
     let at = gait.pelvis.position;

@@ -200,12 +200,10 @@ pub fn stop_distance(settings: &SteeringSettings, gait: &Gait, speed: f32) -> f3
 /// the planted foot that lifts next (the one furthest into its stance)
 /// swings to the stop, landing when its phase comes round.
 pub fn closing_time(gait: &Gait) -> f32 {
-    let duty = gait.params.duty;
-    let latest = (0..2)
-        .map(|k| gait.local_phase(k))
-        .filter(|&p| p < duty)
-        .fold(0.0f32, f32::max);
-    (1.0 - latest) * gait.params.cycle_time()
+    (0..2)
+        .filter(|&k| gait.local_phase(k) < gait.params.duty)
+        .map(|k| gait.time_to_landing(k))
+        .fold(gait.params.cycle_time(), f32::min)
 }
 
 /// The curve radius at `speed`: `speed² / max_lateral_acceleration`, at
@@ -244,9 +242,29 @@ pub fn steer_stage(
     *scale
 }
 
+/// Runs [`steer_stage`] and returns `base` with its walking speed scaled by
+/// the steering's factor, the deceleration braked at ([`braking`]) and the
+/// cadence held ([`cadence_hold`]) this step.
+pub fn brake_modifiers(
+    steering: &mut Steering,
+    gait: &Gait,
+    body: &CharacterBody,
+    path: &mut WalkPath,
+    base: GaitModifiers,
+    dt: f32,
+) -> GaitModifiers {
+    let scale = steer_stage(steering, gait, body, path, dt);
+    GaitModifiers {
+        speed_scale: base.speed_scale * scale,
+        braking: braking(steering, gait, path),
+        cadence_hold: cadence_hold(steering, gait),
+        ..base
+    }
+}
+
 /// The deceleration `steering` brakes at this step, m/s² (0 when not
 /// braking, or once at the stop).
-pub fn braking(steering: &Steering, gait: &Gait, path: &WalkPath) -> f32 {
+fn braking(steering: &Steering, gait: &Gait, path: &WalkPath) -> f32 {
     match &steering.brake {
         Some(b) if !path.is_finished(gait.distance) => b.deceleration,
         _ => 0.0,
@@ -257,7 +275,7 @@ pub fn braking(steering: &Steering, gait: &Gait, path: &WalkPath) -> f32 {
 /// stop is reached and both feet are planted, the walk keeps the cadence it
 /// had when braking began (`from_scale` over the braked speed scale); 1
 /// otherwise.
-pub fn cadence_hold(steering: &Steering, gait: &Gait) -> f32 {
+fn cadence_hold(steering: &Steering, gait: &Gait) -> f32 {
     match &steering.brake {
         Some(b) if !gait.stopped => b.from_scale / steering.speed_scale.max(1.0e-3),
         _ => 1.0,
@@ -295,7 +313,7 @@ fn plan_path(
         let straight = PathSegment::Straight {
             length: s.lookahead.max(1.0e-3),
         };
-        replace_path(path, gait, direction, &[straight], true);
+        replace_path(path, gait, Walked::Back(direction), vec![straight]);
         return wished_scale(steering, speed, natural, true);
     }
     if angle.abs() > s.pivot_start {
@@ -319,8 +337,8 @@ fn plan_path(
             angle,
         })
     };
-    let segments: Vec<PathSegment> = turn.into_iter().chain([straight]).collect();
-    replace_path(path, gait, gait.pelvis.heading, &segments, false);
+    let segments = turn.into_iter().chain([straight]).collect();
+    replace_path(path, gait, Walked::Forward, segments);
     wished_scale(steering, speed, natural, false)
 }
 
@@ -360,26 +378,24 @@ fn hold_stop(
     scale: f32,
 ) -> Option<Brake> {
     const AT_REST_M: f32 = 1.0e-3;
-    let backward = path.is_backward();
     let travel = gait.travel_heading();
+    let walked = if path.is_backward() {
+        Walked::Back(travel)
+    } else {
+        Walked::Forward
+    };
     let speed = gait.velocity.length();
     if speed == 0.0 {
         let back = gait.pelvis.position - travel * AT_REST_M;
-        let rest = [PathSegment::Straight { length: AT_REST_M }];
-        let facing = gait.pelvis.heading;
-        if let Ok(p) = walk_path(back, facing, travel, &rest, backward) {
+        let rest = vec![PathSegment::Straight { length: AT_REST_M }];
+        if let Ok(p) = walk_path(back, gait.pelvis.heading, walked, rest) {
             *path = p.with_origin(gait.distance - AT_REST_M);
         }
         return None;
     }
     let distance = stop_distance(settings, gait, speed).max(AT_REST_M);
-    replace_path(
-        path,
-        gait,
-        travel,
-        &[PathSegment::Straight { length: distance }],
-        backward,
-    );
+    let straight = PathSegment::Straight { length: distance };
+    replace_path(path, gait, walked, vec![straight]);
     Some(Brake {
         from_scale: scale,
         distance,
@@ -387,37 +403,37 @@ fn hold_stop(
     })
 }
 
+/// Which way a generated path is walked.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Walked {
+    /// Forward, along the walker's facing.
+    Forward,
+    /// Backward, the walker keeping its facing, towards this travel (x, z).
+    Back(Vec2),
+}
+
 /// Replaces `path` by `segments` from the pelvis, continuing the gait's
-/// distance, walked forward (along the facing) or `backward` towards
-/// `travel` with the walker's facing.
-fn replace_path(
-    path: &mut WalkPath,
-    gait: &Gait,
-    travel: Vec2,
-    segments: &[PathSegment],
-    backward: bool,
-) {
+/// distance, `walked` with the walker's facing.
+fn replace_path(path: &mut WalkPath, gait: &Gait, walked: Walked, segments: Vec<PathSegment>) {
     let (at, facing) = (gait.pelvis.position, gait.pelvis.heading);
-    if let Ok(p) = walk_path(at, facing, travel, segments, backward) {
+    if let Ok(p) = walk_path(at, facing, walked, segments) {
         *path = p.with_origin(gait.distance);
     }
 }
 
 /// A path of `segments` from `at` (x, z) for a walker facing `facing`
-/// (x, z), walked forward or `backward` towards `travel` (x, z).
+/// (x, z), `walked` forward or back.
 fn walk_path(
     at: Vec2,
     facing: Vec2,
-    travel: Vec2,
-    segments: &[PathSegment],
-    backward: bool,
+    walked: Walked,
+    segments: Vec<PathSegment>,
 ) -> Result<WalkPath, CharacterError> {
     let flat = |v: Vec2| Vec3::new(v.x, 0.0, v.y);
     let start = flat(at);
-    if backward {
-        WalkPath::stepped_back(start, flat(facing), flat(travel), segments.to_vec())
-    } else {
-        WalkPath::new(start, flat(facing), segments.to_vec(), false)
+    match walked {
+        Walked::Back(travel) => WalkPath::stepped_back(start, flat(facing), flat(travel), segments),
+        Walked::Forward => WalkPath::new(start, flat(facing), segments, false),
     }
 }
 
@@ -615,13 +631,7 @@ mod tests {
             let (mut landings, mut stopped_after) = (0, None);
             let mods = GaitModifiers::default();
             for step in 1..=240 {
-                let scale = steer_stage(&mut steering, &gait, &body, &mut path, DT);
-                let m = GaitModifiers {
-                    speed_scale: scale,
-                    braking: braking(&steering, &gait, &path),
-                    cadence_hold: cadence_hold(&steering, &gait),
-                    ..mods
-                };
+                let m = brake_modifiers(&mut steering, &gait, &body, &mut path, mods, DT);
                 let swinging = gait.feet.map(|f| f.phase != FootPhase::Stance);
                 crate::character::gait_stage(&mut gait, &body, &path, &m, DT);
                 landings += (0..2)

@@ -18,7 +18,7 @@ use super::body::CharacterBody;
 use super::gait::{FootPlan, GaitParams, smoothstep};
 use super::ground_cross::{GroundCross, SOLE_RAYS};
 use crate::foot::FootPhase;
-use crate::ground::{Ground, GroundHit};
+use crate::ground::{Ground, GroundHit, rise_along};
 use crate::terrain::SINK_TIME_S;
 
 /// Least height of a swinging foot over the higher of the print's rim it
@@ -172,6 +172,15 @@ impl FootSupport {
         // part of the sole, lifts the foot.
         let clear = lowest_clear_centre(&cast, plan, body, normal);
         let height = clear.map_or(height, |c| height.max(c.surface));
+        // A foot ploughing towards its landing goes no lower than the floors
+        // it will pass over on its way: it ploughs through loose ground, but
+        // is not pushed into a rigid edge ahead.
+        let floor = clear.map_or(f32::MIN, |c| c.floor);
+        let floor = if self.landing_held {
+            floor.max(highest_floor_ahead(&cast, plan, body, normal))
+        } else {
+            floor
+        };
         // Until the sole is out of its print, the print stays held: its walls
         // do not slump onto the rising foot.
         let in_print = self.left.give > 0.0 && u < 0.5 && height < self.left_rim;
@@ -179,7 +188,7 @@ impl FootSupport {
             centre: at(height),
             normal,
             pressing: in_print,
-            floor: clear.map_or(f32::MIN, |c| c.floor.min(height)),
+            floor: floor.min(height),
             surface: clear.map_or(f32::MIN, |c| c.surface.min(height)),
         }
     }
@@ -299,12 +308,11 @@ fn lowest_clear_centre(
     normal: Vec3,
 ) -> Option<ClearCentre> {
     let half = plan.heading * (0.5 * body.foot_length);
-    let rise = |offset: Vec2| -(normal.x * offset.x + normal.z * offset.y) / normal.y.max(1e-3);
     [-half, Vec2::ZERO, half]
         .into_iter()
         .filter_map(|offset| {
             cast(plan.target + offset).map(|hit| {
-                let surface = hit.point.y - rise(offset);
+                let surface = hit.point.y - rise_along(normal, offset);
                 ClearCentre {
                     surface,
                     floor: surface - hit.give.max(0.0),
@@ -315,6 +323,34 @@ fn lowest_clear_centre(
             surface: a.surface.max(b.surface),
             floor: a.floor.max(b.floor),
         })
+}
+
+/// The most rays [`highest_floor_ahead`] casts.
+const MOST_RAYS_AHEAD: usize = 8;
+
+/// The highest floor (surface less give) under the toe of a flat sole
+/// lying in the plane of `normal` as it travels from `plan`'s target to its
+/// foothold, as a height of the sole's centre at the target, metres;
+/// `f32::MIN` where every ray misses. The toe is read at most half a foot
+/// apart (up to [`MOST_RAYS_AHEAD`] rays), so no edge a sole could catch
+/// on falls between two rays.
+fn highest_floor_ahead(
+    cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+    plan: &FootPlan,
+    body: &CharacterBody,
+    normal: Vec3,
+) -> f32 {
+    let toe = plan.heading * (0.5 * body.foot_length);
+    let way = plan.foothold - plan.target;
+    let spacing = (0.5 * body.foot_length).max(1e-3);
+    let rays = ((way.length() / spacing).ceil() as usize).clamp(1, MOST_RAYS_AHEAD);
+    (1..=rays)
+        .filter_map(|i| {
+            let offset = way * (i as f32 / rays as f32) + toe;
+            let hit = cast(plan.target + offset)?;
+            Some(hit.point.y - hit.give.max(0.0) - rise_along(normal, offset))
+        })
+        .fold(f32::MIN, f32::max)
 }
 
 /// Unit heel-to-toe direction of a sole facing `heading` (x, z) on ground of
@@ -460,6 +496,47 @@ pub(super) mod tests {
         plan.phase = FootPhase::Stance;
         s.advance(&plan, &params, &body, &fresh, 2.0);
         assert!(!s.landing_held);
+    }
+
+    /// Level snow (surface 0, giving 0.3 m) before x = 0.3 and rigid
+    /// ground at the same height beyond.
+    struct SnowThenRigid;
+
+    impl Ground for SnowThenRigid {
+        fn cast_down(&self, x: f32, z: f32, _from_y: f32) -> Option<GroundHit> {
+            Some(GroundHit {
+                point: Vec3::new(x, 0.0, z),
+                normal: Vec3::Y,
+                give: if x < 0.3 { 0.3 } else { 0.0 },
+            })
+        }
+    }
+
+    #[test]
+    fn a_ploughing_foot_reads_the_rigid_floor_ahead_on_its_way_to_the_landing() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
+        let mut plan = swinging_at(Vec2::ZERO);
+        plan.foothold = Vec2::new(0.6, 0.0);
+        plan.swing = 0.5;
+        let floor = |held: bool| {
+            let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::Y * -0.3));
+            s.advance(
+                &swinging_at(Vec2::ZERO),
+                &params,
+                &body,
+                &SnowThenRigid,
+                2.0,
+            );
+            s.landing = SupportPoint::rigid(Vec3::new(0.6, 0.0, 0.0));
+            s.landing_held = held;
+            s.advance(&plan, &params, &body, &SnowThenRigid, 2.0).floor
+        };
+        // Over snow the sole may plough to the snow's floor; once it
+        // ploughs towards a landing on rigid ground, the rigid edge ahead
+        // holds it up.
+        assert!((floor(false) + 0.3).abs() < 1e-5, "{}", floor(false));
+        assert!(floor(true).abs() < 1e-5, "{}", floor(true));
     }
 
     #[test]

@@ -9,8 +9,8 @@ use super::labels;
 use super::sole_ground::SoleGround;
 use crate::character::{
     Balance, CharacterBody, CharacterMetrics, FootIK, FootRays, Gait, GaitModifiers, Pose,
-    RigidProxy, Steering, WalkPath, balance_stage, braking, cadence_hold, foot_ik_stage,
-    foot_raycast_stage, gait_stage, steer_stage,
+    RigidProxy, Steering, WalkPath, balance_stage, brake_modifiers, foot_ik_stage,
+    foot_raycast_stage, gait_stage,
 };
 use crate::terrain::GaitResponse;
 use crate::vegetation::{GrassPatch, PlatformSettings, VegetationFriction};
@@ -119,9 +119,7 @@ pub fn steer_system(world: &mut World) {
         .par_for_each(
             CHARACTER_BATCH,
             |(steering, gait, body, path, modifiers)| {
-                modifiers.speed_scale *= steer_stage(steering, gait, body, path, dt);
-                modifiers.braking = braking(steering, gait, path);
-                modifiers.cadence_hold = cadence_hold(steering, gait);
+                *modifiers = brake_modifiers(steering, gait, body, path, *modifiers, dt);
             },
         );
 }
