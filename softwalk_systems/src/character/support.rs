@@ -161,10 +161,13 @@ impl FootSupport {
         let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
         if u > pushing_from {
             let pushed = (u - pushing_from) / (1.0 - pushing_from);
-            let centre = at(self.landing.point.y - self.landing.give * pushed);
+            let sole = self.landing.point.y - self.landing.give * pushed;
             return SupportKey {
-                floor: centre.y.min(self.landing.floor().y),
-                ..SupportKey::pressing(centre, normal)
+                centre: at(sole),
+                normal,
+                pressing: true,
+                floor: self.landing.floor().y.min(sole),
+                surface: sole,
             };
         }
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
@@ -263,13 +266,13 @@ pub struct SupportKey {
     /// of its swing, or still rising out of its print.
     pub pressing: bool,
     /// The lowest the sole's lowest point may go, metres: the floor of the
-    /// ground under it (its surface less what it gives), never above
-    /// `centre`; `f32::MIN` where no ray found ground.
+    /// ground under it (its surface less what it gives), never above where
+    /// the key puts the sole; `f32::MIN` where no ray found ground.
     pub floor: f32,
     /// The highest surface under the sole's heel, centre and toe, metres
-    /// (the floor where the foot presses its landing; `f32::MIN` where no
-    /// ray found ground): a foot goes below it only as fast as the ground
-    /// gives.
+    /// (how far a foot pushing into its landing has pushed; the floor of a
+    /// planted foot; `f32::MIN` where no ray found ground): a foot goes
+    /// below it only as fast as the ground gives.
     pub surface: f32,
 }
 
@@ -537,6 +540,30 @@ pub(super) mod tests {
         // holds it up.
         assert!((floor(false) + 0.3).abs() < 1e-5, "{}", floor(false));
         assert!(floor(true).abs() < 1e-5, "{}", floor(true));
+    }
+
+    #[test]
+    fn a_foot_pushing_into_its_landing_stops_on_the_landing_floor_whatever_its_lift() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
+        // Sand 5 cm deep at 0: a landing held while the foot ploughs
+        // towards it, late in the swing while the gait still lifts the foot.
+        let sand = Loose {
+            top: 0.0,
+            give: 0.05,
+        };
+        let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::Y * -0.3));
+        let mut plan = swinging_at(Vec2::new(0.5, 0.0));
+        plan.swing = 0.1;
+        s.advance(&plan, &params, &body, &sand, 2.0);
+        s.landing_held = true;
+        plan.swing = 0.9;
+        plan.lift = 0.07;
+        let key = s.advance(&plan, &params, &body, &sand, 2.0);
+        let sole = key.centre.y + plan.lift;
+        assert!(sole < 0.0 && sole > -0.05, "pushing in: {sole}");
+        assert!((key.floor + 0.05).abs() < 1e-6, "floor {}", key.floor);
+        assert!((key.surface - sole).abs() < 1e-6, "surface {}", key.surface);
     }
 
     #[test]
