@@ -12,7 +12,11 @@
 //!
 //! Walkers also step up out of 0.3 m of snow onto rigid ground (see
 //! [`OUT_OF_SNOW`]): a ploughing foot clears the rigid edge and the body
-//! rises over the step without a jump.
+//! rises over the step without a jump. They cross 0.8 m stripes of snow
+//! and mud laid across sand, and walk along the edge between sand and snow
+//! (and sand and mud) with one foot on each side: the leg bearing the
+//! weight holds the pelvis up, and the foot in the softer ground sinks only
+//! as far as its leg reaches.
 //!
 //! Left out, as known limits: the small walker's sole on level snow on a
 //! 256-sample grid, which reads 2.2 cm into its print (a cell of 4 cm
@@ -36,8 +40,8 @@ use softwalk_tests::walker_body;
 /// (`gait_quality::STEP_UP_SCENES`), it is held to every goal but the level
 /// walk's mean stance knee ([`LEVEL_WALK_FIGURE`]): the standing leg bends
 /// while the body rises over the step, as on a stair. A 30 cm step is half
-/// the 1.3 m walker's leg; its stance knee averages 37° over the walk,
-/// the 1.9 m walker's 29°. The 1.0 m walker does not reach the step.
+/// the 1.3 m walker's leg; its stance knee averages 26° over the walk,
+/// the 1.9 m walker's 24°. The 1.0 m walker does not reach the step.
 const OUT_OF_SNOW: &str = "unseen-snow-onto-rigid";
 
 /// Length of each measured walk, seconds.
@@ -134,6 +138,38 @@ fn out_of_snow(walkers: &[(&str, CharacterDesc)]) -> Scene {
     checked(scene).unwrap()
 }
 
+/// Sand crossed by 0.8 m stripes of snow and mud (alternating, 0.8 m of
+/// sand between them), walked straight across by `walkers`.
+fn stripes(walkers: &[(&str, CharacterDesc)]) -> Scene {
+    let mut scene = slope_walk("sand", 0.0, walkers);
+    scene.name = "unseen-sand-snow-mud-stripes".into();
+    for k in 0..5 {
+        let left = 1.5 + 1.6 * k as f32;
+        scene.terrain.regions.push(MaterialRegion {
+            material: if k % 2 == 0 { "snow" } else { "mud" }.into(),
+            x: Some([left, left + 0.8]),
+            z: None,
+        });
+    }
+    checked(scene).unwrap()
+}
+
+/// Sand with snow beside the quick walker's line (z from 2 to 3 m) and mud
+/// beside the tall walker's (z from 4 to 6 m): each walks along the edge,
+/// its left foot on sand and its right foot in the softer ground.
+fn along_edges() -> Scene {
+    let mut scene = slope_walk("sand", 0.0, &[("quick", quick()), ("tall", tall())]);
+    scene.name = "unseen-along-edges".into();
+    for (material, z) in [("snow", [2.0, 3.0]), ("mud", [4.0, 6.0])] {
+        scene.terrain.regions.push(MaterialRegion {
+            material: material.into(),
+            x: None,
+            z: Some(z),
+        });
+    }
+    checked(scene).unwrap()
+}
+
 /// A light small walker (1.0 m, body mass index 17) on level mud sampled at
 /// 256 (a cell of 4 cm, nearly the width of its print).
 fn coarse_mud() -> Scene {
@@ -172,6 +208,8 @@ fn scenes() -> Vec<Scene> {
     scenes.push(into_snow_at_an_angle());
     scenes.push(coarse_mud());
     scenes.push(out_of_snow(&all));
+    scenes.push(stripes(&all));
+    scenes.push(along_edges());
     scenes.push(slope_walk(RIGID, 15.0, &all));
     scenes.push(slope_walk(RIGID, 20.0, &[("tall", tall())]));
     // A tall walker up 18° of sand on a fine grid, and three bodies down a

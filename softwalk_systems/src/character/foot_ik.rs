@@ -12,6 +12,7 @@ use super::pelvis::PelvisFollower;
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
+use super::stance_ground::{step_up, unloaded_give};
 use super::support::sole_direction;
 use super::swing_knee::{MAX_KNEE_FLEXION, MAX_KNEE_SPEED, STANDING_LEG, knee_limit};
 use crate::foot::{FootPhase, FootSole, FootState, Side};
@@ -25,8 +26,12 @@ pub struct FootIK {
     /// The pelvis base height, following the height the legs need.
     pub pelvis: PelvisFollower,
     /// How far the pelvis is below its walking height over the body's
-    /// ground this step, metres (positive: lowered).
+    /// ground raised by [`Self::step_up`] this step, metres (positive: lowered).
     pub pelvis_drop: f32,
+    /// How far the floors under the feet bearing the weight stand above the
+    /// body's ground this step, metres (see [`step_up`]): up a step, the
+    /// pelvis walks over the upper side as soon as a foot bears weight there.
+    pub step_up: f32,
     /// Foot pitch each leg added to its scheduled roll this step so that it
     /// reaches its foot without lowering the pelvis, radians: negative is
     /// more heel lift (a trailing leg), positive more toe lift (a leading leg).
@@ -55,6 +60,7 @@ impl Default for FootIK {
         FootIK {
             pelvis: PelvisFollower::default(),
             pelvis_drop: 0.0,
+            step_up: 0.0,
             extra_pitch: [0.0; 2],
             sole_targets: [Vec3::ZERO; 2],
             contact_points: [Vec3::ZERO; 2],
@@ -272,7 +278,8 @@ pub fn foot_ik_stage(
     // Pelvis: walking height over the ground under it, bob, sway, and a small
     // shift back against the trunk's lean (which is along the travel).
     let xz = gait.pelvis.position;
-    let mut pelvis = Vec3::new(xz.x, rays.body.point.y, xz.y)
+    ik.step_up = step_up(gait, rays, xz);
+    let mut pelvis = Vec3::new(xz.x, rays.body.point.y + ik.step_up, xz.y)
         + Vec3::Y * (gait.params.walking_hip_height(body) + gait.bob)
         + right * gait.sway
         - travel * (PELVIS_COUNTER_SHIFT * body.trunk * proxy.tilt.sin());
@@ -378,10 +385,13 @@ fn place_feet(
 }
 
 /// Moves the pelvis follower one step and returns how far the pelvis is
-/// below its walking height. The target is lowered as far as the farther
-/// foot needs, and raised (as far as every planted leg allows) where the
-/// planted legs would bend more than a standing leg does, as behind the hip
-/// on a downhill; the bounds are relative to the ground's rise under the walk.
+/// below its walking height over the body's ground raised by
+/// [`FootIK::step_up`]. The target is lowered as far as the farther foot needs
+/// (less the give a foot bearing little weight need not reach, see
+/// [`unloaded_give`]), and raised (as far as every planted leg allows)
+/// where the planted legs would bend more than a standing leg does, as
+/// behind the hip on a downhill; the bounds are relative to the ground's
+/// rise under the walk, and the pelvis may climb a step in one step's time.
 fn follow_pelvis(
     ik: &mut FootIK,
     body: &CharacterBody,
@@ -398,7 +408,7 @@ fn follow_pelvis(
         d.y + (length * length - r * r).sqrt()
     };
     let needed = (0..2)
-        .map(|k| -rise(k, reach))
+        .map(|k| -rise(k, reach) - unloaded_give(gait, rays, k))
         .fold(0.0f32, f32::max)
         .min(0.6 * body.leg_reach());
     let standing = STANDING_LEG * body.leg_reach();
@@ -407,9 +417,12 @@ fn follow_pelvis(
         .map(|k| rise(k, standing))
         .fold(f32::INFINITY, f32::min)
         .clamp(0.0, MAX_PELVIS_RAISE * body.leg_reach());
-    let ground_y = rays.body.point.y;
+    let ground_y = rays.body.point.y + ik.step_up;
     let ground_rate = rise_along(rays.body.normal, gait.velocity);
-    ground_y - ik.pelvis.follow(ground_y - needed + raise, ground_rate, dt)
+    let climb = ik.step_up / (0.5 * gait.params.cycle_time()).max(f32::EPSILON);
+    ground_y
+        - ik.pelvis
+            .follow(ground_y - needed + raise, ground_rate, climb, dt)
 }
 
 /// The lowest a swinging foot on `key` may be pushed this step: into the

@@ -392,6 +392,28 @@ impl Gait {
         self.pelvis.travel
     }
 
+    /// The share of the body's weight `foot` bears, in `[0, 1]`: none in its
+    /// swing, all of it alone on the ground (or standing still), and passed
+    /// smoothly from the trailing foot to the leading one over the double
+    /// support after each landing.
+    pub fn load_share(&self, foot: usize) -> f32 {
+        if self.feet[foot].phase != FootPhase::Stance {
+            return 0.0;
+        }
+        if self.stopped {
+            return 1.0;
+        }
+        let p = self.local_phase(foot);
+        let overlap = (self.params.duty - 0.5).max(f32::EPSILON);
+        if p < overlap {
+            smoothstep(p / overlap)
+        } else if p > 0.5 {
+            1.0 - smoothstep((p - 0.5) / overlap)
+        } else {
+            1.0
+        }
+    }
+
     /// True while both feet are in stance.
     pub fn double_support(&self) -> bool {
         self.feet.iter().all(|f| f.phase == FootPhase::Stance)
@@ -715,6 +737,32 @@ mod tests {
         }
         assert!(worst <= 2.0 * BOB_AMPLITUDE_RATE * dt + 1e-6, "{worst}");
         assert_eq!(gait.bob_amplitude, gait.params.bob_amplitude);
+    }
+
+    #[test]
+    fn the_weight_passes_from_the_trailing_foot_to_the_leading_one_over_the_double_support() {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 50.0).unwrap();
+        let mods = GaitModifiers::default();
+        let mut gait = Gait::new(&body, &path, &mods);
+        let (mut last, mut trailing_fell) = (gait.load_share(0), false);
+        for _ in 0..240 {
+            gait_stage(&mut gait, &body, &path, &mods, 1.0 / 60.0);
+            let shares = [0, 1].map(|k| gait.load_share(k));
+            assert!((shares[0] + shares[1] - 1.0).abs() < 1e-4, "{shares:?}");
+            for k in 0..2 {
+                let swinging = gait.feet[k].phase != FootPhase::Stance;
+                assert!(!swinging || shares[k] == 0.0, "a swinging foot bears none");
+                if !swinging && !gait.double_support() {
+                    assert_eq!(shares[k], 1.0, "alone on the ground, all of it");
+                }
+            }
+            // Smoothly: no share jumps by more than a few percent a step.
+            assert!((shares[0] - last).abs() < 0.25, "{last} -> {}", shares[0]);
+            trailing_fell |= gait.double_support() && shares[0] > 0.0 && shares[0] < 1.0;
+            last = shares[0];
+        }
+        assert!(trailing_fell, "shared during the double support");
     }
 
     #[test]

@@ -54,6 +54,7 @@ mod rays;
 pub(crate) mod rig_mass;
 mod rig_pose;
 mod skeleton;
+mod stance_ground;
 mod steering;
 mod step;
 mod support;

@@ -12,6 +12,10 @@ pub const PELVIS_RESPONSE_TIME: f32 = 0.08;
 pub const PELVIS_MAX_SPEED: f32 = 0.2;
 /// Largest acceleration of the pelvis base, m/s².
 pub const PELVIS_MAX_ACCELERATION: f32 = 6.0;
+/// Fastest the pelvis base rises relative to the ground's own rise when
+/// it climbs a step, m/s: with the gait's bob on top, under 1 cm per
+/// 60 Hz step.
+pub const PELVIS_MAX_CLIMB_SPEED: f32 = 0.4;
 
 /// The pelvis base height (the walking height's floor) and its vertical speed.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -31,9 +35,11 @@ impl PelvisFollower {
     /// Moves towards `target` over `dt` seconds while the ground under the
     /// body rises at `ground_rate` m/s (its slope times the walking speed):
     /// the bounds apply to the motion relative to that ground, so a steep
-    /// slope is followed at its own pace. A `dt` of 0 (or the first call)
+    /// slope is followed at its own pace. Climbing a step at `climb` m/s,
+    /// the pelvis may rise that much faster (at most
+    /// [`PELVIS_MAX_CLIMB_SPEED`] in all). A `dt` of 0 (or the first call)
     /// jumps to the target at rest.
-    pub fn follow(&mut self, target: f32, ground_rate: f32, dt: f32) -> f32 {
+    pub fn follow(&mut self, target: f32, ground_rate: f32, climb: f32, dt: f32) -> f32 {
         if dt <= 0.0 || !self.placed {
             *self = PelvisFollower {
                 height: target,
@@ -43,10 +49,8 @@ impl PelvisFollower {
             };
             return self.height;
         }
-        let (lo, hi) = (
-            ground_rate - PELVIS_MAX_SPEED,
-            ground_rate + PELVIS_MAX_SPEED,
-        );
+        let up = (PELVIS_MAX_SPEED + climb.max(0.0)).min(PELVIS_MAX_CLIMB_SPEED);
+        let (lo, hi) = (ground_rate - PELVIS_MAX_SPEED, ground_rate + up);
         let w = 1.0 / PELVIS_RESPONSE_TIME;
         let target_speed = ((target - self.last_target) / dt).clamp(lo, hi);
         self.last_target = target;
@@ -65,11 +69,11 @@ mod tests {
     #[test]
     fn a_step_in_the_target_is_followed_within_the_bounds() {
         let mut p = PelvisFollower::default();
-        p.follow(1.0, 0.0, 0.0);
+        p.follow(1.0, 0.0, 0.0, 0.0);
         let dt = 1.0 / 60.0;
         let mut last = p.height;
         for _ in 0..120 {
-            let h = p.follow(0.7, 0.0, dt);
+            let h = p.follow(0.7, 0.0, 0.0, dt);
             assert!((last - h).abs() <= PELVIS_MAX_SPEED * dt + 1e-6);
             assert!(h >= 0.7 - 1e-3, "no undershoot: {h}");
             last = h;
@@ -78,11 +82,37 @@ mod tests {
     }
 
     #[test]
+    fn a_step_is_climbed_faster_but_never_faster_than_the_climb_bound() {
+        let dt = 1.0 / 60.0;
+        let rise_time = |climb: f32| {
+            let mut p = PelvisFollower::default();
+            p.follow(0.0, 0.0, 0.0, 0.0);
+            let mut last = p.height;
+            for s in 1..=120 {
+                let h = p.follow(0.3, 0.0, climb, dt);
+                assert!(
+                    h - last <= PELVIS_MAX_CLIMB_SPEED * dt + 1e-6,
+                    "{}",
+                    h - last
+                );
+                last = h;
+                if h >= 0.29 {
+                    return s;
+                }
+            }
+            usize::MAX
+        };
+        let (walking, climbing, steep) = (rise_time(0.0), rise_time(0.6), rise_time(5.0));
+        assert!(3 * climbing < 2 * walking, "{climbing} vs {walking} steps");
+        assert!(steep >= climbing * 9 / 10, "the bound holds: {steep} steps");
+    }
+
+    #[test]
     fn zero_dt_places_at_rest() {
         let mut p = PelvisFollower::default();
-        p.follow(0.5, 0.0, 1.0 / 60.0);
+        p.follow(0.5, 0.0, 0.0, 1.0 / 60.0);
         assert_eq!(p.height, 0.5);
-        p.follow(0.2, 0.0, 0.0);
+        p.follow(0.2, 0.0, 0.0, 0.0);
         assert_eq!((p.height, p.speed), (0.2, 0.0));
     }
 
@@ -91,9 +121,9 @@ mod tests {
         let mut p = PelvisFollower::default();
         let dt = 1.0 / 60.0;
         let rate = -0.45;
-        p.follow(0.0, rate, 0.0);
+        p.follow(0.0, rate, 0.0, 0.0);
         for k in 1..=120 {
-            p.follow(rate * dt * k as f32, rate, dt);
+            p.follow(rate * dt * k as f32, rate, 0.0, dt);
         }
         assert!((p.height - rate * 2.0).abs() < 0.01, "{}", p.height);
     }
