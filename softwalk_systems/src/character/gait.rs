@@ -750,11 +750,11 @@ mod tests {
             gait_stage(&mut gait, &body, &path, &mods, 1.0 / 60.0);
             let shares = [0, 1].map(|k| gait.load_share(k));
             assert!((shares[0] + shares[1] - 1.0).abs() < 1e-4, "{shares:?}");
-            for k in 0..2 {
-                let swinging = gait.feet[k].phase != FootPhase::Stance;
-                assert!(!swinging || shares[k] == 0.0, "a swinging foot bears none");
+            for (plan, &share) in gait.feet.iter().zip(&shares) {
+                let swinging = plan.phase != FootPhase::Stance;
+                assert!(!swinging || share == 0.0, "a swinging foot bears none");
                 if !swinging && !gait.double_support() {
-                    assert_eq!(shares[k], 1.0, "alone on the ground, all of it");
+                    assert_eq!(share, 1.0, "alone on the ground, all of it");
                 }
             }
             // Smoothly: no share jumps by more than a few percent a step.

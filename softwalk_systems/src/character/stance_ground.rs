@@ -26,13 +26,16 @@ pub(super) fn unloaded_give(gait: &Gait, rays: &FootRays, k: usize) -> f32 {
 /// stand on or below it. On a steady slope both feet stand in that plane;
 /// up a step, or out of a print onto firmer ground, the foot on the upper
 /// side stands above it as soon as it takes the weight, before the pelvis
-/// is over the step.
+/// is over the step. A foot still on the surface the walker started on
+/// (see [`FootSupport::stepped`]) is no step: it has not pressed its ground.
+///
+/// [`FootSupport::stepped`]: super::support::FootSupport::stepped
 pub(super) fn step_up(gait: &Gait, rays: &FootRays, pelvis: Vec2) -> f32 {
     let body = &rays.body;
     let (mut rise, mut weight) = (0.0, 0.0);
     for k in 0..2 {
         let share = gait.load_share(k);
-        if share <= 0.0 {
+        if share <= 0.0 || !rays.support[k].stepped {
             continue;
         }
         let floor = rays.support[k].landing.floor();
@@ -74,6 +77,7 @@ mod tests {
     /// Plants foot `k` of `rays` on a floor at `floor`, under ground that
     /// gives `give` there, at `x` along the walk.
     fn land(rays: &mut FootRays, k: usize, x: f32, floor: f32, give: f32) {
+        rays.support[k].stepped = true;
         rays.support[k].landing = SupportPoint {
             give,
             ..SupportPoint::rigid(Vec3::new(x, floor + give, 0.0))
@@ -114,6 +118,10 @@ mod tests {
         land(&mut rays, 0, 0.2, 0.0, 0.0);
         land(&mut rays, 1, 0.5, 0.4, 0.0);
         assert!(step_up(&gait, &rays, Vec2::ZERO).abs() < 1e-6);
+        // Where the walker started standing, on ground it has not pressed.
+        land(&mut rays, 0, 0.2, 0.3, 0.0);
+        rays.support[0].stepped = false;
+        assert_eq!(step_up(&gait, &rays, Vec2::ZERO), 0.0);
     }
 
     #[test]

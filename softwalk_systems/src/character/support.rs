@@ -102,6 +102,9 @@ pub struct FootSupport {
     /// foot pressed on its way is not read back as a shallower landing, and
     /// the knee is bound to straighten in time for it.
     pub landing_held: bool,
+    /// True once the foot has lifted off: its landing is one it stepped
+    /// onto, not the surface the walker started standing on.
+    pub stepped: bool,
 }
 
 impl FootSupport {
@@ -114,6 +117,7 @@ impl FootSupport {
             planted: true,
             hit: true,
             landing_held: false,
+            stepped: false,
         }
     }
 
@@ -142,6 +146,7 @@ impl FootSupport {
             };
             self.left_rim = self.landing.point.y;
             self.planted = false;
+            self.stepped = true;
         }
         let swing_time = params.cycle_time() * (1.0 - params.duty);
         let u = plan.swing.clamp(0.0, 1.0);
