@@ -21,7 +21,7 @@
 //! Left out, as known limits: the small walker's sole on level snow on a
 //! 256-sample grid, which reads 2.2 cm into its print (a cell of 4 cm
 //! against a foot 5.5 cm wide); a 1.0 m walker with short legs (a leg
-//! length factor of 0.7) on level snow, whose stance knee averages 27°;
+//! length factor of 0.7) on level snow, whose stance knee averages 29°;
 //! and the 1.0 and 1.3 m walkers up 20° of rigid ground, whose stance knee
 //! averages 25–27° (a stair-like climb).
 
