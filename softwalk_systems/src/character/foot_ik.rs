@@ -8,7 +8,7 @@ use super::balance::RigidProxy;
 use super::body::CharacterBody;
 use super::gait::{FootPlan, Gait, clamp_dt, contact_offset};
 use super::ik::{flexion_at_distance, lift_to_reach, limit_flexion_change, solve_two_bone};
-use super::pelvis::PelvisFollower;
+use super::pelvis::{PelvisFollower, climb_speed};
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
@@ -419,7 +419,7 @@ fn follow_pelvis(
         .clamp(0.0, MAX_PELVIS_RAISE * body.leg_reach());
     let ground_y = rays.body.point.y + ik.step_up;
     let ground_rate = rise_along(rays.body.normal, gait.velocity);
-    let climb = ik.step_up / (0.5 * gait.params.cycle_time()).max(f32::EPSILON);
+    let climb = climb_speed(ik.step_up, 0.5 * gait.params.cycle_time(), gait.bob_rate());
     ground_y
         - ik.pelvis
             .follow(ground_y - needed + raise, ground_rate, climb, dt)

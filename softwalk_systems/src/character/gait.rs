@@ -414,6 +414,17 @@ impl Gait {
         }
     }
 
+    /// How fast the bob raises the pelvis this step, m/s (negative while it
+    /// lowers it; 0 standing still).
+    pub fn bob_rate(&self) -> f32 {
+        if self.stopped {
+            return 0.0;
+        }
+        let phase_rate = self.params.speed / self.params.stride.max(f32::EPSILON);
+        let swing = (TAU * (2.0 * self.phase - 0.35)).cos();
+        self.bob_amplitude * 2.0 * TAU * phase_rate * swing
+    }
+
     /// True while both feet are in stance.
     pub fn double_support(&self) -> bool {
         self.feet.iter().all(|f| f.phase == FootPhase::Stance)
