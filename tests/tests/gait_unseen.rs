@@ -40,7 +40,7 @@ use softwalk_tests::walker_body;
 /// (`gait_quality::STEP_UP_SCENES`), it is held to every goal but the level
 /// walk's mean stance knee ([`LEVEL_WALK_FIGURE`]): the standing leg bends
 /// while the body rises over the step, as on a stair. A 30 cm step is half
-/// the 1.3 m walker's leg; its stance knee averages 32° over the walk,
+/// the 1.3 m walker's leg; its stance knee averages 33° over the walk,
 /// the 1.9 m walker's 29°. The 1.0 m walker does not reach the step.
 const OUT_OF_SNOW: &str = "unseen-snow-onto-rigid";
 

@@ -13,9 +13,9 @@ pub const PELVIS_MAX_SPEED: f32 = 0.2;
 /// Largest acceleration of the pelvis base, m/s².
 pub const PELVIS_MAX_ACCELERATION: f32 = 6.0;
 /// Fastest the pelvis, its base and the gait's bob together, rises relative
-/// to the ground's own rise when it climbs a step, m/s (0.75 cm per 60 Hz
+/// to the ground's own rise when it climbs a step, m/s (0.67 cm per 60 Hz
 /// step): the climb takes what the bob leaves (see [`climb_speed`]).
-pub const PELVIS_MAX_CLIMB_SPEED: f32 = 0.45;
+pub const PELVIS_MAX_CLIMB_SPEED: f32 = 0.4;
 
 /// How much faster than [`PELVIS_MAX_SPEED`] the pelvis base may rise this
 /// step, m/s, to climb a step `rise` metres high in `time` seconds while
