@@ -36,6 +36,7 @@ mod grass;
 mod grass_blade;
 mod mesh;
 pub(crate) mod raster;
+mod shade_pyramid;
 mod shading;
 mod shadow_fit;
 mod shadow_map;
@@ -44,6 +45,7 @@ mod terrain_colors;
 mod terrain_light;
 #[cfg(test)]
 mod test_ground;
+mod window_spans;
 
 pub use camera::Camera;
 pub use error::RenderError;

@@ -2,7 +2,9 @@
 //! detail (geomipmapping) and skirts against cracks between levels.
 //!
 //! Patches re-mesh only when [`TerrainRenderer::mark_dirty`] reported a change
-//! under them (or under their light reach); [`TerrainRenderer::update`] does it.
+//! of heights under them; the vertex colours of every level live in one
+//! pyramid over the whole grid, re-lit where a change's light reaches
+//! ([`TerrainRenderer::update`] does both).
 
 use std::collections::BTreeMap;
 
@@ -13,6 +15,7 @@ use super::camera::Camera;
 use super::error::{RenderError, positive};
 use super::frame_view::FrameView;
 use super::raster::{ClipVertex, CullMode, TriangleBatch, TriangleGroup};
+use super::shade_pyramid::{Shade, ShadePyramid};
 use super::shading::{Lighting, Sun, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
@@ -90,11 +93,6 @@ struct PatchLevel {
     rows: Vec<usize>,
     /// Heights of the level's vertices, row-major.
     heights: Vec<f32>,
-    /// Display colours of the level's vertices.
-    colors: Vec<Vec3>,
-    /// Display colours of the level's vertices with the sun hidden (by a
-    /// shadow caster).
-    shaded: Vec<Vec3>,
     /// Largest height difference between the level and the full-resolution samples.
     error: f32,
 }
@@ -128,6 +126,8 @@ pub struct TerrainRenderer {
     /// Triangles of a `cols` x `rows` vertex grid, shared by all patches.
     indices: BTreeMap<(usize, usize), Vec<[u32; 3]>>,
     light: TerrainLight,
+    /// Vertex colours of every level.
+    shades: ShadePyramid,
     lit_with: Option<Sun>,
     pending: Vec<GridRect>,
     needs_remesh: Vec<bool>,
@@ -178,6 +178,7 @@ impl TerrainRenderer {
             patches,
             indices,
             light: TerrainLight::new(grid),
+            shades: ShadePyramid::new(grid.nx(), grid.nz(), level_steps(p).count()),
             lit_with: None,
             pending: vec![grid.full_rect()],
             needs_remesh: vec![true; count],
@@ -229,9 +230,10 @@ impl TerrainRenderer {
         }
     }
 
-    /// Recomputes light in the dirty windows (plus their reach) and re-meshes the
-    /// patches they touch; everything when the sun changed. `grid` must have the
-    /// shape given to [`TerrainRenderer::new`].
+    /// Recomputes light and colours in the dirty windows (plus their light's
+    /// reach) and re-meshes the patches whose heights changed; everything
+    /// when the sun changed. `grid` must have the shape given to
+    /// [`TerrainRenderer::new`].
     pub fn update<C: TerrainColors + Sync + ?Sized>(
         &mut self,
         grid: &HeightGrid,
@@ -263,17 +265,21 @@ impl TerrainRenderer {
         let reach = self.reach();
         let sun_dir = lighting.sun.direction;
         let pending = std::mem::take(&mut self.pending);
-        for window in self.light.relight(grid, &pending, sun_dir, reach) {
-            self.flag_patches(&window);
+        let relit = self.light.relight(grid, &pending, sun_dir, reach);
+        let (style, light) = (&self.style, &self.light);
+        self.shades.update(&relit, |i, j| {
+            sample_shade(grid, colors, lighting, light, style, i, j)
+        });
+        for rect in &pending {
+            self.flag_patches(rect);
         }
-        let style = self.style;
-        let light = &self.light;
+        let patch_cells = self.style.patch_cells;
         let flags = &self.needs_remesh;
         self.patches
             .par_iter_mut()
             .zip(flags.par_iter())
             .filter(|(_, flag)| **flag)
-            .for_each(|(patch, _)| patch.remesh(grid, colors, lighting, light, &style));
+            .for_each(|(patch, _)| patch.remesh(grid, patch_cells));
         self.remeshed_last = self.needs_remesh.iter().filter(|f| **f).count();
         self.needs_remesh.iter_mut().for_each(|f| *f = false);
         Ok(())
@@ -336,14 +342,17 @@ impl TerrainRenderer {
             .filter_map(|k| {
                 let level = levels[k]?;
                 let (pi, pj) = (k % self.patches_x, k / self.patches_x);
-                let neighbour = |di: isize, dj: isize| -> Option<f32> {
+                let neighbour = |di: isize, dj: isize| -> Option<Neighbour> {
                     let (ni, nj) = (pi as isize + di, pj as isize + dj);
                     if ni < 0 || nj < 0 || ni >= self.patches_x as isize || nj >= pz as isize {
                         return None;
                     }
                     let n = nj as usize * self.patches_x + ni as usize;
                     let l = levels[n]?;
-                    (l != level).then(|| self.patches[n].levels[l].error)
+                    (l != level).then(|| Neighbour {
+                        level: l,
+                        error: self.patches[n].levels[l].error,
+                    })
                 };
                 // Sides: -Z (first row), +Z (last row), -X (first column), +X (last column).
                 let skirts = [
@@ -395,11 +404,13 @@ impl TerrainRenderer {
         let (min, max) = patch.bounds(self.origin, self.cell);
         // Casters' shadows are resolved per pixel, where one may fall.
         let shaded = view.casters_may_shade(min - Vec3::Y * lod.error, max);
+        let shades = self.vertex_shades(drawn);
         let vertex = |p: Vec3, v: usize| {
             let fog = view.lighting.fog_amount((p - eye).length());
-            let color = view.lighting.blend_fog(lod.colors[v], fog);
+            let Shade { lit, shaded: dark } = shades[v];
+            let color = view.lighting.blend_fog(lit, fog);
             let sun = if shaded {
-                (lod.colors[v] - lod.shaded[v]) * (1.0 - fog)
+                (lit - dark) * (1.0 - fog)
             } else {
                 Vec3::ZERO
             };
@@ -422,11 +433,11 @@ impl TerrainRenderer {
             (0..n).map(|r| (0, r)).collect(),
             (0..n).map(|r| (m - 1, r)).collect(),
         ];
-        for (side, neighbour_error) in sides.iter().zip(skirts) {
-            let Some(neighbour_error) = neighbour_error else {
+        for (side, neighbour) in sides.iter().zip(skirts) {
+            let Some(neighbour) = neighbour else {
                 continue;
             };
-            let depth = lod.error + neighbour_error + 0.25 * self.cell;
+            let depth = lod.error + neighbour.error + 0.25 * self.cell;
             let base = verts.len() as u32;
             for &(c, r) in side {
                 let v = r * m + c;
@@ -461,6 +472,40 @@ impl TerrainRenderer {
     }
 }
 
+impl TerrainRenderer {
+    /// The colours of a drawn patch's vertices, row-major. A vertex on a
+    /// side whose neighbour is drawn coarser takes the coarser level's
+    /// colours there (the coarsest, at a corner between two such sides), so
+    /// both patches show the same colours along their border.
+    fn vertex_shades(&self, drawn: &DrawnPatch) -> Vec<Shade> {
+        let patch = &self.patches[drawn.index];
+        let lod = &patch.levels[drawn.level];
+        let (m, n) = (lod.cols.len(), lod.rows.len());
+        let own = self.shades.level(drawn.level);
+        let coarser = drawn
+            .skirts
+            .map(|side| side.filter(|s| s.level > drawn.level).map(|s| s.level));
+        let mut shades = Vec::with_capacity(m * n);
+        for (r, &row) in lod.rows.iter().enumerate() {
+            for (c, &col) in lod.cols.iter().enumerate() {
+                let (i, j) = (patch.i0 + col, patch.j0 + row);
+                // Sides: -Z (first row), +Z (last row), -X (first column), +X (last column).
+                let on_side = [r == 0, r == n - 1, c == 0, c == m - 1];
+                let border = on_side
+                    .iter()
+                    .zip(coarser)
+                    .filter_map(|(on, level)| level.filter(|_| *on))
+                    .max();
+                shades.push(match border {
+                    Some(level) => self.shades.level(level).between(i, j),
+                    None => own.at_sample(i, j),
+                });
+            }
+        }
+        shades
+    }
+}
+
 /// A visible patch as a frame draws it.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct DrawnPatch {
@@ -468,9 +513,18 @@ pub(crate) struct DrawnPatch {
     index: usize,
     /// Its level of detail.
     level: usize,
-    /// Per side (-Z, +Z, -X, +X), the coarser error of a neighbour drawn at
-    /// another level: a skirt hangs there.
-    skirts: [Option<f32>; 4],
+    /// Per side (-Z, +Z, -X, +X), the neighbour drawn at another level: a
+    /// skirt hangs there.
+    skirts: [Option<Neighbour>; 4],
+}
+
+/// A patch's neighbour drawn at another level of detail.
+#[derive(Debug, Clone, Copy)]
+struct Neighbour {
+    /// Its level.
+    level: usize,
+    /// That level's height error.
+    error: f32,
 }
 
 impl Patch {
@@ -488,15 +542,8 @@ impl Patch {
         )
     }
 
-    /// Rebuilds every level's heights, colours and error from the grid and light.
-    fn remesh<C: TerrainColors + ?Sized>(
-        &mut self,
-        grid: &HeightGrid,
-        colors: &C,
-        lighting: &Lighting,
-        light: &TerrainLight,
-        style: &TerrainStyle,
-    ) {
+    /// Rebuilds every level's heights and error from the grid.
+    fn remesh(&mut self, grid: &HeightGrid, patch_cells: usize) {
         let rect = GridRect::new(
             self.i0,
             self.j0,
@@ -504,36 +551,21 @@ impl Patch {
             self.j0 + self.cells_z + 1,
         );
         (self.min_h, self.max_h) = grid.min_max_in(&rect);
-        self.levels = level_steps(style.patch_cells)
+        self.levels = level_steps(patch_cells)
             .map(|step| {
                 let cols = offsets(self.cells_x, step);
                 let rows = offsets(self.cells_z, step);
+                let heights = rows
+                    .iter()
+                    .flat_map(|&r| cols.iter().map(move |&c| (c, r)))
+                    .map(|(c, r)| grid.height(self.i0 + c, self.j0 + r))
+                    .collect();
                 let mut level = PatchLevel {
-                    heights: Vec::with_capacity(cols.len() * rows.len()),
-                    colors: Vec::with_capacity(cols.len() * rows.len()),
-                    shaded: Vec::with_capacity(cols.len() * rows.len()),
-                    ..Default::default()
+                    cols,
+                    rows,
+                    heights,
+                    error: 0.0,
                 };
-                for &r in &rows {
-                    for &c in &cols {
-                        let (i, j) = (self.i0 + c, self.j0 + r);
-                        let k = grid.index(i, j);
-                        let sky = light.sky_view[k];
-                        let albedo = colors.albedo(i, j)
-                            * (1.0
-                                - style.disturbed_darkening
-                                    * colors.disturbance(i, j).clamp(0.0, 1.0))
-                            * (1.0 - style.hollow_darkening * (1.0 - sky));
-                        let normal = grid.sample_normal(i, j);
-                        let radiance = lighting.radiance(albedo, normal, sky, light.sun_visible[k]);
-                        let shaded = lighting.radiance(albedo, normal, sky, 0.0);
-                        level.heights.push(grid.height(i, j));
-                        level.colors.push(encode_display(radiance));
-                        level.shaded.push(encode_display(shaded));
-                    }
-                }
-                level.cols = cols;
-                level.rows = rows;
                 level.error = self.level_error(grid, &level);
                 level
             })
@@ -571,6 +603,30 @@ impl Patch {
             }
         }
         error
+    }
+}
+
+/// The colours of sample `(i, j)`: its albedo, darkened where disturbed and
+/// in hollows, lit by the sun and sky as far as the terrain lets them reach,
+/// and with the sun hidden.
+fn sample_shade<C: TerrainColors + ?Sized>(
+    grid: &HeightGrid,
+    colors: &C,
+    lighting: &Lighting,
+    light: &TerrainLight,
+    style: &TerrainStyle,
+    i: usize,
+    j: usize,
+) -> Shade {
+    let k = grid.index(i, j);
+    let sky = light.sky_view[k];
+    let albedo = colors.albedo(i, j)
+        * (1.0 - style.disturbed_darkening * colors.disturbance(i, j).clamp(0.0, 1.0))
+        * (1.0 - style.hollow_darkening * (1.0 - sky));
+    let normal = grid.sample_normal(i, j);
+    Shade {
+        lit: encode_display(lighting.radiance(albedo, normal, sky, light.sun_visible[k])),
+        shaded: encode_display(lighting.radiance(albedo, normal, sky, 0.0)),
     }
 }
 
