@@ -41,6 +41,12 @@ pub struct TerrainStyle {
     pub max_cell_px: f32,
     /// ... and its height error below this many pixels.
     pub max_error_px: f32,
+    /// A level whose colours stray from the samples' by more than this
+    /// (display units, 0..1: prints, trails) ...
+    pub max_color_error: f32,
+    /// ... is used only while its cells stay below this many pixels, so that
+    /// trampled ground shows its trails from afar.
+    pub color_detail_px: f32,
 }
 
 impl Default for TerrainStyle {
@@ -53,6 +59,8 @@ impl Default for TerrainStyle {
             hollow_darkening: 0.8,
             max_cell_px: 12.0,
             max_error_px: 1.0,
+            max_color_error: 0.03,
+            color_detail_px: 4.0,
         }
     }
 }
@@ -69,6 +77,8 @@ impl TerrainStyle {
         positive("shadow_range", self.shadow_range)?;
         positive("max_cell_px", self.max_cell_px)?;
         positive("max_error_px", self.max_error_px)?;
+        positive("max_color_error", self.max_color_error)?;
+        positive("color_detail_px", self.color_detail_px)?;
         for (name, share) in [
             ("disturbed_darkening", self.disturbed_darkening),
             ("hollow_darkening", self.hollow_darkening),
@@ -95,6 +105,9 @@ struct PatchLevel {
     heights: Vec<f32>,
     /// Largest height difference between the level and the full-resolution samples.
     error: f32,
+    /// Largest difference of a display colour component between the level
+    /// (interpolated between its vertices) and the samples.
+    color_error: f32,
 }
 
 /// A rectangle of cells drawn as one batch.
@@ -130,7 +143,10 @@ pub struct TerrainRenderer {
     shades: ShadePyramid,
     lit_with: Option<Sun>,
     pending: Vec<GridRect>,
+    /// Patches whose heights changed.
     needs_remesh: Vec<bool>,
+    /// Patches whose colours changed.
+    needs_recolor: Vec<bool>,
     remeshed_last: usize,
 }
 
@@ -182,6 +198,7 @@ impl TerrainRenderer {
             lit_with: None,
             pending: vec![grid.full_rect()],
             needs_remesh: vec![true; count],
+            needs_recolor: vec![true; count],
             remeshed_last: 0,
         })
     }
@@ -270,22 +287,37 @@ impl TerrainRenderer {
         self.shades.update(&relit, |i, j| {
             sample_shade(grid, colors, lighting, light, style, i, j)
         });
+        let p = self.style.patch_cells;
         for rect in &pending {
-            self.flag_patches(rect);
+            self.flag_patches(rect, Flag::Remesh);
         }
-        let patch_cells = self.style.patch_cells;
-        let flags = &self.needs_remesh;
+        // A coarse vertex's colour reads samples up to a patch away.
+        for window in &relit {
+            self.flag_patches(&window.expand(p, self.nx, self.nz), Flag::Recolor);
+        }
+        let shades = &self.shades;
         self.patches
             .par_iter_mut()
-            .zip(flags.par_iter())
-            .filter(|(_, flag)| **flag)
-            .for_each(|(patch, _)| patch.remesh(grid, patch_cells));
+            .zip(self.needs_remesh.par_iter())
+            .zip(self.needs_recolor.par_iter())
+            .filter(|((_, remesh), recolor)| **remesh || **recolor)
+            .for_each(|((patch, remesh), _)| {
+                if *remesh {
+                    patch.remesh(grid, p);
+                }
+                patch.measure_colors(shades);
+            });
         self.remeshed_last = self.needs_remesh.iter().filter(|f| **f).count();
         self.needs_remesh.iter_mut().for_each(|f| *f = false);
+        self.needs_recolor.iter_mut().for_each(|f| *f = false);
         Ok(())
     }
 
-    fn flag_patches(&mut self, window: &GridRect) {
+    fn flag_patches(&mut self, window: &GridRect, flag: Flag) {
+        let flags = match flag {
+            Flag::Remesh => &mut self.needs_remesh,
+            Flag::Recolor => &mut self.needs_recolor,
+        };
         let p = self.style.patch_cells;
         // A sample on a patch border belongs to both patches.
         let pi0 = window.i0.saturating_sub(1) / p;
@@ -295,7 +327,7 @@ impl TerrainRenderer {
         let pj1 = (window.j1.saturating_sub(1) / p).min(pz - 1);
         for pj in pj0..=pj1 {
             for pi in pi0..=pi1 {
-                self.needs_remesh[pj * self.patches_x + pi] = true;
+                flags[pj * self.patches_x + pi] = true;
             }
         }
     }
@@ -323,7 +355,12 @@ impl TerrainRenderer {
                 for (l, level) in patch.levels.iter().enumerate().skip(1) {
                     let step_px = self.cell * (1 << l) as f32 * px_per_metre;
                     let error_px = level.error * px_per_metre;
-                    if step_px > self.style.max_cell_px || error_px > self.style.max_error_px {
+                    let hides_colors = level.color_error > self.style.max_color_error
+                        && step_px > self.style.color_detail_px;
+                    if step_px > self.style.max_cell_px
+                        || error_px > self.style.max_error_px
+                        || hides_colors
+                    {
                         break;
                     }
                     chosen = l;
@@ -506,6 +543,15 @@ impl TerrainRenderer {
     }
 }
 
+/// What changed under a patch.
+#[derive(Debug, Clone, Copy)]
+enum Flag {
+    /// Its heights.
+    Remesh,
+    /// Its colours.
+    Recolor,
+}
+
 /// A visible patch as a frame draws it.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct DrawnPatch {
@@ -564,12 +610,29 @@ impl Patch {
                     cols,
                     rows,
                     heights,
-                    error: 0.0,
+                    ..Default::default()
                 };
                 level.error = self.level_error(grid, &level);
                 level
             })
             .collect();
+    }
+
+    /// Measures how far each level's colours stray from the samples'.
+    fn measure_colors(&mut self, shades: &ShadePyramid) {
+        let fine = shades.level(0);
+        let (i0, j0) = (self.i0, self.j0);
+        let samples = GridRect::new(i0, j0, i0 + self.cells_x + 1, j0 + self.cells_z + 1);
+        for (l, level) in self.levels.iter_mut().enumerate().skip(1) {
+            let coarse = shades.level(l);
+            level.color_error = samples
+                .iter()
+                .map(|(i, j)| {
+                    let d = fine.at_sample(i, j).lit - coarse.between(i, j).lit;
+                    d.abs().max_element()
+                })
+                .fold(0.0, f32::max);
+        }
     }
 
     /// Largest vertical distance between the samples and the level's surface.
