@@ -43,6 +43,7 @@ mod shadow_map;
 mod terrain;
 mod terrain_colors;
 mod terrain_light;
+mod terrain_patch;
 #[cfg(test)]
 mod test_ground;
 mod window_spans;

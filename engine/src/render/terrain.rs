@@ -19,6 +19,7 @@ use super::shade_pyramid::{Shade, ShadePyramid};
 use super::shading::{Lighting, Sun, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
+use super::terrain_patch::{Patch, level_steps, offsets};
 use crate::geom::{GridRect, HeightGrid};
 
 /// How a [`TerrainRenderer`] cuts, levels and shades the grid.
@@ -94,36 +95,6 @@ impl TerrainStyle {
     }
 }
 
-/// One level of detail of a patch: a sub-grid of its samples.
-#[derive(Debug, Clone, Default)]
-struct PatchLevel {
-    /// Sample offsets (from the patch corner) of the level's columns.
-    cols: Vec<usize>,
-    /// Sample offsets of the level's rows.
-    rows: Vec<usize>,
-    /// Heights of the level's vertices, row-major.
-    heights: Vec<f32>,
-    /// Largest height difference between the level and the full-resolution samples.
-    error: f32,
-    /// Largest difference of a display colour component between the level
-    /// (interpolated between its vertices) and the samples.
-    color_error: f32,
-}
-
-/// A rectangle of cells drawn as one batch.
-#[derive(Debug, Clone)]
-struct Patch {
-    /// First sample (corner) of the patch.
-    i0: usize,
-    j0: usize,
-    /// Cells along X and Z (samples are `i0..=i0 + cells_x`).
-    cells_x: usize,
-    cells_z: usize,
-    levels: Vec<PatchLevel>,
-    min_h: f32,
-    max_h: f32,
-}
-
 /// Draws a [`HeightGrid`] by patches. Create it once, call
 /// [`mark_dirty`](TerrainRenderer::mark_dirty) with what changed and
 /// [`update`](TerrainRenderer::update) before rendering a frame.
@@ -162,15 +133,7 @@ impl TerrainRenderer {
         for pj in 0..patches_z {
             for pi in 0..patches_x {
                 let (i0, j0) = (pi * p, pj * p);
-                patches.push(Patch {
-                    i0,
-                    j0,
-                    cells_x: p.min(cx - i0),
-                    cells_z: p.min(cz - j0),
-                    levels: Vec::new(),
-                    min_h: 0.0,
-                    max_h: 0.0,
-                });
+                patches.push(Patch::new(i0, j0, p.min(cx - i0), p.min(cz - j0)));
             }
         }
         let mut indices = BTreeMap::new();
@@ -573,102 +536,6 @@ struct Neighbour {
     error: f32,
 }
 
-impl Patch {
-    /// World-space bounding box of the patch's surface.
-    fn bounds(&self, origin: glam::Vec2, cell: f32) -> (Vec3, Vec3) {
-        let x0 = origin.x + self.i0 as f32 * cell;
-        let z0 = origin.y + self.j0 as f32 * cell;
-        (
-            Vec3::new(x0, self.min_h, z0),
-            Vec3::new(
-                x0 + self.cells_x as f32 * cell,
-                self.max_h,
-                z0 + self.cells_z as f32 * cell,
-            ),
-        )
-    }
-
-    /// Rebuilds every level's heights and error from the grid.
-    fn remesh(&mut self, grid: &HeightGrid, patch_cells: usize) {
-        let rect = GridRect::new(
-            self.i0,
-            self.j0,
-            self.i0 + self.cells_x + 1,
-            self.j0 + self.cells_z + 1,
-        );
-        (self.min_h, self.max_h) = grid.min_max_in(&rect);
-        self.levels = level_steps(patch_cells)
-            .map(|step| {
-                let cols = offsets(self.cells_x, step);
-                let rows = offsets(self.cells_z, step);
-                let heights = rows
-                    .iter()
-                    .flat_map(|&r| cols.iter().map(move |&c| (c, r)))
-                    .map(|(c, r)| grid.height(self.i0 + c, self.j0 + r))
-                    .collect();
-                let mut level = PatchLevel {
-                    cols,
-                    rows,
-                    heights,
-                    ..Default::default()
-                };
-                level.error = self.level_error(grid, &level);
-                level
-            })
-            .collect();
-    }
-
-    /// Measures how far each level's colours stray from the samples'.
-    fn measure_colors(&mut self, shades: &ShadePyramid) {
-        let fine = shades.level(0);
-        let (i0, j0) = (self.i0, self.j0);
-        let samples = GridRect::new(i0, j0, i0 + self.cells_x + 1, j0 + self.cells_z + 1);
-        for (l, level) in self.levels.iter_mut().enumerate().skip(1) {
-            let coarse = shades.level(l);
-            level.color_error = samples
-                .iter()
-                .map(|(i, j)| {
-                    let d = fine.at_sample(i, j).lit - coarse.between(i, j).lit;
-                    d.abs().max_element()
-                })
-                .fold(0.0, f32::max);
-        }
-    }
-
-    /// Largest vertical distance between the samples and the level's surface.
-    fn level_error(&self, grid: &HeightGrid, level: &PatchLevel) -> f32 {
-        if level.cols.len() == self.cells_x + 1 && level.rows.len() == self.cells_z + 1 {
-            return 0.0;
-        }
-        let m = level.cols.len();
-        let mut error = 0.0f32;
-        for (r, pair_r) in level.rows.windows(2).enumerate() {
-            for (c, pair_c) in level.cols.windows(2).enumerate() {
-                let h = |cc: usize, rr: usize| level.heights[rr * m + cc];
-                let (h00, h10, h01, h11) = (h(c, r), h(c + 1, r), h(c, r + 1), h(c + 1, r + 1));
-                let (w, d) = (
-                    (pair_c[1] - pair_c[0]) as f32,
-                    (pair_r[1] - pair_r[0]) as f32,
-                );
-                for b in pair_r[0]..=pair_r[1] {
-                    for a in pair_c[0]..=pair_c[1] {
-                        let fx = (a - pair_c[0]) as f32 / w;
-                        let fz = (b - pair_r[0]) as f32 / d;
-                        // Same diagonal as the triangles: (c, r) to (c + 1, r + 1).
-                        let surface = if fx >= fz {
-                            h00 + (h10 - h00) * fx + (h11 - h10) * fz
-                        } else {
-                            h00 + (h01 - h00) * fz + (h11 - h01) * fx
-                        };
-                        error = error.max((grid.height(self.i0 + a, self.j0 + b) - surface).abs());
-                    }
-                }
-            }
-        }
-        error
-    }
-}
-
 /// The colours of sample `(i, j)`: its albedo, darkened where disturbed and
 /// in hollows, lit by the sun and sky as far as the terrain lets them reach,
 /// and with the sun hidden.
@@ -693,18 +560,6 @@ fn sample_shade<C: TerrainColors + ?Sized>(
     }
 }
 
-/// Sample steps of the levels of detail of a patch: 1, 2, 4 ... `patch_cells`.
-fn level_steps(patch_cells: usize) -> impl Iterator<Item = usize> {
-    (0..=patch_cells.trailing_zeros()).map(|l| 1 << l)
-}
-
-/// Offsets `0, step, 2 step, ...` below `cells`, then `cells` itself.
-fn offsets(cells: usize, step: usize) -> Vec<usize> {
-    let mut v: Vec<usize> = (0..cells).step_by(step).collect();
-    v.push(cells);
-    v
-}
-
 /// Triangles of an `m` x `n` vertex grid (row-major), counter-clockwise seen
 /// from +Y, split along the `(c, r)`-`(c + 1, r + 1)` diagonal like [`HeightGrid`].
 fn grid_triangles(m: usize, n: usize) -> Vec<[u32; 3]> {
@@ -725,14 +580,6 @@ fn grid_triangles(m: usize, n: usize) -> Vec<[u32; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn offsets_end_on_the_border() {
-        assert_eq!(offsets(8, 4), vec![0, 4, 8]);
-        assert_eq!(offsets(5, 4), vec![0, 4, 5]);
-        assert_eq!(offsets(3, 8), vec![0, 3]);
-        assert_eq!(level_steps(8).collect::<Vec<_>>(), vec![1, 2, 4, 8]);
-    }
 
     #[test]
     fn grid_triangles_face_up() {
