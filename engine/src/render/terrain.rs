@@ -258,7 +258,7 @@ impl TerrainRenderer {
         for window in &relit {
             self.flag_patches(&window.expand(p, self.nx, self.nz), Flag::Recolor);
         }
-        let shades = &self.shades;
+        let (shades, enough) = (&self.shades, self.style.max_color_error);
         self.patches
             .par_iter_mut()
             .zip(self.needs_remesh.par_iter())
@@ -268,7 +268,7 @@ impl TerrainRenderer {
                 if *remesh {
                     patch.remesh(grid, p);
                 }
-                patch.measure_colors(shades);
+                patch.measure_colors(shades, enough);
             });
         self.remeshed_last = self.needs_remesh.iter().filter(|f| **f).count();
         self.needs_remesh.iter_mut().for_each(|f| *f = false);

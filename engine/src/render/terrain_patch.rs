@@ -21,7 +21,8 @@ pub(crate) struct PatchLevel {
     /// Largest height difference between the level and the full-resolution samples.
     pub error: f32,
     /// Largest difference of a display colour component between the level
-    /// (interpolated between its vertices) and the samples.
+    /// (interpolated between its vertices) and the samples, as far as
+    /// measured: at least the first that passes `TerrainStyle::max_color_error`.
     pub color_error: f32,
 }
 
@@ -94,6 +95,7 @@ impl Patch {
                     |c, r| heights[r * m + c],
                     |a, b| grid.height(i0 + a, j0 + b),
                     f32::abs,
+                    f32::INFINITY,
                 );
                 PatchLevel {
                     cols,
@@ -106,8 +108,9 @@ impl Patch {
             .collect();
     }
 
-    /// Measures how far each level's colours stray from the samples'.
-    pub fn measure_colors(&mut self, shades: &ShadePyramid) {
+    /// Measures how far each level's colours stray from the samples', up
+    /// to the first stray larger than `enough`.
+    pub fn measure_colors(&mut self, shades: &ShadePyramid, enough: f32) {
         let fine = shades.level(0);
         let (i0, j0) = (self.i0, self.j0);
         for (l, level) in self.levels.iter_mut().enumerate() {
@@ -119,6 +122,7 @@ impl Patch {
                 |c, r| coarse.at_sample(i0 + cols[c], j0 + rows[r]).lit,
                 |a, b| fine.at_sample(i0 + a, j0 + b).lit,
                 |miss: Vec3| miss.abs().max_element(),
+                enough,
             );
         }
     }
@@ -128,12 +132,14 @@ impl Patch {
 /// offsets from the patch corner) and the surface a level draws through its
 /// vertices (`vertex` at the level's column and row), interpolated over the
 /// level's triangles; zero at full resolution, where they are the samples.
+/// Stops at the first difference larger than `enough`.
 fn largest_miss<T>(
     cols: &[usize],
     rows: &[usize],
     vertex: impl Fn(usize, usize) -> T,
     sample: impl Fn(usize, usize) -> T,
     size: impl Fn(T) -> f32,
+    enough: f32,
 ) -> f32
 where
     T: Copy + Add<Output = T> + Sub<Output = T> + Mul<f32, Output = T>,
@@ -162,6 +168,9 @@ where
                         v00 + (v01 - v00) * fz + (v11 - v01) * fx
                     };
                     largest = largest.max(size(sample(a, b) - surface));
+                    if largest > enough {
+                        return largest;
+                    }
                 }
             }
         }
@@ -207,6 +216,7 @@ mod tests {
                 |c, _| heights[cols[c]],
                 |a, _| heights[a],
                 f32::abs,
+                f32::INFINITY,
             )
         };
         assert_eq!(miss(&cols), 0.0);
