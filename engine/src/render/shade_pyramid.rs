@@ -196,14 +196,21 @@ mod tests {
         }
     }
 
+    /// A pyramid of `count` levels over `nx` x `nz` samples, built whole.
+    fn built(
+        nx: usize,
+        nz: usize,
+        count: usize,
+        shade: impl Fn(usize, usize) -> Shade + Sync,
+    ) -> ShadePyramid {
+        let mut pyramid = ShadePyramid::new(nx, nz, count);
+        pyramid.update(&[GridRect::new(0, 0, nx, nz)], shade);
+        pyramid
+    }
+
     #[test]
     fn a_lone_print_under_a_coarse_vertex_does_not_colour_it() {
-        let (nx, nz) = (37, 33);
-        let mut pyramid = ShadePyramid::new(nx, nz, 5);
-        pyramid.update(
-            &[GridRect::new(0, 0, nx, nz)],
-            shades(|i, j| (i, j) == (16, 16)),
-        );
+        let pyramid = built(37, 33, 5, shades(|i, j| (i, j) == (16, 16)));
         // Level 0 holds the print itself; the vertex over it at level 4
         // (every 16 samples) is nearly the ground around it.
         assert_eq!(pyramid.level(0).at_sample(16, 16).lit, Vec3::splat(0.2));
@@ -219,13 +226,8 @@ mod tests {
 
     #[test]
     fn a_trail_stays_a_trail_at_every_level() {
-        let (nx, nz) = (65, 65);
-        let mut pyramid = ShadePyramid::new(nx, nz, 5);
         // A dark trail two samples wide along row 32.
-        pyramid.update(
-            &[GridRect::new(0, 0, nx, nz)],
-            shades(|_, j| j == 32 || j == 33),
-        );
+        let pyramid = built(65, 65, 5, shades(|_, j| j == 32 || j == 33));
         for l in 1..5 {
             let level = pyramid.level(l);
             let on = level.at_sample(32, 32).lit.x;
@@ -245,8 +247,7 @@ mod tests {
         let (nx, nz) = (70, 41);
         let before = shades(|i, j| (i * 7 + j * 3) % 11 == 0);
         let after = shades(|i, j| (i * 7 + j * 3) % 11 == 0 || (20..30).contains(&i) && j < 9);
-        let mut updated = ShadePyramid::new(nx, nz, 6);
-        updated.update(&[GridRect::new(0, 0, nx, nz)], &before);
+        let mut updated = built(nx, nz, 6, &before);
         // The change lies in columns 20..30, rows 0..9; report it in two
         // overlapping windows.
         updated.update(
@@ -257,8 +258,7 @@ mod tests {
             ],
             &after,
         );
-        let mut fresh = ShadePyramid::new(nx, nz, 6);
-        fresh.update(&[GridRect::new(0, 0, nx, nz)], &after);
+        let fresh = built(nx, nz, 6, &after);
         for (a, b) in updated.levels.iter().zip(&fresh.levels) {
             assert_eq!(a.shades, b.shades, "level of step {}", a.step);
         }
@@ -266,9 +266,7 @@ mod tests {
 
     #[test]
     fn between_vertices_the_colour_is_interpolated() {
-        let (nx, nz) = (17, 17);
-        let mut pyramid = ShadePyramid::new(nx, nz, 4);
-        pyramid.update(&[GridRect::new(0, 0, nx, nz)], shades(|i, _| i >= 8));
+        let pyramid = built(17, 17, 4, shades(|i, _| i >= 8));
         let level = pyramid.level(3);
         let (a, b) = (level.at_sample(8, 8).lit, level.at_sample(16, 8).lit);
         assert_eq!(level.between(8, 8).lit, a);

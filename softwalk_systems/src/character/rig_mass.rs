@@ -172,6 +172,12 @@ mod tests {
     use crate::character::{Character, CharacterDesc, WalkPath};
     use crate::ground::FlatGround;
 
+    /// An adult standing away from [`standing`]'s spot, facing another way.
+    fn adult_elsewhere() -> Character {
+        let path = WalkPath::straight(Vec3::new(-4.0, 0.0, 7.0), Vec3::Z, 5.0).unwrap();
+        Character::new(CharacterDesc::adult(), &path, &FlatGround(0.0)).unwrap()
+    }
+
     fn standing(desc: CharacterDesc) -> Character {
         let path = WalkPath::straight(Vec3::new(1.0, 0.3, -2.0), Vec3::X, 5.0).unwrap();
         Character::new(desc, &path, &FlatGround(0.3)).unwrap()
@@ -207,9 +213,7 @@ mod tests {
     #[test]
     fn the_mass_properties_do_not_depend_on_where_the_character_stands() {
         let rig = CharacterRig::human().unwrap();
-        let here = standing(CharacterDesc::adult());
-        let path = WalkPath::straight(Vec3::new(-4.0, 0.0, 7.0), Vec3::Z, 5.0).unwrap();
-        let there = Character::new(CharacterDesc::adult(), &path, &FlatGround(0.0)).unwrap();
+        let (here, there) = (standing(CharacterDesc::adult()), adult_elsewhere());
         let a = BodyMass::of_rig(&rig, &here.body, &here.pose, &here.feet).unwrap();
         let b = BodyMass::of_rig(&rig, &there.body, &there.pose, &there.feet).unwrap();
         assert!((a.com_height - b.com_height).abs() < 1e-3);
@@ -227,9 +231,7 @@ mod tests {
     #[test]
     fn a_rig_and_body_are_weighed_once_and_shared() {
         let rig = CharacterRig::human().unwrap();
-        let adult = standing(CharacterDesc::adult());
-        let path = WalkPath::straight(Vec3::new(-4.0, 0.0, 7.0), Vec3::Z, 5.0).unwrap();
-        let elsewhere = Character::new(CharacterDesc::adult(), &path, &FlatGround(0.0)).unwrap();
+        let (adult, elsewhere) = (standing(CharacterDesc::adult()), adult_elsewhere());
         let child = standing(CharacterDesc::child());
         let mut masses = RigMasses::default();
         let first = masses
