@@ -61,7 +61,7 @@ impl Default for TerrainStyle {
             max_cell_px: 12.0,
             max_error_px: 1.0,
             max_color_error: 0.03,
-            color_detail_px: 4.0,
+            color_detail_px: 6.0,
         }
     }
 }
