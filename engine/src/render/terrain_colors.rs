@@ -1,7 +1,8 @@
 use glam::Vec3;
 
 /// Per-sample surface colour of a height grid, supplied by the caller (the engine
-/// knows nothing of materials). Evaluated only for samples whose patch re-meshes.
+/// knows nothing of materials). Evaluated only for samples whose light or
+/// colour changed (see [`super::TerrainRenderer::mark_dirty`]).
 pub trait TerrainColors {
     /// Linear RGB albedo of sample `(i, j)`.
     fn albedo(&self, i: usize, j: usize) -> Vec3;
