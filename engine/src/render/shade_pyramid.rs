@@ -8,7 +8,6 @@
 //! windows whose light or colour changed are recomputed, level by level.
 
 use glam::Vec3;
-use rayon::prelude::*;
 
 use super::shading::encode_display;
 use super::window_spans::WindowSpans;
@@ -84,31 +83,7 @@ impl ShadeLevel {
 
     /// Sets the vertices `spans` cover to `shade(column, row)`.
     fn fill(&mut self, spans: &WindowSpans, shade: impl Fn(usize, usize) -> Shade + Sync) {
-        let rows = spans.bounds();
-        self.shades
-            .par_chunks_mut(self.cols)
-            .enumerate()
-            .filter(|(r, _)| *r >= rows.j0 && *r < rows.j1)
-            .for_each(|(r, row)| {
-                for (c0, c1) in spans.row(r) {
-                    for (c, out) in row.iter_mut().enumerate().take(c1).skip(c0) {
-                        *out = shade(c, r);
-                    }
-                }
-            });
-    }
-
-    /// The vertices of the next coarser level whose colours read the
-    /// vertices of `window` of this level (a few more at its edges).
-    fn coarser_window(&self, window: &GridRect, coarser: &ShadeLevel) -> GridRect {
-        let low = |v: usize| v.saturating_sub(1) / 2;
-        let high = |v: usize, count: usize| ((v + 3) / 2).min(count);
-        GridRect::new(
-            low(window.i0),
-            low(window.j0),
-            high(window.i1, coarser.cols),
-            high(window.j1, coarser.rows),
-        )
+        spans.par_fill(&mut self.shades, self.cols, shade);
     }
 
     /// The colours of vertex `(c, r)` of the next coarser level: this
@@ -172,13 +147,26 @@ impl ShadePyramid {
         let mut finer: &ShadeLevel = first;
         for level in coarser {
             for window in &mut windows {
-                *window = finer.coarser_window(window, level);
+                *window = coarser_window(window, level);
             }
             let spans = WindowSpans::new(windows.iter().copied());
             level.fill(&spans, |c, r| finer.filtered(c, r));
             finer = level;
         }
     }
+}
+
+/// The vertices of level `coarser` whose colours read the vertices of
+/// `window` of the level below it (a few more at its edges).
+fn coarser_window(window: &GridRect, coarser: &ShadeLevel) -> GridRect {
+    let low = |v: usize| v.saturating_sub(1) / 2;
+    let high = |v: usize, count: usize| ((v + 3) / 2).min(count);
+    GridRect::new(
+        low(window.i0),
+        low(window.j0),
+        high(window.i1, coarser.cols),
+        high(window.j1, coarser.rows),
+    )
 }
 
 #[cfg(test)]

@@ -114,7 +114,7 @@ pub struct TerrainRenderer {
     shades: ShadePyramid,
     lit_with: Option<Sun>,
     pending: Vec<GridRect>,
-    /// Patches whose heights changed.
+    /// Patches under a rectangle given to `mark_dirty` since the last update.
     needs_remesh: Vec<bool>,
     /// Patches whose colours changed.
     needs_recolor: Vec<bool>,
@@ -160,8 +160,8 @@ impl TerrainRenderer {
             shades: ShadePyramid::new(grid.nx(), grid.nz(), level_steps(p).count()),
             lit_with: None,
             pending: vec![grid.full_rect()],
-            needs_remesh: vec![true; count],
-            needs_recolor: vec![true; count],
+            needs_remesh: vec![false; count],
+            needs_recolor: vec![false; count],
             remeshed_last: 0,
         })
     }
@@ -211,7 +211,7 @@ impl TerrainRenderer {
     }
 
     /// Recomputes light and colours in the dirty windows (plus their light's
-    /// reach) and re-meshes the patches whose heights changed; everything
+    /// reach) and re-meshes the patches under them; everything
     /// when the sun changed. `grid` must have the shape given to
     /// [`TerrainRenderer::new`].
     pub fn update<C: TerrainColors + Sync + ?Sized>(
@@ -252,11 +252,15 @@ impl TerrainRenderer {
         });
         let p = self.style.patch_cells;
         for rect in &pending {
-            self.flag_patches(rect, Flag::Remesh);
+            for k in self.patches_touching(rect) {
+                self.needs_remesh[k] = true;
+            }
         }
         // A coarse vertex's colour reads samples up to a patch away.
         for window in &relit {
-            self.flag_patches(&window.expand(p, self.nx, self.nz), Flag::Recolor);
+            for k in self.patches_touching(&window.expand(p, self.nx, self.nz)) {
+                self.needs_recolor[k] = true;
+            }
         }
         let (shades, enough) = (&self.shades, self.style.max_color_error);
         self.patches
@@ -276,23 +280,17 @@ impl TerrainRenderer {
         Ok(())
     }
 
-    fn flag_patches(&mut self, window: &GridRect, flag: Flag) {
-        let flags = match flag {
-            Flag::Remesh => &mut self.needs_remesh,
-            Flag::Recolor => &mut self.needs_recolor,
-        };
+    /// The indices of the patches holding a sample of `window` (a sample on
+    /// a patch border belongs to both patches).
+    fn patches_touching(&self, window: &GridRect) -> impl Iterator<Item = usize> + use<> {
         let p = self.style.patch_cells;
-        // A sample on a patch border belongs to both patches.
+        let patches_x = self.patches_x;
         let pi0 = window.i0.saturating_sub(1) / p;
         let pj0 = window.j0.saturating_sub(1) / p;
-        let pi1 = (window.i1.saturating_sub(1) / p).min(self.patches_x - 1);
-        let pz = self.patches.len() / self.patches_x;
+        let pi1 = (window.i1.saturating_sub(1) / p).min(patches_x - 1);
+        let pz = self.patches.len() / patches_x;
         let pj1 = (window.j1.saturating_sub(1) / p).min(pz - 1);
-        for pj in pj0..=pj1 {
-            for pi in pi0..=pi1 {
-                flags[pj * self.patches_x + pi] = true;
-            }
-        }
+        (pj0..=pj1).flat_map(move |pj| (pi0..=pi1).map(move |pi| pj * patches_x + pi))
     }
 
     /// Chooses a level per patch (`None` when culled) for this camera.
@@ -504,15 +502,6 @@ impl TerrainRenderer {
         }
         shades
     }
-}
-
-/// What changed under a patch.
-#[derive(Debug, Clone, Copy)]
-enum Flag {
-    /// Its heights.
-    Remesh,
-    /// Its colours.
-    Recolor,
 }
 
 /// A visible patch as a frame draws it.

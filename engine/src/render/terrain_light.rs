@@ -188,25 +188,14 @@ impl TerrainLight {
         for window in windows {
             self.note_heights(grid, window);
         }
-        let rows = spans.bounds();
-        if rows.is_empty() {
-            return;
-        }
         let nx = grid.nx();
         let max_height = self.max_height;
-        self.sky_view
-            .par_chunks_mut(nx)
-            .zip(self.sun_visible.par_chunks_mut(nx))
-            .enumerate()
-            .filter(|(j, _)| *j >= rows.j0 && *j < rows.j1)
-            .for_each(|(j, (sky_row, sun_row))| {
-                for (i0, i1) in spans.row(j) {
-                    for i in i0..i1 {
-                        sky_row[i] = sky_view(grid, i, j, reach.sky);
-                        sun_row[i] = sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow);
-                    }
-                }
-            });
+        spans.par_fill(&mut self.sky_view, nx, |i, j| {
+            sky_view(grid, i, j, reach.sky)
+        });
+        spans.par_fill(&mut self.sun_visible, nx, |i, j| {
+            sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow)
+        });
     }
 }
 

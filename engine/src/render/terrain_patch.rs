@@ -10,7 +10,7 @@ use super::shade_pyramid::ShadePyramid;
 use crate::geom::{GridRect, HeightGrid};
 
 /// One level of detail of a patch: a sub-grid of its samples.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub(crate) struct PatchLevel {
     /// Sample offsets (from the patch corner) of the level's columns.
     pub cols: Vec<usize>,

@@ -1,11 +1,13 @@
 //! The samples a set of grid windows covers, row by row, each sample once
 //! however the windows overlap.
 
+use rayon::prelude::*;
+
 use crate::geom::GridRect;
 
 /// Windows of a grid, sorted by first column so that the columns they cover
 /// in a row come out as merged spans without allocating per row.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug)]
 pub(crate) struct WindowSpans {
     /// The non-empty windows, by first column.
     windows: Vec<GridRect>,
@@ -20,11 +22,6 @@ impl WindowSpans {
         windows.sort_unstable_by_key(|w| w.i0);
         let bounds = windows.iter().fold(GridRect::EMPTY, |all, w| all.union(w));
         WindowSpans { windows, bounds }
-    }
-
-    /// The smallest rectangle holding every window (empty when none).
-    pub fn bounds(&self) -> GridRect {
-        self.bounds
     }
 
     /// The columns of row `j` that the windows cover, as sorted spans
@@ -43,6 +40,27 @@ impl WindowSpans {
             }
             Some((i0, i1))
         })
+    }
+
+    /// Sets each element of `buf` (rows of `width`) that the windows cover
+    /// to `value(column, row)`, rows in parallel.
+    pub fn par_fill<T: Send>(
+        &self,
+        buf: &mut [T],
+        width: usize,
+        value: impl Fn(usize, usize) -> T + Sync,
+    ) {
+        let rows = self.bounds;
+        buf.par_chunks_mut(width)
+            .enumerate()
+            .filter(|(j, _)| *j >= rows.j0 && *j < rows.j1)
+            .for_each(|(j, row)| {
+                for (i0, i1) in self.row(j) {
+                    for (i, out) in row.iter_mut().enumerate().take(i1).skip(i0) {
+                        *out = value(i, j);
+                    }
+                }
+            });
     }
 }
 
@@ -64,7 +82,7 @@ mod tests {
         assert_eq!(row(3), vec![(0, 9), (12, 14)]);
         assert_eq!(row(5), vec![(0, 3), (12, 14)]);
         assert_eq!(row(8), vec![]);
-        assert_eq!(spans.bounds(), GridRect::new(0, 0, 14, 8));
-        assert!(WindowSpans::new([]).bounds().is_empty());
+        assert_eq!(spans.bounds, GridRect::new(0, 0, 14, 8));
+        assert!(WindowSpans::new([]).bounds.is_empty());
     }
 }
