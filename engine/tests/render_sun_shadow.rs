@@ -82,17 +82,30 @@ fn camera() -> Camera {
         )
 }
 
-/// The frame with and without caster shadows.
-fn render() -> (RgbaImage, RgbaImage) {
+/// Flat ground under [`lighting`], drawn as a terrain.
+fn flat_ground() -> TerrainRenderer {
     let grid = HeightGrid::new(Vec2::splat(-2.0), 0.02, 201, 201, 0.0).unwrap();
-    let lighting = lighting();
     let mut terrain = TerrainRenderer::new(&grid, TerrainStyle::default()).unwrap();
     terrain
-        .update(&grid, &UniformColor(Vec3::new(0.6, 0.55, 0.45)), &lighting)
+        .update(
+            &grid,
+            &UniformColor(Vec3::new(0.6, 0.55, 0.45)),
+            &lighting(),
+        )
         .unwrap();
+    terrain
+}
+
+/// The box's colour.
+const BOX_COLOUR: Vec3 = Vec3::new(0.3, 0.4, 0.8);
+
+/// The frame with and without caster shadows.
+fn render() -> (RgbaImage, RgbaImage) {
+    let terrain = flat_ground();
+    let lighting = lighting();
     let mesh = cuboid(Vec3::new(-HALF, 0.0, -HALF), Vec3::new(HALF, TALL, HALF));
     let place = Mat4::from_rotation_y(TURN);
-    let meshes = [MeshInstance::new(&mesh, place, Vec3::new(0.3, 0.4, 0.8))];
+    let meshes = [MeshInstance::new(&mesh, place, BOX_COLOUR)];
     let scene = |shadows: bool| FrameScene {
         terrain: Some(&terrain),
         meshes: &meshes,
@@ -289,5 +302,55 @@ fn the_shadow_edge_is_a_straight_line_where_geometry_puts_it() {
     assert!(
         turns as f32 <= 0.2 * n,
         "the edge turns {turns} times over {n} columns"
+    );
+}
+
+#[test]
+fn ground_in_the_shadow_of_two_casters_is_no_darker_than_in_one() {
+    let (terrain, lighting) = (flat_ground(), lighting());
+    let mesh = cuboid(Vec3::new(-HALF, 0.0, -HALF), Vec3::new(HALF, TALL, HALF));
+    // Two boxes side by side across the sun: their shadows overlap in a band.
+    let boxes = [Vec3::ZERO, Vec3::new(0.2, 0.0, 0.25)]
+        .map(|at| MeshInstance::new(&mesh, Mat4::from_translation(at), BOX_COLOUR));
+    let renderer = Renderer::new(WIDTH, HEIGHT).unwrap();
+    let draw = |meshes: &[MeshInstance<'_>], shadows: bool| {
+        let scene = FrameScene {
+            terrain: Some(&terrain),
+            meshes,
+            lighting,
+            shadows,
+            ..FrameScene::new()
+        };
+        renderer.render(&scene, &camera())
+    };
+    let ground = draw(&[], false);
+    let unshadowed = draw(&boxes, false);
+    let (one, other, both) = (
+        draw(&boxes[..1], true),
+        draw(&boxes[1..], true),
+        draw(&boxes, true),
+    );
+    // The deepest shadow of one caster, the deepest of both, and where
+    // both shade the same ground.
+    let (mut deepest_one, mut deepest_both, mut overlap) = (0.0f32, 0.0f32, 0);
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            // Only ground that neither box hides from the eye.
+            if unshadowed.get_pixel(x, y) != ground.get_pixel(x, y) {
+                continue;
+            }
+            let lit = green(&ground, x, y);
+            let shade = |image: &RgbaImage| lit - green(image, x, y);
+            let (a, b) = (shade(&one), shade(&other));
+            deepest_one = deepest_one.max(a).max(b);
+            deepest_both = deepest_both.max(shade(&both));
+            overlap += usize::from(a > 40.0 && b > 40.0);
+        }
+    }
+    assert!(overlap > 200, "the shadows overlap on {overlap} pixels");
+    assert!(deepest_one > 40.0, "one caster darkens by {deepest_one}");
+    assert!(
+        deepest_both <= deepest_one + 1.0,
+        "two casters darken by {deepest_both}, one by {deepest_one}"
     );
 }

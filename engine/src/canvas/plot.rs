@@ -265,7 +265,6 @@ impl LinePlot {
             font,
             line,
             pad,
-            y_label_height,
             xs,
             ys,
         })
@@ -289,7 +288,7 @@ impl LinePlot {
         }
         if !self.y_label.is_empty() {
             overlay.text(
-                Vec2::new(x0 + pad, layout.top - 0.5 * line - layout.y_label_height),
+                Vec2::new(x0 + pad, layout.top - 0.5 * line - line),
                 font,
                 INK,
                 &self.y_label,
@@ -391,7 +390,6 @@ struct PlotLayout {
     font: f32,
     line: f32,
     pad: f32,
-    y_label_height: f32,
     xs: Axis,
     ys: Axis,
 }

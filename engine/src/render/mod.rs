@@ -36,14 +36,17 @@ mod grass;
 mod grass_blade;
 mod mesh;
 pub(crate) mod raster;
+mod shade_pyramid;
 mod shading;
 mod shadow_fit;
 mod shadow_map;
 mod terrain;
 mod terrain_colors;
 mod terrain_light;
+mod terrain_patch;
 #[cfg(test)]
 mod test_ground;
+mod window_spans;
 
 pub use camera::Camera;
 pub use error::RenderError;

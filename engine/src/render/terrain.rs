@@ -2,7 +2,9 @@
 //! detail (geomipmapping) and skirts against cracks between levels.
 //!
 //! Patches re-mesh only when [`TerrainRenderer::mark_dirty`] reported a change
-//! under them (or under their light reach); [`TerrainRenderer::update`] does it.
+//! of heights under them; the vertex colours of every level live in one
+//! pyramid over the whole grid, re-lit where a change's light reaches
+//! ([`TerrainRenderer::update`] does both).
 
 use std::collections::BTreeMap;
 
@@ -13,9 +15,11 @@ use super::camera::Camera;
 use super::error::{RenderError, positive};
 use super::frame_view::FrameView;
 use super::raster::{ClipVertex, CullMode, TriangleBatch, TriangleGroup};
+use super::shade_pyramid::{Shade, ShadePyramid};
 use super::shading::{Lighting, Sun, encode_display};
 use super::terrain_colors::TerrainColors;
 use super::terrain_light::{LightReach, TerrainLight};
+use super::terrain_patch::{Patch, level_steps, offsets};
 use crate::geom::{GridRect, HeightGrid};
 
 /// How a [`TerrainRenderer`] cuts, levels and shades the grid.
@@ -38,6 +42,12 @@ pub struct TerrainStyle {
     pub max_cell_px: f32,
     /// ... and its height error below this many pixels.
     pub max_error_px: f32,
+    /// A level whose colours stray from the samples' by more than this
+    /// (display units, 0..1: prints, trails) ...
+    pub max_color_error: f32,
+    /// ... is used only while its cells stay below this many pixels, so that
+    /// trampled ground shows its trails from afar.
+    pub color_detail_px: f32,
 }
 
 impl Default for TerrainStyle {
@@ -50,6 +60,8 @@ impl Default for TerrainStyle {
             hollow_darkening: 0.8,
             max_cell_px: 12.0,
             max_error_px: 1.0,
+            max_color_error: 0.03,
+            color_detail_px: 6.0,
         }
     }
 }
@@ -66,6 +78,8 @@ impl TerrainStyle {
         positive("shadow_range", self.shadow_range)?;
         positive("max_cell_px", self.max_cell_px)?;
         positive("max_error_px", self.max_error_px)?;
+        positive("max_color_error", self.max_color_error)?;
+        positive("color_detail_px", self.color_detail_px)?;
         for (name, share) in [
             ("disturbed_darkening", self.disturbed_darkening),
             ("hollow_darkening", self.hollow_darkening),
@@ -79,38 +93,6 @@ impl TerrainStyle {
         }
         Ok(())
     }
-}
-
-/// One level of detail of a patch: a sub-grid of its samples.
-#[derive(Debug, Clone, Default)]
-struct PatchLevel {
-    /// Sample offsets (from the patch corner) of the level's columns.
-    cols: Vec<usize>,
-    /// Sample offsets of the level's rows.
-    rows: Vec<usize>,
-    /// Heights of the level's vertices, row-major.
-    heights: Vec<f32>,
-    /// Display colours of the level's vertices.
-    colors: Vec<Vec3>,
-    /// Display colours of the level's vertices with the sun hidden (by a
-    /// shadow caster).
-    shaded: Vec<Vec3>,
-    /// Largest height difference between the level and the full-resolution samples.
-    error: f32,
-}
-
-/// A rectangle of cells drawn as one batch.
-#[derive(Debug, Clone)]
-struct Patch {
-    /// First sample (corner) of the patch.
-    i0: usize,
-    j0: usize,
-    /// Cells along X and Z (samples are `i0..=i0 + cells_x`).
-    cells_x: usize,
-    cells_z: usize,
-    levels: Vec<PatchLevel>,
-    min_h: f32,
-    max_h: f32,
 }
 
 /// Draws a [`HeightGrid`] by patches. Create it once, call
@@ -128,9 +110,14 @@ pub struct TerrainRenderer {
     /// Triangles of a `cols` x `rows` vertex grid, shared by all patches.
     indices: BTreeMap<(usize, usize), Vec<[u32; 3]>>,
     light: TerrainLight,
+    /// Vertex colours of every level.
+    shades: ShadePyramid,
     lit_with: Option<Sun>,
     pending: Vec<GridRect>,
+    /// Patches under a rectangle given to `mark_dirty` since the last update.
     needs_remesh: Vec<bool>,
+    /// Patches whose colours changed.
+    needs_recolor: Vec<bool>,
     remeshed_last: usize,
 }
 
@@ -146,15 +133,7 @@ impl TerrainRenderer {
         for pj in 0..patches_z {
             for pi in 0..patches_x {
                 let (i0, j0) = (pi * p, pj * p);
-                patches.push(Patch {
-                    i0,
-                    j0,
-                    cells_x: p.min(cx - i0),
-                    cells_z: p.min(cz - j0),
-                    levels: Vec::new(),
-                    min_h: 0.0,
-                    max_h: 0.0,
-                });
+                patches.push(Patch::new(i0, j0, p.min(cx - i0), p.min(cz - j0)));
             }
         }
         let mut indices = BTreeMap::new();
@@ -178,9 +157,11 @@ impl TerrainRenderer {
             patches,
             indices,
             light: TerrainLight::new(grid),
+            shades: ShadePyramid::new(grid.nx(), grid.nz(), level_steps(p).count()),
             lit_with: None,
             pending: vec![grid.full_rect()],
-            needs_remesh: vec![true; count],
+            needs_remesh: vec![false; count],
+            needs_recolor: vec![false; count],
             remeshed_last: 0,
         })
     }
@@ -229,9 +210,10 @@ impl TerrainRenderer {
         }
     }
 
-    /// Recomputes light in the dirty windows (plus their reach) and re-meshes the
-    /// patches they touch; everything when the sun changed. `grid` must have the
-    /// shape given to [`TerrainRenderer::new`].
+    /// Recomputes light and colours in the dirty windows (plus their light's
+    /// reach) and re-meshes the patches under them; everything
+    /// when the sun changed. `grid` must have the shape given to
+    /// [`TerrainRenderer::new`].
     pub fn update<C: TerrainColors + Sync + ?Sized>(
         &mut self,
         grid: &HeightGrid,
@@ -263,35 +245,52 @@ impl TerrainRenderer {
         let reach = self.reach();
         let sun_dir = lighting.sun.direction;
         let pending = std::mem::take(&mut self.pending);
-        for window in self.light.relight(grid, &pending, sun_dir, reach) {
-            self.flag_patches(&window);
+        let relit = self.light.relight(grid, &pending, sun_dir, reach);
+        let (style, light) = (&self.style, &self.light);
+        self.shades.update(&relit, |i, j| {
+            sample_shade(grid, colors, lighting, light, style, i, j)
+        });
+        let p = self.style.patch_cells;
+        for rect in &pending {
+            for k in self.patches_touching(rect) {
+                self.needs_remesh[k] = true;
+            }
         }
-        let style = self.style;
-        let light = &self.light;
-        let flags = &self.needs_remesh;
+        // A coarse vertex's colour reads samples up to a patch away.
+        for window in &relit {
+            for k in self.patches_touching(&window.expand(p, self.nx, self.nz)) {
+                self.needs_recolor[k] = true;
+            }
+        }
+        let (shades, enough) = (&self.shades, self.style.max_color_error);
         self.patches
             .par_iter_mut()
-            .zip(flags.par_iter())
-            .filter(|(_, flag)| **flag)
-            .for_each(|(patch, _)| patch.remesh(grid, colors, lighting, light, &style));
+            .zip(self.needs_remesh.par_iter())
+            .zip(self.needs_recolor.par_iter())
+            .filter(|((_, remesh), recolor)| **remesh || **recolor)
+            .for_each(|((patch, remesh), _)| {
+                if *remesh {
+                    patch.remesh(grid, p);
+                }
+                patch.measure_colors(shades, enough);
+            });
         self.remeshed_last = self.needs_remesh.iter().filter(|f| **f).count();
         self.needs_remesh.iter_mut().for_each(|f| *f = false);
+        self.needs_recolor.iter_mut().for_each(|f| *f = false);
         Ok(())
     }
 
-    fn flag_patches(&mut self, window: &GridRect) {
+    /// The indices of the patches holding a sample of `window` (a sample on
+    /// a patch border belongs to both patches).
+    fn patches_touching(&self, window: &GridRect) -> impl Iterator<Item = usize> + use<> {
         let p = self.style.patch_cells;
-        // A sample on a patch border belongs to both patches.
+        let patches_x = self.patches_x;
         let pi0 = window.i0.saturating_sub(1) / p;
         let pj0 = window.j0.saturating_sub(1) / p;
-        let pi1 = (window.i1.saturating_sub(1) / p).min(self.patches_x - 1);
-        let pz = self.patches.len() / self.patches_x;
+        let pi1 = (window.i1.saturating_sub(1) / p).min(patches_x - 1);
+        let pz = self.patches.len() / patches_x;
         let pj1 = (window.j1.saturating_sub(1) / p).min(pz - 1);
-        for pj in pj0..=pj1 {
-            for pi in pi0..=pi1 {
-                self.needs_remesh[pj * self.patches_x + pi] = true;
-            }
-        }
+        (pj0..=pj1).flat_map(move |pj| (pi0..=pi1).map(move |pi| pj * patches_x + pi))
     }
 
     /// Chooses a level per patch (`None` when culled) for this camera.
@@ -317,7 +316,12 @@ impl TerrainRenderer {
                 for (l, level) in patch.levels.iter().enumerate().skip(1) {
                     let step_px = self.cell * (1 << l) as f32 * px_per_metre;
                     let error_px = level.error * px_per_metre;
-                    if step_px > self.style.max_cell_px || error_px > self.style.max_error_px {
+                    let hides_colors = level.color_error > self.style.max_color_error
+                        && step_px > self.style.color_detail_px;
+                    if step_px > self.style.max_cell_px
+                        || error_px > self.style.max_error_px
+                        || hides_colors
+                    {
                         break;
                     }
                     chosen = l;
@@ -336,14 +340,17 @@ impl TerrainRenderer {
             .filter_map(|k| {
                 let level = levels[k]?;
                 let (pi, pj) = (k % self.patches_x, k / self.patches_x);
-                let neighbour = |di: isize, dj: isize| -> Option<f32> {
+                let neighbour = |di: isize, dj: isize| -> Option<Neighbour> {
                     let (ni, nj) = (pi as isize + di, pj as isize + dj);
                     if ni < 0 || nj < 0 || ni >= self.patches_x as isize || nj >= pz as isize {
                         return None;
                     }
                     let n = nj as usize * self.patches_x + ni as usize;
                     let l = levels[n]?;
-                    (l != level).then(|| self.patches[n].levels[l].error)
+                    (l != level).then(|| Neighbour {
+                        level: l,
+                        error: self.patches[n].levels[l].error,
+                    })
                 };
                 // Sides: -Z (first row), +Z (last row), -X (first column), +X (last column).
                 let skirts = [
@@ -395,11 +402,13 @@ impl TerrainRenderer {
         let (min, max) = patch.bounds(self.origin, self.cell);
         // Casters' shadows are resolved per pixel, where one may fall.
         let shaded = view.casters_may_shade(min - Vec3::Y * lod.error, max);
+        let shades = self.vertex_shades(drawn);
         let vertex = |p: Vec3, v: usize| {
             let fog = view.lighting.fog_amount((p - eye).length());
-            let color = view.lighting.blend_fog(lod.colors[v], fog);
+            let Shade { lit, shaded: dark } = shades[v];
+            let color = view.lighting.blend_fog(lit, fog);
             let sun = if shaded {
-                (lod.colors[v] - lod.shaded[v]) * (1.0 - fog)
+                (lit - dark) * (1.0 - fog)
             } else {
                 Vec3::ZERO
             };
@@ -422,11 +431,11 @@ impl TerrainRenderer {
             (0..n).map(|r| (0, r)).collect(),
             (0..n).map(|r| (m - 1, r)).collect(),
         ];
-        for (side, neighbour_error) in sides.iter().zip(skirts) {
-            let Some(neighbour_error) = neighbour_error else {
+        for (side, neighbour) in sides.iter().zip(skirts) {
+            let Some(neighbour) = neighbour else {
                 continue;
             };
-            let depth = lod.error + neighbour_error + 0.25 * self.cell;
+            let depth = lod.error + neighbour.error + 0.25 * self.cell;
             let base = verts.len() as u32;
             for &(c, r) in side {
                 let v = r * m + c;
@@ -461,6 +470,40 @@ impl TerrainRenderer {
     }
 }
 
+impl TerrainRenderer {
+    /// The colours of a drawn patch's vertices, row-major. A vertex on a
+    /// side whose neighbour is drawn coarser takes the coarser level's
+    /// colours there (the coarsest, at a corner between two such sides), so
+    /// both patches show the same colours along their border.
+    fn vertex_shades(&self, drawn: &DrawnPatch) -> Vec<Shade> {
+        let patch = &self.patches[drawn.index];
+        let lod = &patch.levels[drawn.level];
+        let (m, n) = (lod.cols.len(), lod.rows.len());
+        let own = self.shades.level(drawn.level);
+        let coarser = drawn
+            .skirts
+            .map(|side| side.filter(|s| s.level > drawn.level).map(|s| s.level));
+        let mut shades = Vec::with_capacity(m * n);
+        for (r, &row) in lod.rows.iter().enumerate() {
+            for (c, &col) in lod.cols.iter().enumerate() {
+                let (i, j) = (patch.i0 + col, patch.j0 + row);
+                // Sides: -Z (first row), +Z (last row), -X (first column), +X (last column).
+                let on_side = [r == 0, r == n - 1, c == 0, c == m - 1];
+                let border = on_side
+                    .iter()
+                    .zip(coarser)
+                    .filter_map(|(on, level)| level.filter(|_| *on))
+                    .max();
+                shades.push(match border {
+                    Some(level) => self.shades.level(level).between(i, j),
+                    None => own.at_sample(i, j),
+                });
+            }
+        }
+        shades
+    }
+}
+
 /// A visible patch as a frame draws it.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct DrawnPatch {
@@ -468,122 +511,42 @@ pub(crate) struct DrawnPatch {
     index: usize,
     /// Its level of detail.
     level: usize,
-    /// Per side (-Z, +Z, -X, +X), the coarser error of a neighbour drawn at
-    /// another level: a skirt hangs there.
-    skirts: [Option<f32>; 4],
+    /// Per side (-Z, +Z, -X, +X), the neighbour drawn at another level: a
+    /// skirt hangs there.
+    skirts: [Option<Neighbour>; 4],
 }
 
-impl Patch {
-    /// World-space bounding box of the patch's surface.
-    fn bounds(&self, origin: glam::Vec2, cell: f32) -> (Vec3, Vec3) {
-        let x0 = origin.x + self.i0 as f32 * cell;
-        let z0 = origin.y + self.j0 as f32 * cell;
-        (
-            Vec3::new(x0, self.min_h, z0),
-            Vec3::new(
-                x0 + self.cells_x as f32 * cell,
-                self.max_h,
-                z0 + self.cells_z as f32 * cell,
-            ),
-        )
-    }
-
-    /// Rebuilds every level's heights, colours and error from the grid and light.
-    fn remesh<C: TerrainColors + ?Sized>(
-        &mut self,
-        grid: &HeightGrid,
-        colors: &C,
-        lighting: &Lighting,
-        light: &TerrainLight,
-        style: &TerrainStyle,
-    ) {
-        let rect = GridRect::new(
-            self.i0,
-            self.j0,
-            self.i0 + self.cells_x + 1,
-            self.j0 + self.cells_z + 1,
-        );
-        (self.min_h, self.max_h) = grid.min_max_in(&rect);
-        self.levels = level_steps(style.patch_cells)
-            .map(|step| {
-                let cols = offsets(self.cells_x, step);
-                let rows = offsets(self.cells_z, step);
-                let mut level = PatchLevel {
-                    heights: Vec::with_capacity(cols.len() * rows.len()),
-                    colors: Vec::with_capacity(cols.len() * rows.len()),
-                    shaded: Vec::with_capacity(cols.len() * rows.len()),
-                    ..Default::default()
-                };
-                for &r in &rows {
-                    for &c in &cols {
-                        let (i, j) = (self.i0 + c, self.j0 + r);
-                        let k = grid.index(i, j);
-                        let sky = light.sky_view[k];
-                        let albedo = colors.albedo(i, j)
-                            * (1.0
-                                - style.disturbed_darkening
-                                    * colors.disturbance(i, j).clamp(0.0, 1.0))
-                            * (1.0 - style.hollow_darkening * (1.0 - sky));
-                        let normal = grid.sample_normal(i, j);
-                        let radiance = lighting.radiance(albedo, normal, sky, light.sun_visible[k]);
-                        let shaded = lighting.radiance(albedo, normal, sky, 0.0);
-                        level.heights.push(grid.height(i, j));
-                        level.colors.push(encode_display(radiance));
-                        level.shaded.push(encode_display(shaded));
-                    }
-                }
-                level.cols = cols;
-                level.rows = rows;
-                level.error = self.level_error(grid, &level);
-                level
-            })
-            .collect();
-    }
-
-    /// Largest vertical distance between the samples and the level's surface.
-    fn level_error(&self, grid: &HeightGrid, level: &PatchLevel) -> f32 {
-        if level.cols.len() == self.cells_x + 1 && level.rows.len() == self.cells_z + 1 {
-            return 0.0;
-        }
-        let m = level.cols.len();
-        let mut error = 0.0f32;
-        for (r, pair_r) in level.rows.windows(2).enumerate() {
-            for (c, pair_c) in level.cols.windows(2).enumerate() {
-                let h = |cc: usize, rr: usize| level.heights[rr * m + cc];
-                let (h00, h10, h01, h11) = (h(c, r), h(c + 1, r), h(c, r + 1), h(c + 1, r + 1));
-                let (w, d) = (
-                    (pair_c[1] - pair_c[0]) as f32,
-                    (pair_r[1] - pair_r[0]) as f32,
-                );
-                for b in pair_r[0]..=pair_r[1] {
-                    for a in pair_c[0]..=pair_c[1] {
-                        let fx = (a - pair_c[0]) as f32 / w;
-                        let fz = (b - pair_r[0]) as f32 / d;
-                        // Same diagonal as the triangles: (c, r) to (c + 1, r + 1).
-                        let surface = if fx >= fz {
-                            h00 + (h10 - h00) * fx + (h11 - h10) * fz
-                        } else {
-                            h00 + (h01 - h00) * fz + (h11 - h01) * fx
-                        };
-                        error = error.max((grid.height(self.i0 + a, self.j0 + b) - surface).abs());
-                    }
-                }
-            }
-        }
-        error
-    }
+/// A patch's neighbour drawn at another level of detail.
+#[derive(Debug, Clone, Copy)]
+struct Neighbour {
+    /// Its level.
+    level: usize,
+    /// That level's height error.
+    error: f32,
 }
 
-/// Sample steps of the levels of detail of a patch: 1, 2, 4 ... `patch_cells`.
-fn level_steps(patch_cells: usize) -> impl Iterator<Item = usize> {
-    (0..=patch_cells.trailing_zeros()).map(|l| 1 << l)
-}
-
-/// Offsets `0, step, 2 step, ...` below `cells`, then `cells` itself.
-fn offsets(cells: usize, step: usize) -> Vec<usize> {
-    let mut v: Vec<usize> = (0..cells).step_by(step).collect();
-    v.push(cells);
-    v
+/// The colours of sample `(i, j)`: its albedo, darkened where disturbed and
+/// in hollows, lit by the sun and sky as far as the terrain lets them reach,
+/// and with the sun hidden.
+fn sample_shade<C: TerrainColors + ?Sized>(
+    grid: &HeightGrid,
+    colors: &C,
+    lighting: &Lighting,
+    light: &TerrainLight,
+    style: &TerrainStyle,
+    i: usize,
+    j: usize,
+) -> Shade {
+    let k = grid.index(i, j);
+    let sky = light.sky_view[k];
+    let albedo = colors.albedo(i, j)
+        * (1.0 - style.disturbed_darkening * colors.disturbance(i, j).clamp(0.0, 1.0))
+        * (1.0 - style.hollow_darkening * (1.0 - sky));
+    let normal = grid.sample_normal(i, j);
+    Shade {
+        lit: encode_display(lighting.radiance(albedo, normal, sky, light.sun_visible[k])),
+        shaded: encode_display(lighting.radiance(albedo, normal, sky, 0.0)),
+    }
 }
 
 /// Triangles of an `m` x `n` vertex grid (row-major), counter-clockwise seen
@@ -606,14 +569,6 @@ fn grid_triangles(m: usize, n: usize) -> Vec<[u32; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn offsets_end_on_the_border() {
-        assert_eq!(offsets(8, 4), vec![0, 4, 8]);
-        assert_eq!(offsets(5, 4), vec![0, 4, 5]);
-        assert_eq!(offsets(3, 8), vec![0, 3]);
-        assert_eq!(level_steps(8).collect::<Vec<_>>(), vec![1, 2, 4, 8]);
-    }
 
     #[test]
     fn grid_triangles_face_up() {

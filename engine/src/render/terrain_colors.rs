@@ -1,7 +1,10 @@
 use glam::Vec3;
 
 /// Per-sample surface colour of a height grid, supplied by the caller (the engine
-/// knows nothing of materials). Evaluated only for samples whose patch re-meshes.
+/// knows nothing of materials). Evaluated only for the samples the renderer
+/// re-lights: around each rectangle given to
+/// [`super::TerrainRenderer::mark_dirty`], within the light's reach, and
+/// everywhere when the sun changes.
 pub trait TerrainColors {
     /// Linear RGB albedo of sample `(i, j)`.
     fn albedo(&self, i: usize, j: usize) -> Vec3;

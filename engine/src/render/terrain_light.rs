@@ -4,6 +4,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::window_spans::WindowSpans;
 use crate::geom::{GridRect, HeightGrid};
 
 /// Horizon distances (in samples) probed by the sky-view factor, roughly geometric.
@@ -183,48 +184,19 @@ impl TerrainLight {
         sun_dir: Vec3,
         reach: LightReach,
     ) {
-        let windows: Vec<GridRect> = windows.iter().filter(|w| !w.is_empty()).copied().collect();
-        for window in &windows {
+        let spans = WindowSpans::new(windows.iter().copied());
+        for window in windows {
             self.note_heights(grid, window);
         }
-        let Some(rows) = windows.iter().copied().reduce(|a, b| a.union(&b)) else {
-            return;
-        };
         let nx = grid.nx();
         let max_height = self.max_height;
-        self.sky_view
-            .par_chunks_mut(nx)
-            .zip(self.sun_visible.par_chunks_mut(nx))
-            .enumerate()
-            .filter(|(j, _)| *j >= rows.j0 && *j < rows.j1)
-            .for_each(|(j, (sky_row, sun_row))| {
-                for (i0, i1) in row_spans(&windows, j) {
-                    for i in i0..i1 {
-                        sky_row[i] = sky_view(grid, i, j, reach.sky);
-                        sun_row[i] = sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow);
-                    }
-                }
-            });
+        spans.par_fill(&mut self.sky_view, nx, |i, j| {
+            sky_view(grid, i, j, reach.sky)
+        });
+        spans.par_fill(&mut self.sun_visible, nx, |i, j| {
+            sun_visibility(grid, i, j, sun_dir, max_height, reach.shadow)
+        });
     }
-}
-
-/// The columns of row `j` that `windows` cover, as sorted spans
-/// `[i0, i1)` that neither overlap nor touch.
-fn row_spans(windows: &[GridRect], j: usize) -> Vec<(usize, usize)> {
-    let mut spans: Vec<(usize, usize)> = windows
-        .iter()
-        .filter(|w| j >= w.j0 && j < w.j1)
-        .map(|w| (w.i0, w.i1))
-        .collect();
-    spans.sort_unstable();
-    let mut merged: Vec<(usize, usize)> = Vec::with_capacity(spans.len());
-    for (i0, i1) in spans {
-        match merged.last_mut() {
-            Some(last) if i0 <= last.1 => last.1 = last.1.max(i1),
-            _ => merged.push((i0, i1)),
-        }
-    }
-    merged
 }
 
 /// Sky-view factor of sample `(i, j)` over horizons within `radius` samples.
@@ -310,20 +282,6 @@ mod tests {
             if d < 0.08 { -0.04 } else { 0.0 }
         })
         .unwrap()
-    }
-
-    #[test]
-    fn overlapping_windows_give_each_column_of_a_row_once() {
-        let windows = [
-            GridRect::new(5, 0, 9, 4),
-            GridRect::new(0, 2, 3, 6),
-            GridRect::new(2, 3, 6, 5),
-            GridRect::new(12, 3, 14, 8),
-        ];
-        assert_eq!(row_spans(&windows, 0), vec![(5, 9)]);
-        assert_eq!(row_spans(&windows, 3), vec![(0, 9), (12, 14)]);
-        assert_eq!(row_spans(&windows, 5), vec![(0, 3), (12, 14)]);
-        assert_eq!(row_spans(&windows, 8), vec![]);
     }
 
     #[test]

@@ -54,10 +54,11 @@ fn write_table(
 ) -> Result<(), CliError> {
     let first = &runs[0];
     let steps = first.steps.max(1) as f64;
-    let per_run = |f: &dyn Fn(&RunSummary) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
-    let setup = per_run(&|s| s.setup_seconds * 1e3);
-    let wall = per_run(&|s| s.stepping_seconds * 1e6 / steps);
-    let systems = per_run(&|s| s.timings.iter().map(|t| t.mean_ns / 1000.0).sum());
+    let setup = per_run(runs, |s| Some(s.setup_seconds * 1e3));
+    let wall = per_run(runs, |s| Some(s.stepping_seconds * 1e6 / steps));
+    let systems = per_run(runs, |s| {
+        Some(s.timings.iter().map(|t| t.mean_ns / 1000.0).sum())
+    });
     let mut text = format!(
         "scene {}: {} walkers, {} steps on {} thread(s), {} run(s)\n",
         scene.name,
@@ -75,14 +76,15 @@ fn write_table(
         "system (us/step)", "median", "fastest"
     );
     for (k, timing) in first.timings.iter().enumerate() {
-        let costs: Vec<f64> = runs
-            .iter()
-            .filter_map(|s| s.timings.get(k))
-            .map(|t| t.mean_ns / 1000.0)
-            .collect();
+        let costs = per_run(runs, |s| s.timings.get(k).map(|t| t.mean_ns / 1000.0));
         text += &cost_row(&timing.name, &costs);
     }
     out.write_all(text.as_bytes()).map_err(CliError::Stdout)
+}
+
+/// `f` of each run that has it.
+fn per_run(runs: &[RunSummary], f: impl Fn(&RunSummary) -> Option<f64>) -> Vec<f64> {
+    runs.iter().filter_map(f).collect()
 }
 
 /// One line of the table: `label`, then the median and the fastest of `values`.

@@ -53,10 +53,10 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let paths = OutputPaths::prepare(&args.out, &scene, &options)?;
     let pool = thread_pool(options.threads)?;
 
-    let names = scene.characters.iter().map(|c| c.name.clone()).collect();
-    let mut metrics = MetricsCsv::create(&paths.dir.join("metrics.csv"), names)?;
+    let names: Vec<String> = scene.characters.iter().map(|c| c.name.clone()).collect();
+    let mut metrics = MetricsCsv::create(&paths.metrics, names.clone())?;
     let mut stats = StatsCollector::new(scene.characters.len());
-    let mut plots = PlotCollector::new(scene.characters.iter().map(|c| c.name.clone()).collect());
+    let mut plots = PlotCollector::new(names);
     let mut heightmaps = HeightmapWriter::new(&paths.dir);
     // Frames are encoded on their own thread while the next ones are drawn.
     let mut frame_outputs = FrameThread::spawn(frame_outputs(&paths, &scene, &options)?);
@@ -83,9 +83,9 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         animation, sheet, ..
     } = written?;
     metrics.finish()?;
-    if options.render {
+    if let Some(sheet_path) = &paths.sheet {
         animation.finish().map_err(CliError::Output)?;
-        sheet.save(&paths.sheet).map_err(CliError::Output)?;
+        sheet.save(sheet_path).map_err(CliError::Output)?;
     }
     let wall = start.elapsed().as_secs_f64();
     for warning in plots.save(&paths.plots).skipped {
@@ -120,7 +120,7 @@ fn write_report(
         .iter()
         .map(|(path, info)| HeightmapReport::new(path, info))
         .collect();
-    write_summary_json(&paths.dir.join("summary.json"), &report)?;
+    write_summary_json(&paths.summary, &report)?;
     let mut text = text_summary(&report);
     if options.hash && summary.world_hash.is_none() {
         text.push_str("world hash: not computed by this simulation\n");
@@ -137,12 +137,16 @@ struct OutputPaths {
     frames: PathBuf,
     /// `plots/`.
     plots: PathBuf,
+    /// `metrics.csv`.
+    metrics: PathBuf,
+    /// `summary.json`.
+    summary: PathBuf,
     /// `animation.gif`, when one is written.
     gif: Option<PathBuf>,
     /// `animation.apng`, when one is written.
     apng: Option<PathBuf>,
-    /// `contact_sheet.png`.
-    sheet: PathBuf,
+    /// `contact_sheet.png`, when frames are drawn.
+    sheet: Option<PathBuf>,
 }
 
 impl OutputPaths {
@@ -163,30 +167,27 @@ impl OutputPaths {
         let paths = OutputPaths {
             gif: animation(scene.render.gif, "animation.gif"),
             apng: animation(scene.render.apng, "animation.apng"),
-            sheet: dir.join("contact_sheet.png"),
+            sheet: options.render.then(|| dir.join("contact_sheet.png")),
+            metrics: dir.join("metrics.csv"),
+            summary: dir.join("summary.json"),
             frames,
             plots,
             dir,
         };
-        check_output_files(paths.files(options.render).iter().map(PathBuf::as_path))?;
+        check_output_files(paths.files().iter().map(PathBuf::as_path))?;
         Ok(paths)
     }
 
     /// Every file the run writes.
-    fn files(&self, render: bool) -> Vec<PathBuf> {
-        [
-            "metrics.csv",
-            "summary.json",
-            "terrain_initial.png",
-            "terrain_final.png",
-        ]
-        .into_iter()
-        .map(|f| self.dir.join(f))
-        .chain(self.gif.clone())
-        .chain(self.apng.clone())
-        .chain(PlotCollector::files().map(|f| self.plots.join(f)))
-        .chain(render.then(|| self.sheet.clone()))
-        .collect()
+    fn files(&self) -> Vec<PathBuf> {
+        [self.metrics.clone(), self.summary.clone()]
+            .into_iter()
+            .chain(["terrain_initial.png", "terrain_final.png"].map(|f| self.dir.join(f)))
+            .chain(self.gif.clone())
+            .chain(self.apng.clone())
+            .chain(PlotCollector::files().map(|f| self.plots.join(f)))
+            .chain(self.sheet.clone())
+            .collect()
     }
 }
 

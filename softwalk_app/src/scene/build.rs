@@ -4,8 +4,8 @@
 use engine::ecs::Entity;
 use engine::geom::TriMesh;
 use engine::schedule::App;
-use softwalk_systems::character::Balance;
-use softwalk_systems::sim::{MassSource, SimBuilder, SimError, attach_rig};
+use softwalk_systems::character::{Balance, RigMasses};
+use softwalk_systems::sim::{MassSource, SimBuilder, SimError, attach_rig_with};
 use softwalk_systems::terrain::{Heightfield, MaterialTable};
 
 use super::material::material_table;
@@ -117,13 +117,15 @@ impl Scene {
     /// skinned volume sets its centre of mass and inertia (a mesh that is not
     /// closed keeps the capsules', with a warning), and, with a walk clip,
     /// the [`softwalk_systems::character::ClipWalk`] its upper body plays
-    /// (each loaded once, through the scene's [`super::RigCache`]).
+    /// (each loaded once, through the scene's [`super::RigCache`], and
+    /// weighed once per kind of body).
     fn attach_rigs(
         &self,
         app: &mut App,
         walkers: &[Entity],
         assets: Vec<CharacterAssets>,
     ) -> Result<(), SceneError> {
+        let mut masses = RigMasses::default();
         for (k, ((c, &entity), assets)) in
             self.characters.iter().zip(walkers).zip(assets).enumerate()
         {
@@ -134,7 +136,7 @@ impl Scene {
                     .insert(entity, (walk,))
                     .map_err(spawn_failed(format!("{field}.clip")))?;
             }
-            let mass = attach_rig(&mut app.world, entity, rig)
+            let mass = attach_rig_with(&mut app.world, entity, rig, &mut masses)
                 .map_err(spawn_failed(format!("{field}.model")))?;
             if let MassSource::Capsules { reason } = mass {
                 eprintln!(

@@ -169,6 +169,11 @@ impl CharacterRig {
         })
     }
 
+    /// Whether `other` is this same loaded rig (a clone of it).
+    pub fn is_same(&self, other: &CharacterRig) -> bool {
+        Arc::ptr_eq(&self.data, &other.data)
+    }
+
     /// The name it was given (`human`, or the model's file).
     pub fn name(&self) -> &str {
         &self.data.name

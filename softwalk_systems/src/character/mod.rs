@@ -85,6 +85,7 @@ pub use model_units::{ModelUnits, STANDING_HEIGHT_M};
 pub use path::{MAX_BACKWARD_ASLANT, PathPoint, PathSegment, WalkPath, turn_angle};
 pub use pose::Pose;
 pub use rays::{FootRays, GroundKey, foot_raycast_stage};
+pub use rig_mass::RigMasses;
 pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use steering::{

@@ -8,6 +8,7 @@ use glam::{Mat3, Vec3};
 
 use super::body::{BodyMass, CharacterBody};
 use super::character_rig::CharacterRig;
+use super::desc::CharacterDesc;
 use super::model_error::ModelError;
 use super::pose::Pose;
 use super::rig_pose::RigPose;
@@ -67,6 +68,57 @@ impl BodyMass {
     }
 }
 
+/// Mass properties computed once per rig and body description while a
+/// scene is set up: a crowd of many characters wearing a few rigs skins
+/// each rig once per kind of body, not once per character. The first
+/// character of each kind stands for the rest (the figures do not depend on
+/// where a character stands).
+#[derive(Debug, Default)]
+pub struct RigMasses {
+    known: Vec<KnownMass>,
+}
+
+/// The mass properties of one rig worn by one kind of body, or why its mesh
+/// gives none.
+#[derive(Debug)]
+struct KnownMass {
+    rig: CharacterRig,
+    desc: CharacterDesc,
+    mass: Result<BodyMass, String>,
+}
+
+impl RigMasses {
+    /// [`BodyMass::of_rig`], computed only for the first character of each
+    /// rig and body description asked for.
+    pub fn of_rig(
+        &mut self,
+        rig: &CharacterRig,
+        body: &CharacterBody,
+        pose: &Pose,
+        feet: &[FootState; 2],
+    ) -> Result<BodyMass, ModelError> {
+        let same = |k: &&KnownMass| k.rig.is_same(rig) && k.desc == body.desc;
+        if let Some(known) = self.known.iter().find(same) {
+            return known
+                .mass
+                .clone()
+                .map_err(|reason| ModelError::Shape { reason });
+        }
+        let mass = BodyMass::of_rig(rig, body, pose, feet);
+        let kept = match &mass {
+            Ok(mass) => Ok(*mass),
+            Err(ModelError::Shape { reason }) => Err(reason.clone()),
+            Err(_) => return mass,
+        };
+        self.known.push(KnownMass {
+            rig: rig.clone(),
+            desc: body.desc,
+            mass: kept,
+        });
+        mass
+    }
+}
+
 /// Largest [`SolidMass::leak`] of a mesh whose volume is taken as the body's:
 /// small openings (eyes, a mouth) change it by far less.
 pub const MAX_LEAK: f32 = 0.02;
@@ -120,6 +172,12 @@ mod tests {
     use crate::character::{Character, CharacterDesc, WalkPath};
     use crate::ground::FlatGround;
 
+    /// An adult standing away from [`standing`]'s spot, facing another way.
+    fn adult_elsewhere() -> Character {
+        let path = WalkPath::straight(Vec3::new(-4.0, 0.0, 7.0), Vec3::Z, 5.0).unwrap();
+        Character::new(CharacterDesc::adult(), &path, &FlatGround(0.0)).unwrap()
+    }
+
     fn standing(desc: CharacterDesc) -> Character {
         let path = WalkPath::straight(Vec3::new(1.0, 0.3, -2.0), Vec3::X, 5.0).unwrap();
         Character::new(desc, &path, &FlatGround(0.3)).unwrap()
@@ -155,9 +213,7 @@ mod tests {
     #[test]
     fn the_mass_properties_do_not_depend_on_where_the_character_stands() {
         let rig = CharacterRig::human().unwrap();
-        let here = standing(CharacterDesc::adult());
-        let path = WalkPath::straight(Vec3::new(-4.0, 0.0, 7.0), Vec3::Z, 5.0).unwrap();
-        let there = Character::new(CharacterDesc::adult(), &path, &FlatGround(0.0)).unwrap();
+        let (here, there) = (standing(CharacterDesc::adult()), adult_elsewhere());
         let a = BodyMass::of_rig(&rig, &here.body, &here.pose, &here.feet).unwrap();
         let b = BodyMass::of_rig(&rig, &there.body, &there.pose, &there.feet).unwrap();
         assert!((a.com_height - b.com_height).abs() < 1e-3);
@@ -170,6 +226,40 @@ mod tests {
         let c = standing(CharacterDesc::adult());
         let e = BodyMass::of_rig(&rig, &c.body, &c.pose, &c.feet).unwrap_err();
         assert!(e.to_string().contains("not closed"), "{e}");
+    }
+
+    #[test]
+    fn a_rig_and_body_are_weighed_once_and_shared() {
+        let rig = CharacterRig::human().unwrap();
+        let (adult, elsewhere) = (standing(CharacterDesc::adult()), adult_elsewhere());
+        let child = standing(CharacterDesc::child());
+        let mut masses = RigMasses::default();
+        let first = masses
+            .of_rig(&rig, &adult.body, &adult.pose, &adult.feet)
+            .unwrap();
+        assert_eq!(
+            first,
+            BodyMass::of_rig(&rig, &adult.body, &adult.pose, &adult.feet).unwrap()
+        );
+        // The same rig and body elsewhere: the first one's figures.
+        let again = masses.of_rig(&rig, &elsewhere.body, &elsewhere.pose, &elsewhere.feet);
+        assert_eq!(again.unwrap(), first);
+        // Another body, or another rig of the same mesh: weighed on its own.
+        let small = masses.of_rig(&rig, &child.body, &child.pose, &child.feet);
+        assert!(small.unwrap().com_height < first.com_height);
+        let reloaded = CharacterRig::new("copy", rig.model().clone(), rig.bone_map().clone());
+        let copy = reloaded.unwrap();
+        masses
+            .of_rig(&copy, &adult.body, &adult.pose, &adult.feet)
+            .unwrap();
+        assert_eq!(masses.known.len(), 3);
+        // An open mesh is refused each time it is asked for.
+        let shell = open_shell();
+        for _ in 0..2 {
+            let e = masses.of_rig(&shell, &adult.body, &adult.pose, &adult.feet);
+            assert!(e.unwrap_err().to_string().contains("not closed"));
+        }
+        assert_eq!(masses.known.len(), 4);
     }
 
     #[test]

@@ -186,14 +186,12 @@ fn reset<T: Copy>(buffer: &mut Vec<T>, n: usize, value: T) {
 }
 
 /// Where the driver points the rig's limb bones: joint and direction, at
-/// most two per limb; a later entry for a joint overrides an earlier one.
+/// most two per limb (eight in all); a later entry for a joint overrides an
+/// earlier one.
 #[derive(Default)]
 struct LimbAims {
     entries: [(usize, Vec3); 8],
     len: usize,
-    /// Bit `joint % 64` of every aimed joint: most joints are not aimed,
-    /// and this tells so without a search.
-    maybe: u64,
 }
 
 impl LimbAims {
@@ -201,14 +199,10 @@ impl LimbAims {
     fn set(&mut self, joint: usize, direction: Vec3) {
         self.entries[self.len] = (joint, direction);
         self.len += 1;
-        self.maybe |= 1 << (joint % 64);
     }
 
     /// The direction `joint` is aimed along, if it is.
     fn get(&self, joint: usize) -> Option<Vec3> {
-        if self.maybe & (1 << (joint % 64)) == 0 {
-            return None;
-        }
         self.entries[..self.len]
             .iter()
             .rev()

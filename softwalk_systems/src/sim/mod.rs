@@ -64,7 +64,7 @@ pub use error::SimError;
 pub use ground_state::GroundState;
 pub use ground_view::SceneGround;
 pub use pipeline::add_pipeline;
-pub use rig_attach::{MassSource, attach_rig};
+pub use rig_attach::{MassSource, attach_rig, attach_rig_with};
 pub use run::{run_steps, step};
 pub use sole_ground::{SoleGround, clamped_height, sole_ends};
 pub use systems_character::{

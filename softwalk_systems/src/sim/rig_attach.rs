@@ -6,7 +6,7 @@ use engine::ecs::{Entity, World};
 
 use super::components::{CharacterName, Feet};
 use super::error::SimError;
-use crate::character::{BodyMass, CharacterBody, CharacterRig, ModelError, Pose, RigidProxy};
+use crate::character::{CharacterBody, CharacterRig, ModelError, Pose, RigMasses, RigidProxy};
 
 /// Where an attached character's mass properties come from.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,7 +23,7 @@ pub enum MassSource {
 
 /// Attaches `rig` to the character `entity` and gives its body and rigid
 /// proxy the mass properties of the rig's skinned mesh, posed as the
-/// character stands now (see [`BodyMass::of_rig`]). A mesh that encloses no
+/// character stands now (see [`crate::character::BodyMass::of_rig`]). A mesh that encloses no
 /// body (open, or flat) keeps the capsules' mass properties, and the returned
 /// [`MassSource`] says so.
 ///
@@ -33,6 +33,18 @@ pub fn attach_rig(
     world: &mut World,
     entity: Entity,
     rig: CharacterRig,
+) -> Result<MassSource, SimError> {
+    attach_rig_with(world, entity, rig, &mut RigMasses::default())
+}
+
+/// [`attach_rig`] taking the mass properties from `masses` when a character
+/// with the same rig and body description was weighed before: attaching a
+/// crowd's rigs through one [`RigMasses`] skins each rig once per kind of body.
+pub fn attach_rig_with(
+    world: &mut World,
+    entity: Entity,
+    rig: CharacterRig,
+    masses: &mut RigMasses,
 ) -> Result<MassSource, SimError> {
     let failed = |message: String| SimError::System {
         system: "attach_rig",
@@ -49,7 +61,7 @@ pub fn attach_rig(
         let feet = world
             .get::<Feet>(entity)
             .map_err(|e| failed(e.to_string()))?;
-        BodyMass::of_rig(&rig, &body, &pose, &feet.0)
+        masses.of_rig(&rig, &body, &pose, &feet.0)
     };
     let source = match mass {
         Ok(mass) => {

@@ -223,9 +223,10 @@ pub fn press(
                 print.reference[local] = parts.heights[k];
                 print.pressed.push(k);
             }
-            let dh = press_sample(&mut parts, k, print.reference[local], sole_y, cover, dt);
+            let (dh, compressed) =
+                press_sample(&mut parts, k, print.reference[local], sole_y, cover, dt);
             removed += dh;
-            compacted += parts.material(k).compression as f64 * dh;
+            compacted += compressed;
         }
     }
     // Everything this contact has pressed stays held until the foot lifts, not
@@ -264,7 +265,8 @@ fn release(hf: &mut Heightfield, print: &mut FootPrint) -> Pressed {
 /// (the foot sets the pace) and stops at the print depth below `reference`
 /// (its height when this contact first touched it) or at the firm floor; a
 /// partly covered one sinks at the material's speed and stops that share
-/// of the way. Marks the sample pressed and returns how far it went down.
+/// of the way. Marks the sample pressed and returns how far it went down
+/// and how much of that its material compacted.
 fn press_sample(
     parts: &mut TerrainParts<'_>,
     k: usize,
@@ -272,7 +274,7 @@ fn press_sample(
     sole_y: f32,
     cover: f32,
     dt: f32,
-) -> f64 {
+) -> (f64, f64) {
     let h = parts.heights[k];
     let material = parts.material(k);
     let firm = parts.floor(k);
@@ -288,9 +290,10 @@ fn press_sample(
     parts.disturbed[k] = DISTURBED_PRESSED;
     if new_h < h {
         parts.heights[k] = new_h;
-        (h - new_h) as f64
+        let dh = (h - new_h) as f64;
+        (dh, material.compression as f64 * dh)
     } else {
-        0.0
+        (0.0, 0.0)
     }
 }
 

@@ -156,7 +156,7 @@ impl AccessorReader<'_> {
         }))
     }
 
-    fn invalid(&self, part: &str, reason: String) -> GltfError {
+    pub(super) fn invalid(&self, part: &str, reason: String) -> GltfError {
         GltfError::Invalid {
             path: self.path.to_path_buf(),
             part: part.to_string(),

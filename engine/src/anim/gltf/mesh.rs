@@ -1,5 +1,3 @@
-use std::path::Path;
-
 use glam::Vec3;
 use gltf::Semantic;
 use gltf::mesh::Mode;
@@ -62,8 +60,7 @@ impl Merged {
         reader: &AccessorReader,
     ) -> Result<(), GltfError> {
         let path = reader.path;
-        let read = Primitive::read(primitive, part, reader)?;
-        read.check(path, part)?;
+        let read = PrimitiveData::read(primitive, part, reader)?;
         let base = self.positions.len() as u32;
         let first_vertex = self.positions.len();
         self.indices.extend(read.indices.iter().map(|&i| base + i));
@@ -92,7 +89,7 @@ impl Merged {
 }
 
 /// One triangle primitive's vertices as read, joints still skin-joint indices.
-struct Primitive {
+struct PrimitiveData {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     indices: Vec<u32>,
@@ -100,8 +97,8 @@ struct Primitive {
     weights: Vec<[f32; 4]>,
 }
 
-impl Primitive {
-    /// Reads a triangle primitive's positions, skin joints and weights,
+impl PrimitiveData {
+    /// Reads and checks a triangle primitive's positions, skin joints and weights,
     /// indices (or one per vertex) and normals (or smooth ones computed).
     fn read(
         primitive: &gltf::Primitive,
@@ -156,17 +153,19 @@ impl Primitive {
                 .collect(),
             None => smooth_normals(&positions, &indices),
         };
-        Ok(Primitive {
+        let data = PrimitiveData {
             positions,
             normals,
             indices,
             joints,
             weights,
-        })
+        };
+        data.check(part, reader)?;
+        Ok(data)
     }
 
     /// Every attribute has one value per position, and every index names a vertex.
-    fn check(&self, path: &Path, part: &str) -> Result<(), GltfError> {
+    fn check(&self, part: &str, reader: &AccessorReader) -> Result<(), GltfError> {
         let n = self.positions.len();
         for (what, len) in [
             ("NORMAL", self.normals.len()),
@@ -174,16 +173,11 @@ impl Primitive {
             ("WEIGHTS_0", self.weights.len()),
         ] {
             if len != n {
-                return Err(invalid(
-                    path,
-                    part,
-                    format!("{len} {what} for {n} positions"),
-                ));
+                return Err(reader.invalid(part, format!("{len} {what} for {n} positions")));
             }
         }
         if let Some(k) = self.indices.iter().position(|&i| i as usize >= n) {
-            return Err(invalid(
-                path,
+            return Err(reader.invalid(
                 part,
                 format!(
                     "index {k} names vertex {}, past {n} vertices",
@@ -220,12 +214,4 @@ fn smooth_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
         }
     }
     normals.iter().map(|n| n.normalize_or_zero()).collect()
-}
-
-fn invalid(path: &Path, part: &str, reason: String) -> GltfError {
-    GltfError::Invalid {
-        path: path.to_path_buf(),
-        part: part.to_string(),
-        reason,
-    }
 }
