@@ -27,7 +27,7 @@ pub const FLAT_DEG: f32 = 5.0;
 /// step being taken and one closing step at a walking cadence.
 pub const FLAT_AFTER_GOAL_S: f32 = 1.2;
 /// The name [`StopFigures::failures`] gives the time to both feet flat.
-pub const FLAT_FIGURE: &str = "key to both feet flat";
+const FLAT_FIGURE: &str = "key to both feet flat";
 /// The most the centre of mass may move over the last second at rest, metres.
 pub const REST_DRIFT_GOAL_M: f32 = 0.01;
 

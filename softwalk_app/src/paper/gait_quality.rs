@@ -194,9 +194,17 @@ impl GaitQuality {
     /// The goals missed, each naming its figure, value and goal; a walk with
     /// no walking sample fails as such.
     pub fn failures(&self) -> Vec<String> {
+        self.failures_held_to(false)
+    }
+
+    /// [`Self::failures`] of a walk that steps up onto something
+    /// (`step_up`, see [`STEP_UP_SCENES`]): it is not held to the level
+    /// walk's figure, [`LEVEL_WALK_FIGURE`].
+    pub fn failures_held_to(&self, step_up: bool) -> Vec<String> {
         let mut failed: Vec<String> = self
             .goals()
             .iter()
+            .filter(|g| !(step_up && g.figure == LEVEL_WALK_FIGURE))
             .filter(|g| !g.met())
             .map(Goal::to_string)
             .collect();

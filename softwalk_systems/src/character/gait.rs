@@ -563,7 +563,7 @@ impl Gait {
         let most = BOB_AMPLITUDE_RATE * dt;
         self.bob_amplitude += (p.bob_amplitude - self.bob_amplitude).clamp(-most, most);
         let a = self.bob_amplitude;
-        self.bob = -a + a * (TAU * (2.0 * phi - 0.35)).sin();
+        self.bob = bob_at(a, phi);
         self.sway = r * -p.sway_amplitude * (TAU * (phi - 0.1)).sin();
         let arms = if self.backward { -r } else { r };
         self.arm_swing = arms * p.arm_amplitude * (TAU * (phi - 0.15)).sin();
@@ -703,6 +703,12 @@ pub fn gait_stage(
     gait.update_body(dt);
 }
 
+/// The pelvis bob of amplitude `amplitude` at cycle phase `phase` (Boulic's
+/// curve, twice per cycle), metres, between `-2 * amplitude` and 0.
+fn bob_at(amplitude: f32, phase: f32) -> f32 {
+    -amplitude + amplitude * (TAU * (2.0 * phase - 0.35)).sin()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -741,8 +747,7 @@ mod tests {
             gait_stage(&mut gait, &body, &path, &fast, dt);
             let steady = {
                 let a = gait.bob_amplitude;
-                let at = |phi: f32| -a + a * (TAU * (2.0 * phi - 0.35)).sin();
-                at(gait.phase) - at(phase)
+                bob_at(a, gait.phase) - bob_at(a, phase)
             };
             worst = worst.max((gait.bob - bob - steady).abs());
         }

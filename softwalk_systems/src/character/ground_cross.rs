@@ -56,6 +56,13 @@ struct Sample {
     give: f32,
 }
 
+impl Sample {
+    /// The firm floor under the sample: its surface less its give.
+    fn floor(&self) -> f32 {
+        self.height - self.give
+    }
+}
+
 impl GroundCross {
     /// Casts `ground` at `at`, at `reach_along` ahead and behind it along
     /// the unit direction `forward` (and at the fractions `between` of that
@@ -96,7 +103,7 @@ impl GroundCross {
         let mut floors = [0.0f32; 5];
         let mut count = 0;
         for s in ends.iter().flatten() {
-            floors[count] = s.height - s.give;
+            floors[count] = s.floor();
             count += 1;
         }
         if count == 0 {
@@ -107,9 +114,9 @@ impl GroundCross {
         floors.sort_by(f32::total_cmp);
         let typical_floor = floors[count / 2];
         let reach = [reach_along, reach_across];
-        let surfaces = grades(&ends, |s| s.height, reach);
-        let floors = grades(&ends, |s| s.height - s.give, reach);
-        let [along, across] = [0, 1].map(|i| gentler(surfaces[i], floors[i]));
+        let surface_grades = grades(&ends, |s| s.height, reach);
+        let floor_grades = grades(&ends, Sample::floor, reach);
+        let [along, across] = [0, 1].map(|i| gentler(surface_grades[i], floor_grades[i]));
         let rise = forward * along + right * across;
         // The plane through the centre (or the mean) with the patch's slope;
         // each sample's surface and floor above it say how far the plane must
@@ -123,10 +130,7 @@ impl GroundCross {
             (f32::NEG_INFINITY, f32::NEG_INFINITY),
             |(top, floor), s| {
                 let plane = base + rise.dot(s.offset);
-                (
-                    top.max(s.height - plane),
-                    floor.max(s.height - s.give - plane),
-                )
+                (top.max(s.height - plane), floor.max(s.floor() - plane))
             },
         );
         Some(GroundCross {

@@ -19,7 +19,7 @@
 //!   speed and the time until that landing, [`closing_time`]) and the
 //!   walking speed falls from the first step, at a constant deceleration,
 //!   to the stop (a [`Brake`]), while the walk keeps its cadence
-//!   ([`cadence_hold`]): the steps shorten, the step being taken ends, and
+//!   ([`GaitModifiers::cadence_hold`]): the steps shorten, the step being taken ends, and
 //!   the closing step lands beside it; the gait halts there with both feet
 //!   flat, and starts again on the next desired velocity, speeding up from
 //!   its braked speed at `speed_change_rate` (the bob grows with it).
@@ -243,8 +243,9 @@ pub fn steer_stage(
 }
 
 /// Runs [`steer_stage`] and returns `base` with its walking speed scaled by
-/// the steering's factor, the deceleration braked at ([`braking`]) and the
-/// cadence held ([`cadence_hold`]) this step.
+/// the steering's factor, the deceleration braked at
+/// ([`GaitModifiers::braking`]) and the cadence held
+/// ([`GaitModifiers::cadence_hold`]) this step.
 pub fn brake_modifiers(
     steering: &mut Steering,
     gait: &Gait,
