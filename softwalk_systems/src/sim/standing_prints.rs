@@ -57,7 +57,8 @@ mod tests {
         sim.terrain(Heightfield::from_grid(grid, table, snow).unwrap())
             .unwrap();
         let path = WalkPath::straight(Vec3::new(1.0, 0.0, 2.0), Vec3::X, 2.0).unwrap();
-        sim.character("walker", CharacterDesc::adult(), path).unwrap();
+        sim.character("walker", CharacterDesc::adult(), path)
+            .unwrap();
         sim.build().unwrap()
     }
 
@@ -67,20 +68,35 @@ mod tests {
         let world = &mut app.world;
         let ground = world.resource::<GroundState>();
         let (hf, volume) = (ground.terrain(), ground.volume());
-        let feet = world.query::<(&Feet, &FootPrints)>().iter().next().map(|(f, p)| (f.0, p.0.clone()));
+        let feet = world
+            .query::<(&Feet, &FootPrints)>()
+            .iter()
+            .next()
+            .map(|(f, p)| (f.0, p.0.clone()));
         let (feet, prints) = feet.unwrap();
         for (foot, print) in feet.iter().zip(&prints) {
             let c = foot.sole.center();
             let ground_y = hf.grid().height_at(c.x, c.z).unwrap();
             assert!((c.y - 0.7).abs() < 0.01, "sole on the floor: {}", c.y);
-            assert!((ground_y - c.y).abs() < 0.005, "ground {ground_y} at the sole {}", c.y);
+            assert!(
+                (ground_y - c.y).abs() < 0.005,
+                "ground {ground_y} at the sole {}",
+                c.y
+            );
             assert!(print.is_active(), "the print is the foot's own");
             let cell = hf.grid().cell_size();
             let at = (glam::Vec2::new(c.x, c.z) - hf.grid().origin()) / cell;
             let (i, j) = (at.x.round() as usize, at.y.round() as usize);
-            assert_eq!(print.reference_height(i, j), Some(1.0), "against the initial surface");
+            assert_eq!(
+                print.reference_height(i, j),
+                Some(1.0),
+                "against the initial surface"
+            );
         }
         assert!(volume < hf.initial().volume(), "snow compacts: {volume}");
-        assert!((volume - hf.grid().volume()).abs() < 1e-4, "the volume is tracked");
+        assert!(
+            (volume - hf.grid().volume()).abs() < 1e-4,
+            "the volume is tracked"
+        );
     }
 }
