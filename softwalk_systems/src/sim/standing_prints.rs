@@ -43,9 +43,8 @@ pub fn press_standing_feet(world: &mut World) -> Result<(), SimError> {
 mod tests {
     use glam::Vec3;
 
-    use super::*;
     use crate::character::{CharacterDesc, WalkPath};
-    use crate::sim::{Feet, FootPrints, GroundState, SimBuilder};
+    use crate::sim::{Feet, FootPrints, GroundState, SimBuilder, SoleGround, sole_ends};
     use crate::terrain::{Heightfield, MaterialTable, generate};
 
     /// A walker built on 0.3 m of snow over flat ground at height 1.
@@ -75,14 +74,19 @@ mod tests {
             .map(|(f, p)| (f.0, p.0.clone()));
         let (feet, prints) = feet.unwrap();
         for (foot, print) in feet.iter().zip(&prints) {
-            let c = foot.sole.center();
-            let ground_y = hf.grid().height_at(c.x, c.z).unwrap();
-            assert!((c.y - 0.7).abs() < 0.01, "sole on the floor: {}", c.y);
-            assert!(
-                (ground_y - c.y).abs() < 0.005,
-                "ground {ground_y} at the sole {}",
-                c.y
-            );
+            let sole = foot.sole;
+            let lowest = sole.heel.y.min(sole.toe.y);
+            assert!((lowest - 0.7).abs() < 0.01, "sole on the floor: {lowest}");
+            let under = SoleGround::under(hf.grid(), &sole);
+            assert!(under.buried(&sole) < 0.005, "sole in the ground: {under:?}");
+            // The lower end of the sole (a leading foot lands heel first)
+            // stands on its print's floor, pressed to it.
+            let [heel, toe] = sole_ends(&sole);
+            let (c, pressed) = match heel.y < toe.y {
+                true => (heel, under.heel),
+                false => (toe, under.toe),
+            };
+            assert!((pressed - c.y).abs() < 0.005, "print {pressed} under {c}");
             assert!(print.is_active(), "the print is the foot's own");
             let cell = hf.grid().cell_size();
             let at = (glam::Vec2::new(c.x, c.z) - hf.grid().origin()) / cell;
