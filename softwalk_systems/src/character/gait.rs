@@ -30,7 +30,7 @@ const MIDSTANCE_LEG: f32 = 0.995;
 /// How much steps shorten per unit of downhill grade (a 10° descent
 /// shortens them by about a fifth, a 20° one by about a third), as
 /// people's do.
-const DOWNHILL_STEP_SHORTENING: f32 = 1.5;
+pub const DOWNHILL_STEP_SHORTENING: f32 = 1.5;
 /// How far the duty of a walk at rest stays past its later foot's phase.
 const PLANTED_MARGIN: f32 = 1.0e-4;
 /// Time over which the feet roll flat once the walk has stopped, seconds.

@@ -74,8 +74,8 @@ pub use desc::{CharacterDesc, DEFAULT_PASSIVE_DAMPING};
 pub use error::CharacterError;
 pub use foot_ik::{FootIK, foot_ik_stage};
 pub use gait::{
-    FootPlan, Gait, GaitModifiers, GaitParams, HEEL_STRIKE_PITCH, MAX_STEP_DT, TOE_OFF_PITCH,
-    clamp_dt, contact_offset, gait_stage, scheduled_pitch,
+    DOWNHILL_STEP_SHORTENING, FootPlan, Gait, GaitModifiers, GaitParams, HEEL_STRIKE_PITCH,
+    MAX_STEP_DT, TOE_OFF_PITCH, clamp_dt, contact_offset, gait_stage, scheduled_pitch,
 };
 pub use ik::{TwoBoneSolution, solve_two_bone};
 pub use mesh::{capsule, character_mesh};

@@ -57,8 +57,12 @@ pub struct FootRays {
 }
 
 impl FootRays {
-    /// First keys for a gait, cast from high above, both feet on the
-    /// surface of their footholds (a miss reads as height 0, normal up).
+    /// First keys for a gait, cast from high above, both feet standing in
+    /// their own prints: on the floor of their footholds (the surface less
+    /// what the ground gives under a planted foot), where the pelvis's floor
+    /// is measured too, so a walker on deep loose ground starts upright, not
+    /// crouched. A miss reads as height 0, normal up. The sim presses those
+    /// prints before the first step (see `SimBuilder::build`).
     pub fn new(gait: &Gait, body: &CharacterBody, ground: &dyn Ground) -> Self {
         let blank = GroundKey {
             point: Vec3::ZERO,
@@ -78,14 +82,9 @@ impl FootRays {
         for (support, plan) in rays.support.iter_mut().zip(&gait.feet) {
             let at = plan.from;
             let found = ground.cast_down(at.x, at.y, FIRST_RAY_HEIGHT);
-            // A character starts standing on the surface: its first prints
-            // are pressed when its feet next land.
             let point = found.map_or(
                 SupportPoint::rigid(Vec3::new(at.x, rays.body.point.y, at.y)),
-                |hit| SupportPoint {
-                    give: 0.0,
-                    ..SupportPoint::from_hit(hit)
-                },
+                SupportPoint::from_hit,
             );
             *support = FootSupport::planted_on(point);
         }

@@ -26,8 +26,8 @@ pub(super) fn unloaded_give(gait: &Gait, rays: &FootRays, k: usize) -> f32 {
 /// stand on or below it. On a steady slope both feet stand in that plane;
 /// up a step, or out of a print onto firmer ground, the foot on the upper
 /// side stands above it as soon as it takes the weight, before the pelvis
-/// is over the step. A foot still on the surface the walker started on
-/// (see [`FootSupport::stepped`]) is no step: it has not pressed its ground.
+/// is over the step. A foot still on the foothold the walker started on
+/// (see [`FootSupport::stepped`]) is no step: the pelvis was placed over it.
 ///
 /// [`FootSupport::stepped`]: super::support::FootSupport::stepped
 pub(super) fn step_up(gait: &Gait, rays: &FootRays, pelvis: Vec2) -> f32 {

@@ -103,7 +103,7 @@ pub struct FootSupport {
     /// the knee is bound to straighten in time for it.
     pub landing_held: bool,
     /// True once the foot has lifted off: its landing is one it stepped
-    /// onto, not the surface the walker started standing on.
+    /// onto, not the foothold the walker started standing on.
     pub stepped: bool,
 }
 

@@ -12,6 +12,7 @@ use super::ground_state::GroundState;
 use super::ground_view::SceneGround;
 use super::pipeline::add_pipeline;
 use super::sole_ground::SoleGround;
+use super::standing_prints::press_standing_feet;
 use super::timing::SystemTimings;
 use crate::character::{Character, CharacterDesc, WalkPath};
 use crate::foot::{FootSole, Side};
@@ -151,12 +152,15 @@ impl SimBuilder {
         }
     }
 
-    /// The app, its schedule resolved. Fails without a terrain.
+    /// The app, its schedule resolved, every character standing in the
+    /// prints its soles pressed ([`press_standing_feet`]). Fails without a
+    /// terrain.
     pub fn build(mut self) -> Result<App, SimError> {
         if !self.app.world.contains_resource::<GroundState>() {
             return Err(SimError::NoTerrain);
         }
         self.app.schedule.build()?;
+        press_standing_feet(&mut self.app.world)?;
         Ok(self.app)
     }
 }

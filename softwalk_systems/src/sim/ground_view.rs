@@ -11,7 +11,8 @@ use crate::terrain::Heightfield;
 ///
 /// Beyond the terrain's edge the ground continues the edge's heights (the
 /// query point is clamped into the grid), so a foot near an edge always finds
-/// a surface instead of a void.
+/// a surface instead of a void. Nothing there can be carved, so it gives
+/// nothing: a foot beyond the edge stands on that surface, not below it.
 #[derive(Clone, Copy)]
 pub struct SceneGround<'a> {
     /// The ray-cast scene (grid BVH, meshes).
@@ -39,10 +40,14 @@ impl Ground for SceneGround<'_> {
         // The smooth grid normal (not the triangle's) keeps the feet from
         // snapping between facets.
         // Loose ground gives under a foot; meshes do not.
+        let on_grid = at == Vec2::new(x, z);
         let (normal, give) = match (hit.target, self.terrain) {
             (HitTarget::Grid { .. }, Some(t)) => (
                 t.grid().normal_at(at.x, at.y).unwrap_or(hit.normal),
-                t.give_below(at.x, at.y, hit.point.y).unwrap_or(0.0),
+                match on_grid {
+                    true => t.give_below(at.x, at.y, hit.point.y).unwrap_or(0.0),
+                    false => 0.0,
+                },
             ),
             _ => (hit.normal, 0.0),
         };

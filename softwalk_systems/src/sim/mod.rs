@@ -50,6 +50,7 @@ mod pipeline;
 mod rig_attach;
 mod run;
 mod sole_ground;
+mod standing_prints;
 mod systems_character;
 mod systems_terrain;
 mod systems_vegetation;
@@ -67,6 +68,7 @@ pub use pipeline::add_pipeline;
 pub use rig_attach::{MassSource, attach_rig, attach_rig_with};
 pub use run::{run_steps, step};
 pub use sole_ground::{SoleGround, clamped_height, sole_ends};
+pub use standing_prints::press_standing_feet;
 pub use systems_character::{
     balance_system, foot_ik_system, foot_raycast_system, gait_system, ground_response_system,
     metrics_system, steer_system,
