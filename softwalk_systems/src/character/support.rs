@@ -306,9 +306,10 @@ struct ClearCentre {
 }
 
 /// The lowest heights of the centre of a flat sole at `plan`'s target,
-/// facing its heading and lying in the plane of `normal`, at which its
-/// heel, centre and toe are all on or above the surface, and the floor,
-/// under them; `None` when every ray misses. A sole centred over an old
+/// facing its heading and lying in the plane of `normal`, at which five
+/// points from its heel to its toe (the ends, the centre and half-way) are
+/// all on or above the surface, and the floor, under them (a rim narrower
+/// than half a sole is seen); `None` when every ray misses. A sole centred over an old
 /// print can still have its heel or toe over the fresh ground beside it.
 fn lowest_clear_centre(
     cast: &dyn Fn(Vec2) -> Option<GroundHit>,
@@ -317,8 +318,9 @@ fn lowest_clear_centre(
     normal: Vec3,
 ) -> Option<ClearCentre> {
     let half = plan.heading * (0.5 * body.foot_length);
-    [-half, Vec2::ZERO, half]
+    [-1.0, -0.5, 0.0, 0.5, 1.0]
         .into_iter()
+        .map(|f| half * f)
         .filter_map(|offset| {
             cast(plan.target + offset).map(|hit| {
                 let surface = hit.point.y - rise_along(normal, offset);
@@ -453,6 +455,32 @@ pub(super) mod tests {
             .surface;
         assert!(centre.abs() < 1e-5, "down 20°: {centre}");
         assert!(lowest_clear_centre(&|_| None, &plan, &body, Vec3::Y).is_none());
+    }
+
+    #[test]
+    fn a_rim_between_the_heel_and_the_centre_lifts_the_swinging_sole() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let plan = swinging_at(Vec2::ZERO);
+        // A neighbour's rim 3 cm high and 4 cm wide, a quarter of a sole
+        // behind the centre; level ground at 0 elsewhere.
+        let quarter = 0.25 * body.foot_length;
+        let rim = |p: Vec2| {
+            hit_at(
+                p,
+                if (p.x + quarter).abs() < 0.02 {
+                    0.03
+                } else {
+                    0.0
+                },
+            )
+        };
+        let centre = lowest_clear_centre(&rim, &plan, &body, Vec3::Y)
+            .unwrap()
+            .surface;
+        assert!(
+            (centre - 0.03).abs() < 1e-6,
+            "the sole rests on the rim: {centre}"
+        );
     }
 
     /// Level loose ground: its surface at `top`, giving `give` under a foot.
