@@ -99,25 +99,38 @@ fn flat_ground() -> TerrainRenderer {
 /// The box's colour.
 const BOX_COLOUR: Vec3 = Vec3::new(0.3, 0.4, 0.8);
 
-/// The frame with and without caster shadows.
-fn render() -> (RgbaImage, RgbaImage) {
-    let terrain = flat_ground();
-    let lighting = lighting();
-    let mesh = cuboid(Vec3::new(-HALF, 0.0, -HALF), Vec3::new(HALF, TALL, HALF));
-    let place = Mat4::from_rotation_y(TURN);
-    let meshes = [MeshInstance::new(&mesh, place, BOX_COLOUR)];
-    let scene = |shadows: bool| FrameScene {
-        terrain: Some(&terrain),
-        meshes: &meshes,
-        lighting,
+/// The box: `HALF` either side of its axis, `TALL` high, standing on y = 0.
+fn box_mesh() -> TriMesh {
+    cuboid(Vec3::new(-HALF, 0.0, -HALF), Vec3::new(HALF, TALL, HALF))
+}
+
+/// `meshes` on `terrain` in the test's light, seen from the test's camera,
+/// with or without caster shadows.
+fn draw(terrain: &TerrainRenderer, meshes: &[MeshInstance<'_>], shadows: bool) -> RgbaImage {
+    let scene = FrameScene {
+        terrain: Some(terrain),
+        meshes,
+        lighting: lighting(),
         shadows,
         ..FrameScene::new()
     };
-    let renderer = Renderer::new(WIDTH, HEIGHT).unwrap();
-    let camera = camera();
+    Renderer::new(WIDTH, HEIGHT)
+        .unwrap()
+        .render(&scene, &camera())
+}
+
+/// The frame with and without caster shadows.
+fn render() -> (RgbaImage, RgbaImage) {
+    let terrain = flat_ground();
+    let mesh = box_mesh();
+    let meshes = [MeshInstance::new(
+        &mesh,
+        Mat4::from_rotation_y(TURN),
+        BOX_COLOUR,
+    )];
     let frames = (
-        renderer.render(&scene(true), &camera),
-        renderer.render(&scene(false), &camera),
+        draw(&terrain, &meshes, true),
+        draw(&terrain, &meshes, false),
     );
     preview("sun_shadow_box", &frames.0);
     frames
@@ -307,22 +320,12 @@ fn the_shadow_edge_is_a_straight_line_where_geometry_puts_it() {
 
 #[test]
 fn ground_in_the_shadow_of_two_casters_is_no_darker_than_in_one() {
-    let (terrain, lighting) = (flat_ground(), lighting());
-    let mesh = cuboid(Vec3::new(-HALF, 0.0, -HALF), Vec3::new(HALF, TALL, HALF));
+    let terrain = flat_ground();
+    let mesh = box_mesh();
     // Two boxes side by side across the sun: their shadows overlap in a band.
     let boxes = [Vec3::ZERO, Vec3::new(0.2, 0.0, 0.25)]
         .map(|at| MeshInstance::new(&mesh, Mat4::from_translation(at), BOX_COLOUR));
-    let renderer = Renderer::new(WIDTH, HEIGHT).unwrap();
-    let draw = |meshes: &[MeshInstance<'_>], shadows: bool| {
-        let scene = FrameScene {
-            terrain: Some(&terrain),
-            meshes,
-            lighting,
-            shadows,
-            ..FrameScene::new()
-        };
-        renderer.render(&scene, &camera())
-    };
+    let draw = |meshes: &[MeshInstance<'_>], shadows: bool| draw(&terrain, meshes, shadows);
     let ground = draw(&[], false);
     let unshadowed = draw(&boxes, false);
     let (one, other, both) = (

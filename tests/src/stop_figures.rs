@@ -6,10 +6,9 @@
 use std::fmt;
 
 use glam::{Vec2, Vec3};
-use softwalk_app::paper::gait_figures::within;
 use softwalk_app::paper::gait_quality::{
-    KNEE_MAX_GOAL_DEG, KNEE_STEP_GOAL_DEG, PELVIS_STEP_GOAL_CM, SOLE_BELOW_GOAL_CM, deepest_sole,
-    pelvis_step,
+    Goal, KNEE_MAX_GOAL_DEG, KNEE_STEP_GOAL_DEG, PELVIS_STEP_GOAL_CM, SOLE_BELOW_GOAL_CM,
+    deepest_sole, pelvis_step,
 };
 use softwalk_systems::sim::WalkerMetrics;
 
@@ -18,18 +17,18 @@ use crate::sole_contact::StanceSlide;
 /// The foot-slide goal: a planted heel or toe moves at most this far per stance, metres.
 pub const SLIDE_GOAL_M: f32 = 0.02;
 /// A sole point within this of the ground counts as touching it, metres.
-pub const TOUCHING_M: f32 = 0.005;
+const TOUCHING_M: f32 = 0.005;
 /// A foot touching the ground and pitched no more than this from the slope
 /// along the walk is flat, degrees. The roll at the ends of a step (heel
 /// strike about 20°, heel rise up to 34°) is far beyond it.
-pub const FLAT_DEG: f32 = 5.0;
+const FLAT_DEG: f32 = 5.0;
 /// The longest a stop may take from the key to both feet flat, seconds: the
 /// step being taken and one closing step at a walking cadence.
 pub const FLAT_AFTER_GOAL_S: f32 = 1.2;
 /// The name [`StopFigures::failures`] gives the time to both feet flat.
 const FLAT_FIGURE: &str = "key to both feet flat";
 /// The most the centre of mass may move over the last second at rest, metres.
-pub const REST_DRIFT_GOAL_M: f32 = 0.01;
+const REST_DRIFT_GOAL_M: f32 = 0.01;
 
 /// Each foot's contact and its heel and toe, with heights measured above
 /// the ground under them.
@@ -141,33 +140,36 @@ impl StopFigures {
 
     /// The goals this stop misses, each named with its figure; empty when it meets them all.
     pub fn failures(&self) -> Vec<String> {
-        let mut out = Vec::new();
-        let mut check = |figure: &str, value: f32, limit: f32, unit: &str| {
-            if !within(value, limit) {
-                out.push(format!(
-                    "{figure} {value:.2} {unit} (goal ≤ {limit} {unit})"
-                ));
-            }
+        let goal = |figure, value, limit, unit| Goal {
+            figure,
+            value,
+            limit,
+            unit,
         };
         let flat = self.flat_after_s.unwrap_or(f32::INFINITY);
-        check(FLAT_FIGURE, flat, FLAT_AFTER_GOAL_S, "s");
-        check(
-            "pelvis step",
-            self.pelvis_step_cm,
-            PELVIS_STEP_GOAL_CM,
-            "cm",
-        );
-        check("knee step", self.knee_step_deg, KNEE_STEP_GOAL_DEG, "°");
-        check("knee max", self.knee_max_deg, KNEE_MAX_GOAL_DEG, "°");
-        check("sole below", self.sole_below_cm, SOLE_BELOW_GOAL_CM, "cm");
-        check("slide", self.slide_cm, 100.0 * SLIDE_GOAL_M, "cm");
-        check(
-            "drift at rest",
-            self.rest_drift_cm,
-            100.0 * REST_DRIFT_GOAL_M,
-            "cm",
-        );
-        out
+        [
+            goal(FLAT_FIGURE, flat, FLAT_AFTER_GOAL_S, " s"),
+            goal(
+                "pelvis step",
+                self.pelvis_step_cm,
+                PELVIS_STEP_GOAL_CM,
+                " cm",
+            ),
+            goal("knee step", self.knee_step_deg, KNEE_STEP_GOAL_DEG, "°"),
+            goal("knee max", self.knee_max_deg, KNEE_MAX_GOAL_DEG, "°"),
+            goal("sole below", self.sole_below_cm, SOLE_BELOW_GOAL_CM, " cm"),
+            goal("slide", self.slide_cm, 100.0 * SLIDE_GOAL_M, " cm"),
+            goal(
+                "drift at rest",
+                self.rest_drift_cm,
+                100.0 * REST_DRIFT_GOAL_M,
+                " cm",
+            ),
+        ]
+        .iter()
+        .filter(|g| !g.met())
+        .map(Goal::to_string)
+        .collect()
     }
 }
 

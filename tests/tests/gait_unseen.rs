@@ -31,6 +31,7 @@
 //! stance knee, the pelvis and the soles to the walk's goals.
 
 use rayon::prelude::*;
+use softwalk_app::paper::gait_quality::{PELVIS_STEP_GOAL_CM, SOLE_BELOW_GOAL_CM, deepest_sole};
 use softwalk_app::paper::recorded_run::record_run;
 use softwalk_app::paper::variants::{
     RIGID, along_x, builtin, checked, rigid_material, walker, with_material, with_slope,
@@ -281,9 +282,9 @@ fn walkers_on_unseen_slopes_meet_the_gait_goals() {
 /// first stance bends the knee no more than walking does.
 const FIRST_SECOND_STANCE_KNEE_DEG: f32 = 60.0;
 /// Largest pelvis height change in one step, metres (the gait goal's).
-const FIRST_SECOND_PELVIS_STEP_M: f32 = 0.01;
+const FIRST_SECOND_PELVIS_STEP_M: f32 = PELVIS_STEP_GOAL_CM / 100.0;
 /// Deepest a sole end may sit below the ground under it, metres (the gait goal's).
-const FIRST_SECOND_BURIED_M: f32 = 0.02;
+const FIRST_SECOND_BURIED_M: f32 = SOLE_BELOW_GOAL_CM / 100.0;
 
 /// What a walker's first second on loose ground fails of the goals above.
 fn first_second_failures(
@@ -311,10 +312,7 @@ fn first_second_failures(
     if pelvis_step > FIRST_SECOND_PELVIS_STEP_M {
         failures.push(format!("pelvis step {:.2} cm", 100.0 * pelvis_step));
     }
-    let buried = steps
-        .iter()
-        .flat_map(|m| (0..2).map(|k| m.sole_ground[k].buried(&m.character.soles[k])))
-        .fold(f32::MIN, f32::max);
+    let buried = steps.iter().map(deepest_sole).fold(f32::MIN, f32::max);
     if buried > FIRST_SECOND_BURIED_M {
         failures.push(format!("sole {:.2} cm under the ground", 100.0 * buried));
     }

@@ -137,12 +137,14 @@ fn every_probed_stop_closes_flat_and_meets_the_gait_goals() {
 fn a_standing_walker_keeps_both_feet_planted_when_the_ground_is_repainted() {
     // Snow painted under the closing step, then mud once at rest: slower
     // materials, whose walk has another stance fraction.
-    let text = "character = \"walker\"\n\
-                [[event]]\nstep = 0\nvelocity = [1.2, 0.0]\n\
-                [[event]]\nstep = 150\nvelocity = [0.0, 0.0]\n\
-                [[event]]\nstep = 190\nbrush = \"snow\"\n\
-                [[event]]\nstep = 240\nbrush = \"mud\"\n";
-    let inputs = InputScript::parse(text, Path::new("repaint.toml")).unwrap();
+    let text = format!(
+        "character = \"walker\"\n\
+         [[event]]\nstep = 0\nvelocity = [1.2, 0.0]\n\
+         [[event]]\nstep = {STOP_AT}\nvelocity = [0.0, 0.0]\n\
+         [[event]]\nstep = 190\nbrush = \"snow\"\n\
+         [[event]]\nstep = 240\nbrush = \"mud\"\n"
+    );
+    let inputs = InputScript::parse(&text, Path::new("repaint.toml")).unwrap();
     let run = record_run_with_inputs(&sand(), 330, Some(&inputs)).unwrap();
     let walked = &run.walkers[0];
     let at_rest = |m: &softwalk_systems::sim::WalkerMetrics| {

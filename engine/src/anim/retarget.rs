@@ -24,7 +24,7 @@ pub enum RetargetError {
         /// `source` or `target`.
         which: &'static str,
     },
-    /// The clip has more distinct key times than [`MAX_RETARGET_KEYS`].
+    /// The clip has more distinct key times than `MAX_RETARGET_KEYS`.
     #[error("the clip has {keys} key times, over the limit of {limit}")]
     TooManyKeys {
         /// Key times found.

@@ -22,8 +22,8 @@ impl SkinnedMesh {
         if !(cell.is_finite() && cell > 0.0) {
             return Err(AnimError::ClusterSize { cell });
         }
-        let cluster_of = self.clusters(cell);
-        let representatives = self.representatives(&cluster_of);
+        let (cluster_of, count) = self.clusters(cell);
+        let representatives = self.representatives(&cluster_of, count);
         let triangles = remapped_triangles(self.indices(), &cluster_of);
         let pick = |v: usize| representatives[v] as usize;
         let n = representatives.len();
@@ -37,11 +37,13 @@ impl SkinnedMesh {
         )
     }
 
-    /// The cluster of each vertex: clusters are numbered in the order of
-    /// their first vertex, so the result does not depend on hashing.
-    fn clusters(&self, cell: f32) -> Vec<u32> {
+    /// The cluster of each vertex, and how many clusters there are:
+    /// clusters are numbered in the order of their first vertex, so the
+    /// result does not depend on hashing.
+    fn clusters(&self, cell: f32) -> (Vec<u32>, usize) {
         let mut ids: HashMap<(u16, IVec3), u32> = HashMap::new();
-        self.positions()
+        let cluster_of = self
+            .positions()
             .iter()
             .enumerate()
             .map(|(v, p)| {
@@ -49,7 +51,8 @@ impl SkinnedMesh {
                 let next = ids.len() as u32;
                 *ids.entry(key).or_insert(next)
             })
-            .collect()
+            .collect();
+        (cluster_of, ids.len())
     }
 
     /// The joint vertex `v` follows most (the first of equal weights).
@@ -62,14 +65,9 @@ impl SkinnedMesh {
         joints[heaviest]
     }
 
-    /// Per cluster, the member vertex nearest the members' mean (the first
-    /// of equally near ones).
-    fn representatives(&self, cluster_of: &[u32]) -> Vec<u32> {
-        let n = cluster_of
-            .iter()
-            .map(|&c| c as usize + 1)
-            .max()
-            .unwrap_or(0);
+    /// Per cluster (of `n`), the member vertex nearest the members' mean
+    /// (the first of equally near ones).
+    fn representatives(&self, cluster_of: &[u32], n: usize) -> Vec<u32> {
         let mut sums = vec![(Vec3::ZERO, 0u32); n];
         for (p, &c) in self.positions().iter().zip(cluster_of) {
             let sum = &mut sums[c as usize];

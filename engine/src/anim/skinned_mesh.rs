@@ -19,7 +19,7 @@ pub struct SkinnedMesh {
 impl SkinnedMesh {
     /// A mesh in its bind pose for a skeleton of `joint_count` joints: one
     /// position, normal, 4 joint indices and 4 weights per vertex, and 3 indices
-    /// per triangle. Weights must sum to 1 within [`WEIGHT_SUM_TOLERANCE`] and are
+    /// per triangle. Weights must sum to 1 within `WEIGHT_SUM_TOLERANCE` and are
     /// then rescaled to sum to exactly 1; normals are normalised.
     pub fn new(
         positions: Vec<Vec3>,

@@ -70,7 +70,7 @@ pub struct FrameStats {
 /// layer) in parallel; then the screen is cut into fixed bands of rows,
 /// filled in parallel, each band drawing the grass, then the batches in
 /// scene order. The image is byte-identical whatever the number of threads
-/// (see [`super::raster`]).
+/// (see `super::raster`).
 #[derive(Debug, Clone)]
 pub struct Renderer {
     width: u32,

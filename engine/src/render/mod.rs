@@ -2,7 +2,7 @@
 //! colours, a camera, height-grid terrain drawn by patches with level of detail,
 //! mesh instances, grass blades and terrain shading that makes footprints readable
 //! (Lambert, sky-view ambient occlusion, soft terrain shadows, sun shadows of
-//! meshes and grass, fog). [`raster`] explains how triangles become pixels.
+//! meshes and grass, fog). `raster` explains how triangles become pixels.
 //! Frames go out through [`crate::output`]; overlays, text and plots are
 //! drawn on them by [`crate::canvas`].
 //!

@@ -27,7 +27,7 @@ impl FixedStepClock {
     }
 
     /// Adds `elapsed` real time and returns the steps due now; more than
-    /// [`MAX_OWED_STEPS`] are dropped and counted.
+    /// `MAX_OWED_STEPS` are dropped and counted.
     pub fn advance(&mut self, elapsed: Duration) -> u32 {
         self.owed += elapsed.as_secs_f64();
         let due = (self.owed / self.dt).floor();

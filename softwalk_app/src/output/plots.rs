@@ -72,7 +72,7 @@ const QUANTITIES: [Quantity; 5] = [
 /// Plot width and height, pixels.
 const PLOT_SIZE: (u32, u32) = (720, 360);
 
-/// Keeps every plotted curve as a [`DecimatedSeries`] (bounded memory) and
+/// Keeps every plotted curve as a `DecimatedSeries` (bounded memory) and
 /// writes the plots at the end.
 pub struct PlotCollector {
     names: Vec<String>,

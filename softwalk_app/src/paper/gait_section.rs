@@ -137,7 +137,7 @@ fn crowd_checks(qualities: &[(&str, GaitQuality)]) -> Vec<Check> {
 }
 
 /// One claim per built-in scene, each walked for its own duration (at most
-/// [`QUICK_GAIT_S`] with `--quick`).
+/// `QUICK_GAIT_S` with `--quick`).
 pub fn gait_quality_claims(options: &PaperOptions) -> Result<Vec<Claim>, PaperError> {
     let mut claims = Vec::new();
     for b in builtin_scenes() {

@@ -7,7 +7,8 @@ use std::sync::{Arc, OnceLock};
 
 use engine::anim::gltf::load_gltf_from_slice;
 use engine::anim::{
-    BoneMap, BoneRole, LegChain, Model, RigChains, SkinnedVertices, skin_matrices, skin_serial,
+    BoneMap, BoneRole, LegChain, Model, RigChains, SkinnedMesh, SkinnedVertices, skin_matrices,
+    skin_serial,
 };
 use engine::geom::Aabb;
 use glam::{Mat3, Mat4, Quat, Vec3};
@@ -19,6 +20,9 @@ use super::model_units::ModelUnits;
 /// (`assets/characters/human.glb`; see the README beside it), built in.
 const HUMAN_GLB: &[u8] = include_bytes!("../../../assets/characters/human.glb");
 /// How far above the lowest rest-pose foot vertex a foot vertex still counts as sole, metres.
+/// The cubes of [`CharacterRig::coarse_mesh`], as a fraction of the
+/// model's largest extent.
+pub const COARSE_MESH_CELL: f32 = 1.0 / 40.0;
 const SOLE_BAND: f32 = 0.012;
 /// Smallest share of a vertex's weight on a foot's bones for it to be part of that sole.
 const SOLE_WEIGHT: f32 = 0.5;
@@ -63,6 +67,8 @@ struct RigData {
     soles: [Vec<u32>; 2],
     sole_centres: [Vec3; 2],
     sole_lengths: [f32; 2],
+    /// The mesh clustered for figures seen small, built on first use.
+    coarse: OnceLock<SkinnedMesh>,
 }
 
 impl CharacterRig {
@@ -165,7 +171,21 @@ impl CharacterRig {
                 soles,
                 sole_centres,
                 sole_lengths,
+                coarse: OnceLock::new(),
             }),
+        })
+    }
+
+    /// The model's mesh with its vertices clustered into cubes of
+    /// [`COARSE_MESH_CELL`] of its largest extent (about a fifth of the
+    /// default human's triangles), for a figure seen small: built on first
+    /// use and shared by every clone of the rig.
+    pub fn coarse_mesh(&self) -> &SkinnedMesh {
+        self.data.coarse.get_or_init(|| {
+            let full = &self.data.model.mesh;
+            let bounds = Aabb::from_points(full.positions());
+            full.clustered((bounds.max - bounds.min).max_element() * COARSE_MESH_CELL)
+                .unwrap_or_else(|_| full.clone())
         })
     }
 

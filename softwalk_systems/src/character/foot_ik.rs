@@ -29,7 +29,7 @@ pub struct FootIK {
     /// ground raised by [`Self::step_up`] this step, metres (positive: lowered).
     pub pelvis_drop: f32,
     /// How far the floors under the feet bearing the weight stand above the
-    /// body's ground this step, metres (see [`step_up`]): up a step, the
+    /// body's ground this step, metres (see `step_up`): up a step, the
     /// pelvis walks over the upper side as soon as a foot bears weight there.
     pub step_up: f32,
     /// Foot pitch each leg added to its scheduled roll this step so that it
@@ -46,12 +46,12 @@ pub struct FootIK {
     /// Ankle position of each foot last step (world), for velocities.
     pub last_ankles: [Vec3; 2],
     /// Height of each flat sole-centre target last step: a target may fall
-    /// by at most [`MAX_FOOT_FALL_SPEED`] (a vanishing platform, a key
+    /// by at most `MAX_FOOT_FALL_SPEED` (a vanishing platform, a key
     /// dropping into a print), so a foot drops onto the ground instead of
     /// teleporting.
     pub flat_heights: Option<[f32; 2]>,
     /// Knee flexion of each leg last step, radians: it changes by at most
-    /// [`MAX_KNEE_SPEED`].
+    /// `MAX_KNEE_SPEED`.
     pub knee_flexion: Option<[f32; 2]>,
 }
 
@@ -258,7 +258,7 @@ fn unroll_to_length(
 /// Each foot rolls as the gait schedules it (heel strike about the heel,
 /// heel rise about the toe), and further where a leg cannot reach its foot;
 /// the pelvis follows the height the legs need at a bounded speed
-/// ([`PelvisFollower`]); the knees stay within their range and speed. A
+/// (`PelvisFollower`); the knees stay within their range and speed. A
 /// swinging foot that ploughs holds its landing in `rays` (see
 /// [`super::FootSupport::landing_held`]).
 pub fn foot_ik_stage(

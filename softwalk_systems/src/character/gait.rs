@@ -244,6 +244,11 @@ impl GaitParams {
     pub fn cycle_time(&self) -> f32 {
         self.stride / self.speed
     }
+
+    /// Duration of one foot's swing, seconds: the cycle less its stance.
+    pub fn swing_time(&self) -> f32 {
+        self.cycle_time() * (1.0 - self.duty)
+    }
 }
 
 /// What the walk cycle asks of one foot this step.
@@ -305,7 +310,7 @@ pub struct Gait {
     /// Vertical pelvis offset (<= 0), metres.
     pub bob: f32,
     /// Amplitude of the bob, metres: it follows the walk's
-    /// [`GaitParams::bob_amplitude`] at [`BOB_AMPLITUDE_RATE`].
+    /// [`GaitParams::bob_amplitude`] at `BOB_AMPLITUDE_RATE`.
     pub bob_amplitude: f32,
     /// Left arm swing angle, radians (positive forward; the right arm is opposite).
     pub arm_swing: f32,
@@ -421,7 +426,7 @@ impl Gait {
             return 0.0;
         }
         let phase_rate = self.params.speed / self.params.stride.max(f32::EPSILON);
-        let swing = (TAU * (2.0 * self.phase - 0.35)).cos();
+        let swing = bob_angle(self.phase).cos();
         self.bob_amplitude * 2.0 * TAU * phase_rate * swing
     }
 
@@ -652,14 +657,15 @@ pub fn gait_stage(
     dt: f32,
 ) {
     let dt = clamp_dt(dt);
-    if !(gait.stopped && path.is_finished(gait.distance)) {
+    let finishing = path.is_finished(gait.distance);
+    if !(gait.stopped && finishing) {
         gait.params = walk_params(body, path, modifiers);
     }
     if gait.backward != path.is_backward() {
         gait.backward = path.is_backward();
         gait.phase = (gait.params.duty - gait.phase).rem_euclid(1.0);
     }
-    if gait.stopped && dt > 0.0 && !path.is_finished(gait.distance) {
+    if gait.stopped && dt > 0.0 && !finishing {
         gait.stopped = false;
     }
     if dt == 0.0 || gait.stopped {
@@ -673,7 +679,6 @@ pub fn gait_stage(
         }
         return;
     }
-    let finishing = path.is_finished(gait.distance);
     if finishing && gait.double_support() {
         gait.keep_feet_planted();
         gait.stopped = true;
@@ -682,16 +687,16 @@ pub fn gait_stage(
     }
     let step = gait.params.speed * dt;
     let before = gait.pelvis.position;
-    if !finishing {
+    if finishing {
+        gait.roll = closing_roll(gait, dt);
+    } else {
         gait.distance += step;
         if !path.is_looped() {
             gait.distance = gait.distance.min(path.end_distance());
         }
-    }
-    if finishing {
-        gait.roll = closing_roll(gait, dt);
-    } else if gait.roll < 1.0 {
-        gait.roll = (gait.roll + dt / STOP_SETTLE_TIME).min(1.0);
+        if gait.roll < 1.0 {
+            gait.roll = (gait.roll + dt / STOP_SETTLE_TIME).min(1.0);
+        }
     }
     gait.phase = (gait.phase + step / gait.params.stride).fract();
     gait.pelvis = path.point_at(gait.distance);
@@ -706,7 +711,12 @@ pub fn gait_stage(
 /// The pelvis bob of amplitude `amplitude` at cycle phase `phase` (Boulic's
 /// curve, twice per cycle), metres, between `-2 * amplitude` and 0.
 fn bob_at(amplitude: f32, phase: f32) -> f32 {
-    -amplitude + amplitude * (TAU * (2.0 * phase - 0.35)).sin()
+    -amplitude + amplitude * bob_angle(phase).sin()
+}
+
+/// The angle of the bob's curve at cycle phase `phase`, radians (see [`bob_at`]).
+fn bob_angle(phase: f32) -> f32 {
+    TAU * (2.0 * phase - 0.35)
 }
 
 #[cfg(test)]

@@ -91,7 +91,7 @@ impl GroundCross {
                 give: h.give.max(0.0),
             })
         };
-        // The centre and the four ends: the mean, the give and the slope.
+        // The centre and the four ends: the mean, the floor and the slope.
         let ends = [
             Vec2::ZERO,
             forward * reach_along,

@@ -66,7 +66,7 @@ pub use balance::{
     RigidProxy, animated_com, balance_stage, brake_lean, turn_lean,
 };
 pub use body::{BodyMass, CharacterBody};
-pub use character_rig::{ArmChain, CharacterRig};
+pub use character_rig::{ArmChain, COARSE_MESH_CELL, CharacterRig};
 pub use clip_gait::{CLIP_DUTY_RANGE, ClipGait, ClipTiming};
 pub use clip_scratch::ClipScratch;
 pub use clip_walk::ClipWalk;

@@ -18,7 +18,7 @@ const BODY_SAMPLE_REACH: f32 = 0.3;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GroundKey {
     /// The ground point under the part of the sole that touches (or will
-    /// touch) the ground (see [`FootPlan::contact_along`]).
+    /// touch) the ground (see `FootPlan::contact_along`).
     pub point: Vec3,
     /// Unit ground normal.
     pub normal: Vec3,
@@ -29,14 +29,10 @@ pub struct GroundKey {
     pub pressing: bool,
     /// The lowest the sole's lowest point may be pushed, metres: the floor
     /// under a swinging sole (the surface less what the ground gives), or
-    /// the floor a planted foot stands on (see [`SupportKey::floor`]).
-    ///
-    /// [`SupportKey::floor`]: super::support::SupportKey::floor
+    /// the floor a planted foot stands on (see `SupportKey::floor`).
     pub floor: f32,
     /// The highest surface under a swinging sole (see
-    /// [`SupportKey::surface`]), or the floor a planted foot stands on.
-    ///
-    /// [`SupportKey::surface`]: super::support::SupportKey::surface
+    /// `SupportKey::surface`), or the floor a planted foot stands on.
     pub surface: f32,
     /// Top of a virtual platform under the foot (set by the vegetation's
     /// platform system): the sole centre stays on or above it.

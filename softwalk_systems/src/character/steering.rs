@@ -216,6 +216,8 @@ pub fn curve_radius(settings: &SteeringSettings, speed: f32) -> f32 {
 /// the factor the walking speed must be scaled by this step of `dt` seconds
 /// (multiply it into [`GaitModifiers::speed_scale`]); the factor follows the
 /// wish at [`SteeringSettings::speed_change_rate`], or the [`Brake`] of a stop.
+/// A stop also needs the braking and the cadence held in the gait's
+/// modifiers: call [`brake_modifiers`], which runs this stage and sets them.
 pub fn steer_stage(
     steering: &mut Steering,
     gait: &Gait,

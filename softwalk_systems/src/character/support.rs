@@ -148,7 +148,7 @@ impl FootSupport {
             self.planted = false;
             self.stepped = true;
         }
-        let swing_time = params.cycle_time() * (1.0 - params.duty);
+        let swing_time = params.swing_time();
         let u = plan.swing.clamp(0.0, 1.0);
         let pushing_from = 1.0 - self.push_time() / swing_time.max(f32::EPSILON);
         // The landing is aimed until the foot starts pushing into it, or
@@ -274,7 +274,7 @@ pub struct SupportKey {
     /// ground under it (its surface less what it gives), never above where
     /// the key puts the sole; `f32::MIN` where no ray found ground.
     pub floor: f32,
-    /// The highest surface under the sole's heel, centre and toe, metres
+    /// The highest surface under five points from the sole's heel to its toe, metres
     /// (for a foot pushing into its landing, how far it has pushed less the
     /// lift its swing still has, never below the landing's floor; the floor
     /// of a planted foot; `f32::MIN` where no ray found ground): a foot goes
@@ -295,7 +295,7 @@ impl SupportKey {
     }
 }
 
-/// Heights of the centre of a flat sole at which its heel, centre and toe
+/// Heights of the centre of a flat sole at which five points from its heel to its toe
 /// are all on or above the ground under them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct ClearCentre {
@@ -308,8 +308,8 @@ struct ClearCentre {
 /// The lowest heights of the centre of a flat sole at `plan`'s target,
 /// facing its heading and lying in the plane of `normal`, at which five
 /// points from its heel to its toe (the ends, the centre and half-way) are
-/// all on or above the surface, and the floor, under them (a rim narrower
-/// than half a sole is seen); `None` when every ray misses. A sole centred over an old
+/// all on or above the surface, and the floor, under them (a rim a quarter of a sole
+/// wide or wider is always seen); `None` when every ray misses. A sole centred over an old
 /// print can still have its heel or toe over the fresh ground beside it.
 fn lowest_clear_centre(
     cast: &dyn Fn(Vec2) -> Option<GroundHit>,

@@ -41,7 +41,7 @@ pub(super) fn swing_knee_limit(body: &CharacterBody, params: &GaitParams, plan: 
     if plan.phase == FootPhase::Stance {
         return MAX_KNEE_FLEXION;
     }
-    let swing_time = params.cycle_time() * (1.0 - params.duty);
+    let swing_time = params.swing_time();
     let time_left = (1.0 - plan.swing).clamp(0.0, 1.0) * swing_time;
     let landing = flexion_at_distance(STANDING_LEG * body.leg_reach(), body.thigh, body.shank);
     let unbend = EXTENSION_SPEED_SHARE * MAX_KNEE_SPEED * time_left;
@@ -154,7 +154,7 @@ mod tests {
     fn the_bound_falls_to_a_standing_knee_at_the_landing_no_faster_than_the_knee() {
         for desc in [CharacterDesc::new(1.0, 22.0), CharacterDesc::adult()] {
             let (body, params) = walk(desc);
-            let swing_time = params.cycle_time() * (1.0 - params.duty);
+            let swing_time = params.swing_time();
             let standing =
                 flexion_at_distance(STANDING_LEG * body.leg_reach(), body.thigh, body.shank);
             let landing = swing_knee_limit(&body, &params, &swinging(1.0));

@@ -153,7 +153,7 @@ impl SimBuilder {
     }
 
     /// The app, its schedule resolved, every character standing in the
-    /// prints its soles pressed ([`press_standing_feet`]). Fails without a
+    /// prints its soles pressed (`standing_prints::press_standing_feet`). Fails without a
     /// terrain.
     pub fn build(mut self) -> Result<App, SimError> {
         if !self.app.world.contains_resource::<GroundState>() {

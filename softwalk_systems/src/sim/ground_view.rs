@@ -40,13 +40,14 @@ impl Ground for SceneGround<'_> {
         // The smooth grid normal (not the triangle's) keeps the feet from
         // snapping between facets.
         // Loose ground gives under a foot; meshes do not.
-        let on_grid = at == Vec2::new(x, z);
+        // Beyond the grid's edge (a clamped point) nothing can be carved.
         let (normal, give) = match (hit.target, self.terrain) {
             (HitTarget::Grid { .. }, Some(t)) => (
                 t.grid().normal_at(at.x, at.y).unwrap_or(hit.normal),
-                match on_grid {
-                    true => t.give_below(at.x, at.y, hit.point.y).unwrap_or(0.0),
-                    false => 0.0,
+                if at == Vec2::new(x, z) {
+                    t.give_below(at.x, at.y, hit.point.y).unwrap_or(0.0)
+                } else {
+                    0.0
                 },
             ),
             _ => (hit.normal, 0.0),

@@ -68,7 +68,6 @@ pub use pipeline::add_pipeline;
 pub use rig_attach::{MassSource, attach_rig, attach_rig_with};
 pub use run::{run_steps, step};
 pub use sole_ground::{SoleGround, clamped_height, sole_ends};
-pub use standing_prints::press_standing_feet;
 pub use systems_character::{
     balance_system, foot_ik_system, foot_raycast_system, gait_system, ground_response_system,
     metrics_system, steer_system,

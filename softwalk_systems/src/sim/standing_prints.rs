@@ -15,28 +15,18 @@
 
 use engine::ecs::World;
 
-use super::components::SystemFault;
 use super::error::SimError;
+use super::run::take_fault;
 use super::systems_terrain::{carve_system, refit_system};
 
 /// Presses every character's standing soles into the ground, once, before
 /// the first step: the `carve` system over the feet as posed, then `refit`
 /// closes the change log (the grid BVH and the renderer see the prints).
 /// A foot carving refuses is a [`SimError::System`] naming `carve` at step 0.
-pub fn press_standing_feet(world: &mut World) -> Result<(), SimError> {
+pub(crate) fn press_standing_feet(world: &mut World) -> Result<(), SimError> {
     carve_system(world);
     refit_system(world);
-    let fault = world
-        .get_resource_mut::<SystemFault>()
-        .and_then(|mut f| f.0.take());
-    match fault {
-        Some((system, message)) => Err(SimError::System {
-            system,
-            step: 0,
-            message,
-        }),
-        None => Ok(()),
-    }
+    take_fault(world, 0)
 }
 
 #[cfg(test)]

@@ -127,7 +127,7 @@ impl FootPrint {
 /// compacted and 1 - c_t is spread over the rim ring of [`rim_width`] just
 /// outside the pressed samples, weighted linearly from 1 at its inner edge
 /// to 0 at its outer edge. Samples off the grid, and samples a sole holds
-/// this step (any sole's, see [`HeldMask`](super::held::HeldMask)), get
+/// this step (any sole's, see `HeldMask`), get
 /// none: sand pushed out of one print cannot go under another planted foot.
 /// With no rim sample left the volume counts as compacted.
 ///

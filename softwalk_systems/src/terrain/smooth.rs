@@ -83,7 +83,7 @@ pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
 /// [`smoothing_duration`] (`dt`, or one reference step for a released
 /// print), where `s` is the mean
 /// smoothness of its two samples' materials, scaled by their trodden level
-/// (see [`SMOOTHING_MIN_LEVEL`]). In cells that is
+/// (see `SMOOTHING_MIN_LEVEL`). In cells that is
 /// [`smoothing_pass_equivalent`] full passes; the call runs
 /// `ceil(largest edge's passes)` passes (at most [`MAX_SMOOTHING_PASSES`]),
 /// each edge at its share of [`DIFFUSION_RATE`], so every edge's variance
@@ -94,7 +94,7 @@ pub fn smoothing_duration(hf: &Heightfield, window: GridRect, dt: f32) -> f32 {
 /// takes more than a quarter of a sample's height above its firm floor in a
 /// pass ([`Heightfield::firm_floor`]), so smoothing never takes a sample
 /// below it. An edge carries flux only if one of its samples has a trodden
-/// level of at least [`SMOOTHING_MIN_LEVEL`], so natural terrain is never
+/// level of at least `SMOOTHING_MIN_LEVEL`, so natural terrain is never
 /// flattened. It does not conduct either if one of its samples is held by a
 /// sole this step (the foot occupies the print; its walls are smoothed once
 /// it lifts).

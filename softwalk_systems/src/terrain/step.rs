@@ -19,7 +19,7 @@ use crate::foot::FootSole;
 /// The usual chain of the carve, smooth and settle systems, for one foot:
 /// `let r = carve(..)?; let s = smooth(hf, r, dt); settle_pending(hf, dt);
 /// settle_step(hf, stage_window(hf, r), s, dt)`. Settling is spread over steps
-/// ([`settle_step`]): after a release, keep stepping (the foot lifted) until
+/// (`settle_step`): after a release, keep stepping (the foot lifted) until
 /// [`Heightfield::settling_pending`] is false for the print's final shape.
 pub fn step_foot(
     hf: &mut Heightfield,

@@ -4,21 +4,18 @@
 //! default human) that skins, casts shadows and draws that much faster.
 
 use engine::anim::{SkinnedMesh, SkinnedVertices, skin};
-use engine::geom::{Aabb, TriMesh};
+use engine::geom::TriMesh;
 use glam::{Affine3A, Mat4};
 
 use crate::character::{CharacterBody, CharacterRig, ClipScratch, ClipWalk, Gait, Pose, RigPose};
 use crate::foot::FootState;
-
-/// The coarse copy's cubes, as a fraction of the model's largest extent.
-const COARSE_CELL: f32 = 1.0 / 40.0;
 
 /// How much of a figure's mesh is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Detail {
     /// Every triangle of the model.
     Full = 0,
-    /// The model's vertices clustered into cubes of [`COARSE_CELL`] of its size.
+    /// The rig's [`CharacterRig::coarse_mesh`].
     Coarse = 1,
 }
 
@@ -26,8 +23,6 @@ pub(super) enum Detail {
 /// the last frame.
 pub(super) struct SkinnedFigure {
     rig: CharacterRig,
-    /// The model's mesh clustered, for [`Detail::Coarse`].
-    coarse: SkinnedMesh,
     rig_pose: RigPose,
     clip_scratch: ClipScratch,
     globals: Vec<Mat4>,
@@ -42,15 +37,9 @@ pub(super) struct SkinnedFigure {
 impl SkinnedFigure {
     /// A figure of `rig`, in its rest pose until the first update.
     pub(super) fn new(rig: CharacterRig) -> SkinnedFigure {
-        let full = &rig.model().mesh;
-        let bounds = Aabb::from_points(full.positions());
-        let coarse = full
-            .clustered((bounds.max - bounds.min).max_element() * COARSE_CELL)
-            .unwrap_or_else(|_| full.clone());
-        let meshes = [rest_mesh(full), rest_mesh(&coarse)];
+        let meshes = [rest_mesh(&rig.model().mesh), rest_mesh(rig.coarse_mesh())];
         SkinnedFigure {
             rig,
-            coarse,
             rig_pose: RigPose::default(),
             clip_scratch: ClipScratch::default(),
             globals: Vec::new(),
@@ -82,7 +71,7 @@ impl SkinnedFigure {
         self.detail = detail;
         let source = match detail {
             Detail::Full => &self.rig.model().mesh,
-            Detail::Coarse => &self.coarse,
+            Detail::Coarse => self.rig.coarse_mesh(),
         };
         let mesh = &mut self.meshes[detail as usize];
         // The matrices cover every joint of the skeleton the mesh was checked against.
@@ -115,6 +104,8 @@ fn rest_mesh(source: &SkinnedMesh) -> TriMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::character::COARSE_MESH_CELL;
+    use engine::geom::Aabb;
 
     #[test]
     fn the_coarse_human_fills_the_same_box_with_a_fifth_of_the_triangles() {
@@ -125,7 +116,7 @@ mod tests {
             Aabb::from_points(&full.positions),
             Aabb::from_points(&coarse.positions),
         );
-        let cell = (fine.max - fine.min).max_element() * COARSE_CELL;
+        let cell = (fine.max - fine.min).max_element() * COARSE_MESH_CELL;
         assert!((rough.min - fine.min).abs().max_element() < cell);
         assert!((rough.max - fine.max).abs().max_element() < cell);
         assert_eq!(figure.mesh().triangles.len(), full.triangles.len());
