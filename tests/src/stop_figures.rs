@@ -140,12 +140,7 @@ impl StopFigures {
 
     /// The goals this stop misses, each named with its figure; empty when it meets them all.
     pub fn failures(&self) -> Vec<String> {
-        let goal = |figure, value, limit, unit| Goal {
-            figure,
-            value,
-            limit,
-            unit,
-        };
+        let goal = Goal::new;
         let flat = self.flat_after_s.unwrap_or(f32::INFINITY);
         [
             goal(FLAT_FIGURE, flat, FLAT_AFTER_GOAL_S, " s"),

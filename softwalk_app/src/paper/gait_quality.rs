@@ -80,6 +80,16 @@ pub struct Goal {
 }
 
 impl Goal {
+    /// The goal that `figure`, measured as `value` (in `unit`), is at most `limit`.
+    pub fn new(figure: &'static str, value: f32, limit: f32, unit: &'static str) -> Goal {
+        Goal {
+            figure,
+            value,
+            limit,
+            unit,
+        }
+    }
+
     /// True when the value is at most the limit (NaN fails).
     pub fn met(&self) -> bool {
         self.value <= self.limit
@@ -155,12 +165,7 @@ impl GaitQuality {
 
     /// Every figure against its goal, in the order of the design's table.
     pub fn goals(&self) -> [Goal; 6] {
-        let goal = |figure, value, limit, unit| Goal {
-            figure,
-            value,
-            limit,
-            unit,
-        };
+        let goal = Goal::new;
         [
             goal(
                 "pelvis step",
