@@ -16,6 +16,7 @@ use softwalk_app::paper::recorded_run::{RecordedRun, record_run};
 use softwalk_app::paper::stillness::Stillness;
 use softwalk_app::paper::variants::checked;
 use softwalk_app::scene::{PathSpec, Scene, builtin_scenes};
+use softwalk_systems::character::CharacterDesc;
 
 /// Length of each built-in scene's measured walk, seconds (at its own 60 Hz step).
 const SCENE_WALK_S: f32 = 5.0;
@@ -118,6 +119,62 @@ fn sand_and_snow_walks_do_not_depend_on_the_step_rate() {
         }
     }
     assert_none("step-rate independence", &failures);
+}
+
+/// The goals of the 60 Hz walk at step `dt`: the pelvis and knee steps
+/// are speeds (1 cm and 10° per 1/60 s), so a walk stepped at 30 Hz may move
+/// twice as far in one of its steps; every other goal is the same.
+fn failures_at_rate(run: &RecordedRun, dt: f32) -> Vec<String> {
+    let mut q = run.quality(0);
+    let per_sixtieth = 1.0 / (60.0 * dt);
+    q.pelvis_step_cm *= per_sixtieth;
+    q.knee_step_deg *= per_sixtieth;
+    q.failures()
+}
+
+#[test]
+fn small_and_adult_walkers_meet_the_gait_goals_at_30_and_120_hz() {
+    // A 1.0 m walker snapped its knee straight at each landing and bent it
+    // again at full speed: at 30 Hz that read as a stance flicker.
+    let small = CharacterDesc {
+        froude: 0.15,
+        ..CharacterDesc::new(1.0, 22.0)
+    };
+    let mut cases = Vec::new();
+    for name in ["sand-flat", "snow-flat", "mud-flat"] {
+        for hz in [30u32, 120] {
+            for body in [None, Some(small)] {
+                cases.push((name, hz, body));
+            }
+        }
+    }
+    let failures: Vec<String> = cases
+        .par_iter()
+        .flat_map(|&(name, hz, body)| {
+            let mut scene = builtin(name);
+            if let Some(body) = body {
+                scene.characters[0].body = body;
+                scene.characters[0].path = PathSpec::Straight {
+                    start: [1.0, 5.0],
+                    heading_deg: 0.0,
+                    length: 8.0,
+                };
+            }
+            let dt = 1.0 / hz as f32;
+            let run = walk(&at_rate(&scene, dt), COMPARED_WALK_S);
+            let who = if body.is_some() {
+                "1.0 m walker"
+            } else {
+                "walker"
+            };
+            println!("{name} at {hz} Hz, {who}: {}", run.quality(0));
+            failures_at_rate(&run, dt)
+                .into_iter()
+                .map(|f| format!("{name} at {hz} Hz, {who}: {f}"))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert_none("gait goals at 30 and 120 Hz", &failures);
 }
 
 /// The built-in snow walk on a 12 x 3 m terrain of `resolution` samples along

@@ -7,14 +7,14 @@ use glam::{Quat, Vec2, Vec3};
 use super::balance::RigidProxy;
 use super::body::CharacterBody;
 use super::gait::{FootPlan, Gait, clamp_dt, contact_offset};
-use super::ik::{flexion_at_distance, lift_to_reach, limit_flexion_change, solve_two_bone};
+use super::ik::{clamp_flexion, flexion_at_distance, lift_to_reach, solve_two_bone};
 use super::pelvis::{PelvisFollower, climb_speed};
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
 use super::stance_ground::{step_up, unloaded_give};
 use super::support::sole_direction;
-use super::swing_knee::{MAX_KNEE_FLEXION, MAX_KNEE_SPEED, STANDING_LEG, knee_limit};
+use super::swing_knee::{MAX_KNEE_FLEXION, STANDING_LEG, flexion_reach, knee_limit};
 use crate::foot::{FootPhase, FootSole, FootState, Side};
 use crate::ground::rise_along;
 use crate::terrain::SINK_TIME_S;
@@ -492,8 +492,7 @@ fn solve_legs(
         let pole = hip_at + forward * body.leg_reach();
         let (l1, l2) = (body.thigh, body.shank);
         // The knee's range, then its speed.
-        let mut ankle_target =
-            limit_flexion_change(hip_at, feet[k].ankle, 0.0, knee_limits[k], l1, l2);
+        let mut ankle_target = clamp_flexion(hip_at, feet[k].ankle, 0.0, knee_limits[k], l1, l2);
         if !planted[k] && ankle_target != feet[k].ankle {
             // A swinging foot the knee cannot lift goes straight down where
             // it is in its swing, onto the ground its floor was read from.
@@ -501,8 +500,8 @@ fn solve_legs(
             ankle_target = lift_to_reach(hip_at, feet[k].ankle, length).unwrap_or(ankle_target);
         }
         if let (Some(last), true) = (ik.knee_flexion, dt > 0.0) {
-            let step = MAX_KNEE_SPEED * dt;
-            ankle_target = limit_flexion_change(hip_at, ankle_target, last[k], step, l1, l2);
+            let (least, most) = flexion_reach(last[k], dt);
+            ankle_target = clamp_flexion(hip_at, ankle_target, least, most, l1, l2);
         }
         let length = ankle_target.distance(hip_at).min(l1 + l2);
         let foot = unroll_to_length(body, hip_at, &feet[k], length);

@@ -54,20 +54,14 @@ pub fn distance_at_flexion(flexion: f32, l1: f32, l2: f32) -> f32 {
 }
 
 /// `target` moved along the line from `root` so that the chain's flexion
-/// differs from `last` by at most `max_change` radians: a joint cannot turn
-/// faster than its muscles, so a target that jumps is followed over a few
-/// steps instead of in one.
-pub fn limit_flexion_change(
-    root: Vec3,
-    target: Vec3,
-    last: f32,
-    max_change: f32,
-    l1: f32,
-    l2: f32,
-) -> Vec3 {
+/// lies in `[least, most]` radians: within a knee's range, or within what it
+/// can turn in one step from its last flexion (a joint cannot turn faster
+/// than its muscles, so a target that jumps is followed over a few steps
+/// instead of in one).
+pub fn clamp_flexion(root: Vec3, target: Vec3, least: f32, most: f32, l1: f32, l2: f32) -> Vec3 {
     let to = target - root;
     let flexion = flexion_at_distance(to.length(), l1, l2);
-    let limited = flexion.clamp(last - max_change, last + max_change);
+    let limited = flexion.clamp(least, most);
     if limited == flexion {
         return target;
     }
@@ -99,15 +93,15 @@ mod tests {
     }
 
     #[test]
-    fn flexion_change_is_limited_along_the_line() {
+    fn flexion_is_clamped_along_the_line() {
         let root = Vec3::new(0.0, 1.0, 0.0);
         let target = Vec3::new(0.0, 0.4, 0.0);
-        let limited = limit_flexion_change(root, target, 0.1, 0.1, 0.45, 0.45);
+        let limited = clamp_flexion(root, target, 0.0, 0.2, 0.45, 0.45);
         let s = solve_two_bone(root, limited, root + Vec3::Z, 0.45, 0.45);
         let flexion = (s.mid - root).angle_between(s.end - s.mid);
         assert!((flexion - 0.2).abs() < 1e-3, "{flexion}");
         assert!(limited.x.abs() < 1e-6 && limited.y < target.y);
-        let free = limit_flexion_change(root, target, 1.5, 2.0, 0.45, 0.45);
+        let free = clamp_flexion(root, target, 0.0, 3.5, 0.45, 0.45);
         assert_eq!(free, target);
     }
 

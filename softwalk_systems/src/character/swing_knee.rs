@@ -27,6 +27,12 @@ pub const MAX_KNEE_FLEXION: f32 = 2.05;
 /// Fastest a knee bends or straightens, rad/s (about 540°/s; walking
 /// peaks at about 400–450°/s).
 pub const MAX_KNEE_SPEED: f32 = 9.5;
+/// Rate at which a nearly straight knee may close its last degrees, 1/s:
+/// its flexion falls at most as `exp(-rate · t)`. The leg's length barely
+/// changes over the last degrees, so a target that asks for a straight knee
+/// would snap it straight at full speed and bend it again at the landing;
+/// a real knee is braked there and eases into the stance's flexion.
+pub const STRAIGHTENING_RATE: f32 = 22.0;
 /// Speed at which the bound falls towards the landing, as a fraction of
 /// [`MAX_KNEE_SPEED`]: the rest is slack for the knee to follow the bound
 /// while its foot is also coming down.
@@ -46,6 +52,14 @@ pub(super) fn swing_knee_limit(body: &CharacterBody, params: &GaitParams, plan: 
     let landing = flexion_at_distance(STANDING_LEG * body.leg_reach(), body.thigh, body.shank);
     let unbend = EXTENSION_SPEED_SHARE * MAX_KNEE_SPEED * time_left;
     (landing + unbend).min(MAX_KNEE_FLEXION)
+}
+
+/// The range a knee bent `last` radians may turn to in `dt` seconds: bent
+/// at up to [`MAX_KNEE_SPEED`], straightened at up to that speed and, near
+/// straight, no faster than [`STRAIGHTENING_RATE`] lets it.
+pub(super) fn flexion_reach(last: f32, dt: f32) -> (f32, f32) {
+    let least = (last - MAX_KNEE_SPEED * dt).max(last * (-STRAIGHTENING_RATE * dt).exp());
+    (least, last + MAX_KNEE_SPEED * dt)
 }
 
 /// The least knee flexion at which a foot whose ankle is aimed at `ankle`
@@ -194,5 +208,27 @@ mod tests {
         let mut plan = swinging(0.0);
         plan.phase = FootPhase::Stance;
         assert_eq!(swing_knee_limit(&body, &params, &plan), MAX_KNEE_FLEXION);
+    }
+
+    #[test]
+    fn a_nearly_straight_knee_eases_into_straight_at_any_step_rate() {
+        // Far from straight the knee turns at full speed either way.
+        let (least, most) = flexion_reach(1.5, 1.0 / 60.0);
+        assert!((1.5 - least - MAX_KNEE_SPEED / 60.0).abs() < 1e-6);
+        assert!((most - 1.5 - MAX_KNEE_SPEED / 60.0).abs() < 1e-6);
+        // From 20°, a target asking for a straight knee is followed over
+        // several steps: still bent about 7° after 50 ms, and 2° after
+        // 100 ms, at 30 Hz, 60 Hz or 120 Hz alike.
+        for hz in [30u32, 60, 120] {
+            let dt = 1.0 / hz as f32;
+            let mut knee = 20f32.to_radians();
+            for step in 1..=hz / 10 {
+                knee = flexion_reach(knee, dt).0;
+                let t = step as f32 * dt;
+                let expected = 20f32.to_radians() * (-STRAIGHTENING_RATE * t).exp();
+                assert!((knee - expected).abs() < 1e-4, "{hz} Hz, {t} s: {knee}");
+            }
+            assert!(knee.to_degrees() > 2.0, "{hz} Hz: {}", knee.to_degrees());
+        }
     }
 }
