@@ -200,12 +200,12 @@ impl Archetype {
     }
 }
 
-#[cfg(test)]
+/// The column check exists in debug builds only.
+#[cfg(all(test, debug_assertions))]
 mod tests {
     use super::super::world::World;
 
     #[test]
-    #[cfg(debug_assertions)]
     fn a_column_position_is_checked_against_the_requested_type_in_debug_builds() {
         let mut world = World::new();
         world.spawn((1u32, 2.0f64));
