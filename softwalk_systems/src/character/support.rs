@@ -30,6 +30,10 @@ const STEP_OUT_TIME: f32 = 0.3;
 /// Give of a landing (metres) from which a foot pushes into it for the
 /// ground's whole [`SINK_TIME_S`]; a landing that gives less takes less.
 pub const FULL_PUSH_GIVE: f32 = 0.02;
+/// How far (metres) the sole a leg really reached may be below the floor
+/// of the ground its swing moves it over before the swing waits for it
+/// (see [`FootSupport::trail`]).
+pub const WAIT_BELOW_FLOOR: f32 = 0.01;
 
 /// A ground point under a sole centre, with its normal and how far it gives.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -105,6 +109,20 @@ pub struct FootSupport {
     /// True once the foot has lifted off: its landing is one it stepped
     /// onto, not the foothold the walker started standing on.
     pub stepped: bool,
+    /// Height of the sole centre the leg really reached last step (set by
+    /// the foot IK; `f32::MAX` before it has placed the foot).
+    pub reached: f32,
+    /// How far (x, z) the swinging foot's key trails its swing's target,
+    /// metres. In the rising half of the swing, a foot its leg leaves below
+    /// the floor of the ground the swing would move it over waits where it
+    /// is: a leg that cannot lift the foot out of a deep print in time does
+    /// not push it into the firmer ground ahead (a sand edge after snow).
+    /// The trail closes evenly by the time the foot pushes into its landing.
+    pub trail: Vec2,
+    /// Swing progress at the last step, for closing [`Self::trail`].
+    pub last_swing: f32,
+    /// Where (x, z) the swinging foot's key was last step.
+    pub key_at: Vec2,
 }
 
 impl FootSupport {
@@ -118,6 +136,10 @@ impl FootSupport {
             hit: true,
             landing_held: false,
             stepped: false,
+            reached: f32::MAX,
+            trail: Vec2::ZERO,
+            last_swing: 0.0,
+            key_at: Vec2::new(point.point.x, point.point.z),
         }
     }
 
@@ -147,6 +169,9 @@ impl FootSupport {
             self.left_rim = self.landing.point.y;
             self.planted = false;
             self.stepped = true;
+            self.trail = Vec2::ZERO;
+            self.last_swing = 0.0;
+            self.key_at = plan.target;
         }
         let swing_time = params.swing_time();
         let u = plan.swing.clamp(0.0, 1.0);
@@ -163,6 +188,7 @@ impl FootSupport {
             .lerp(self.landing.normal, smoothstep(u))
             .try_normalize()
             .unwrap_or(Vec3::Y);
+        let plan = &self.follow(plan, body, &cast, normal, pushing_from);
         let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
         if u > pushing_from {
             let pushed = (u - pushing_from) / (1.0 - pushing_from);
@@ -199,6 +225,38 @@ impl FootSupport {
             floor: floor.min(height),
             surface: clear.map_or(f32::MIN, |c| c.surface.min(height)),
         }
+    }
+
+    /// `plan` with its target moved back by the swing's trail, after
+    /// updating the trail (see [`Self::trail`]): it closes evenly until
+    /// `pushing_from`, unless, in the rising half of the swing, the sole
+    /// centre the leg reached last step is more than [`WAIT_BELOW_FLOOR`]
+    /// below the floor under the sole (lying in the plane of `normal`) where
+    /// the closed trail would put it; then the key stays where it was.
+    fn follow(
+        &mut self,
+        plan: &FootPlan,
+        body: &CharacterBody,
+        cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+        normal: Vec3,
+        pushing_from: f32,
+    ) -> FootPlan {
+        let u = plan.swing.clamp(0.0, 1.0);
+        let left = pushing_from - self.last_swing;
+        let keep = if left > 0.0 {
+            ((pushing_from - u) / left).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let at = |target: Vec2| FootPlan { target, ..*plan };
+        let onward = at(plan.target - self.trail * keep);
+        let floor = lowest_clear_centre(cast, &onward, body, normal).map_or(f32::MIN, |c| c.floor);
+        let waits = u < 0.5 && u < pushing_from && self.reached < floor - WAIT_BELOW_FLOOR;
+        let key = if waits { self.key_at } else { onward.target };
+        self.trail = plan.target - key;
+        self.key_at = key;
+        self.last_swing = u;
+        at(key)
     }
 
     /// Aims the landing at `plan`'s foothold: the surface under the sole
