@@ -13,7 +13,9 @@
 //! Walkers also step up out of 0.3 m of snow onto rigid ground (see
 //! [`OUT_OF_SNOW`]): a ploughing foot clears the rigid edge and the body
 //! rises over the step without a jump. They cross 0.8 m stripes of snow
-//! and mud laid across sand, and walk along the edge between sand and snow
+//! and mud laid across sand, fast walkers too (a foot the knee cannot lift
+//! out of its snow print in time waits before the sand edge rather than
+//! digging its toe into it), and walk along the edge between sand and snow
 //! (and sand and mud) with one foot on each side: the leg bearing the
 //! weight holds the pelvis up, and the foot in the softer ground sinks only
 //! as far as its leg reaches.
@@ -21,10 +23,15 @@
 //! Left out, as known limits: the small walker's sole on level snow on a
 //! 256-sample grid, which reads 2.2 cm into its print (a cell of 4 cm
 //! against a foot 5.5 cm wide); a 1.0 m walker with short legs (a leg
-//! length factor of 0.7) on level snow, whose stance knee averages 29°;
+//! length factor of 0.7) on level snow, whose stance knee averages 25.4°
+//! (it lands from a ploughing swing with its knee still bent, about 46° in
+//! the first tenth of the stance);
 //! and the 1.0 and 1.3 m walkers up 20° of rigid ground, whose stance knee
 //! averages 25–27° (a stair-like climb); walkers along the edge between sand
 //! and snow or mud (see [`ALONG_EDGES`]).
+//!
+//! Walkers with long and short legs (leg length factors 1.3 and 0.7) walk
+//! level mud.
 //!
 //! A walker starts standing in its own prints: the first second of a start
 //! on snow, mud, sand and up a snow slope, the 1.0 m walker's too, holds the
@@ -167,6 +174,39 @@ fn stripes(walkers: &[(&str, CharacterDesc)]) -> Scene {
     checked(scene).unwrap()
 }
 
+/// The stripes of [`stripes`] crossed at Froude 0.3 by a 1.0 m walker and
+/// a heavier 1.8 m one: fast enough that a foot lifted out of a deep snow
+/// print reaches the sand after the stripe before its knee has lifted it.
+fn fast_stripes() -> Scene {
+    let heavy_tall = CharacterDesc {
+        froude: 0.3,
+        ..CharacterDesc::new(1.8, 24.0 * 1.8 * 1.8)
+    };
+    let mut scene = stripes(&[
+        ("fast-small", walker_body(1.0, 0.3)),
+        ("fast-tall", heavy_tall),
+    ]);
+    scene.name = "unseen-sand-snow-mud-stripes-fast".into();
+    scene
+}
+
+/// Level mud walked by a small walker with long legs (a leg length factor
+/// of 1.3) and a tall one with short legs (0.7): the short leg's heel rises
+/// less at toe-off, so its knee bends no further than a standard leg's.
+fn legs_in_mud() -> Scene {
+    let legs = |factor: f32, desc: CharacterDesc| CharacterDesc {
+        leg_length_factor: factor,
+        ..desc
+    };
+    let walkers = [
+        ("longleg", legs(1.3, small())),
+        ("shortleg-tall", legs(0.7, tall())),
+    ];
+    let mut scene = slope_walk("mud", 0.0, &walkers);
+    scene.name = "unseen-mud-leg-lengths".into();
+    scene
+}
+
 /// Sand with snow beside the quick walker's line (z from 2 to 3 m) and mud
 /// beside the tall walker's (z from 4 to 6 m): each walks along the edge,
 /// its left foot on sand and its right foot in the softer ground.
@@ -222,6 +262,8 @@ fn scenes() -> Vec<Scene> {
     scenes.push(coarse_mud());
     scenes.push(out_of_snow(&all));
     scenes.push(stripes(&all));
+    scenes.push(fast_stripes());
+    scenes.push(legs_in_mud());
     scenes.push(along_edges());
     scenes.push(slope_walk(RIGID, 15.0, &all));
     scenes.push(slope_walk(RIGID, 20.0, &[("tall", tall())]));

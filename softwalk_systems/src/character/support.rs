@@ -634,6 +634,50 @@ pub(super) mod tests {
         assert!(floor(true).abs() < 1e-5, "{}", floor(true));
     }
 
+    /// Level snow (surface 0, giving 0.3 m) before x = 0.3 and sand at the
+    /// same height beyond, giving 5 cm.
+    struct SnowThenSand;
+
+    impl Ground for SnowThenSand {
+        fn cast_down(&self, x: f32, z: f32, _from_y: f32) -> Option<GroundHit> {
+            Some(GroundHit {
+                point: Vec3::new(x, 0.0, z),
+                normal: Vec3::Y,
+                give: if x < 0.3 { 0.3 } else { 0.05 },
+            })
+        }
+    }
+
+    #[test]
+    fn a_foot_the_leg_leaves_below_the_floor_ahead_waits_then_catches_up_by_the_landing() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
+        let half = 0.5 * body.foot_length;
+        let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::Y * -0.3));
+        let mut plan = swinging_at(Vec2::ZERO);
+        plan.foothold = Vec2::new(0.8, 0.0);
+        let mut key_x = |s: &mut FootSupport, x: f32, swing: f32| {
+            plan.target = Vec2::new(x, 0.0);
+            plan.swing = swing;
+            s.advance(&plan, &params, &body, &SnowThenSand, 2.0)
+                .centre
+                .x
+        };
+        // Lifting off in a print 0.25 m deep in the snow: over snow it goes on.
+        key_x(&mut s, 0.0, 0.05);
+        s.reached = -0.25;
+        let over_snow = 0.29 - half;
+        assert!((key_x(&mut s, over_snow, 0.2) - over_snow).abs() < 1e-6);
+        // Its toe would go over the sand, whose floor is 5 cm down: it waits.
+        assert!((key_x(&mut s, over_snow + 0.05, 0.3) - over_snow).abs() < 1e-6);
+        assert!((key_x(&mut s, over_snow + 0.1, 0.4) - over_snow).abs() < 1e-6);
+        // Lifted clear, it goes on, and is on its target by the landing.
+        s.reached = -0.03;
+        let on = key_x(&mut s, over_snow + 0.15, 0.5);
+        assert!(on > over_snow && on < over_snow + 0.15, "{on}");
+        assert!((key_x(&mut s, 0.8, 0.99) - 0.8).abs() < 1e-6);
+    }
+
     #[test]
     fn a_foot_pushing_into_its_landing_stops_on_the_landing_floor_whatever_its_lift() {
         let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
