@@ -593,16 +593,16 @@ pub(super) mod tests {
         assert!(!s.landing_held);
     }
 
-    /// Level snow (surface 0, giving 0.3 m) before x = 0.3 and rigid
-    /// ground at the same height beyond.
-    struct SnowThenRigid;
+    /// Level snow (surface 0, giving 0.3 m) before x = 0.3 and, beyond,
+    /// ground at the same height giving the held metres (0: rigid).
+    struct SnowThen(f32);
 
-    impl Ground for SnowThenRigid {
+    impl Ground for SnowThen {
         fn cast_down(&self, x: f32, z: f32, _from_y: f32) -> Option<GroundHit> {
             Some(GroundHit {
                 point: Vec3::new(x, 0.0, z),
                 normal: Vec3::Y,
-                give: if x < 0.3 { 0.3 } else { 0.0 },
+                give: if x < 0.3 { 0.3 } else { self.0 },
             })
         }
     }
@@ -620,32 +620,18 @@ pub(super) mod tests {
                 &swinging_at(Vec2::ZERO),
                 &params,
                 &body,
-                &SnowThenRigid,
+                &SnowThen(0.0),
                 2.0,
             );
             s.landing = SupportPoint::rigid(Vec3::new(0.6, 0.0, 0.0));
             s.landing_held = held;
-            s.advance(&plan, &params, &body, &SnowThenRigid, 2.0).floor
+            s.advance(&plan, &params, &body, &SnowThen(0.0), 2.0).floor
         };
         // Over snow the sole may plough to the snow's floor; once it
         // ploughs towards a landing on rigid ground, the rigid edge ahead
         // holds it up.
         assert!((floor(false) + 0.3).abs() < 1e-5, "{}", floor(false));
         assert!(floor(true).abs() < 1e-5, "{}", floor(true));
-    }
-
-    /// Level snow (surface 0, giving 0.3 m) before x = 0.3 and sand at the
-    /// same height beyond, giving 5 cm.
-    struct SnowThenSand;
-
-    impl Ground for SnowThenSand {
-        fn cast_down(&self, x: f32, z: f32, _from_y: f32) -> Option<GroundHit> {
-            Some(GroundHit {
-                point: Vec3::new(x, 0.0, z),
-                normal: Vec3::Y,
-                give: if x < 0.3 { 0.3 } else { 0.05 },
-            })
-        }
     }
 
     #[test]
@@ -659,9 +645,9 @@ pub(super) mod tests {
         let mut key_x = |s: &mut FootSupport, x: f32, swing: f32| {
             plan.target = Vec2::new(x, 0.0);
             plan.swing = swing;
-            s.advance(&plan, &params, &body, &SnowThenSand, 2.0)
-                .centre
-                .x
+            // Sand beyond the snow, giving 5 cm.
+            let sand = SnowThen(0.05);
+            s.advance(&plan, &params, &body, &sand, 2.0).centre.x
         };
         // Lifting off in a print 0.25 m deep in the snow: over snow it goes on.
         key_x(&mut s, 0.0, 0.05);
