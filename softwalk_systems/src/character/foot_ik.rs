@@ -315,7 +315,7 @@ pub fn foot_ik_stage(
     let ploughing = [0, 1].map(|k| !planted[k] && ploughs(&feet[k], &placed[k]));
     for ((support, &ploughed), foot) in rays.support.iter_mut().zip(&ploughing).zip(&placed) {
         support.landing_held |= ploughed;
-        support.reached = foot.centre.y;
+        support.reached = Some(foot.centre);
     }
     foot_states(ik, pose, gait, rays, &placed, ploughing, dt)
 }

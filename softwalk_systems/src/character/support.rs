@@ -109,9 +109,9 @@ pub struct FootSupport {
     /// True once the foot has lifted off: its landing is one it stepped
     /// onto, not the foothold the walker started standing on.
     pub stepped: bool,
-    /// Height of the sole centre the leg really reached last step (set by
-    /// the foot IK; `f32::MAX` before it has placed the foot).
-    pub reached: f32,
+    /// The sole centre the leg really reached last step (world; set by the
+    /// foot IK, `None` before it has placed the foot).
+    pub reached: Option<Vec3>,
     /// How far (x, z) the swinging foot's key trails its swing's target,
     /// metres. In the rising half of the swing, a foot its leg leaves below
     /// the floor of the ground the swing would move it over waits where it
@@ -136,7 +136,7 @@ impl FootSupport {
             hit: true,
             landing_held: false,
             stepped: false,
-            reached: f32::MAX,
+            reached: None,
             trail: Vec2::ZERO,
             last_swing: 0.0,
             key_at: Vec2::new(point.point.x, point.point.z),
@@ -191,14 +191,22 @@ impl FootSupport {
         let plan = &self.follow(plan, body, &cast, normal, pushing_from);
         let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
         if u > pushing_from {
+            // The sole goes into its landing no lower than the floor under
+            // it where the leg really has it: a foot still over firmer
+            // ground short of a softer landing stops on that ground.
+            let stop = self
+                .landing
+                .floor()
+                .y
+                .max(self.floor_under_reached(plan, body, &cast, normal));
             let pushed = (u - pushing_from) / (1.0 - pushing_from);
-            let sole = self.landing.point.y - self.landing.give * pushed;
+            let sole = (self.landing.point.y - self.landing.give * pushed).max(stop);
             return SupportKey {
                 centre: at(sole),
                 normal,
                 pressing: true,
-                floor: self.landing.floor().y.min(sole),
-                surface: (sole - plan.lift).max(self.landing.floor().y),
+                floor: stop.min(sole),
+                surface: (sole - plan.lift).max(stop),
             };
         }
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
@@ -251,12 +259,34 @@ impl FootSupport {
         let at = |target: Vec2| FootPlan { target, ..*plan };
         let onward = at(plan.target - self.trail * keep);
         let floor = lowest_clear_centre(cast, &onward, body, normal).map_or(f32::MIN, |c| c.floor);
-        let waits = u < 0.5 && u < pushing_from && self.reached < floor - WAIT_BELOW_FLOOR;
+        let below = self.reached.is_some_and(|r| r.y < floor - WAIT_BELOW_FLOOR);
+        let waits = u < 0.5 && u < pushing_from && below;
         let key = if waits { self.key_at } else { onward.target };
         self.trail = plan.target - key;
         self.key_at = key;
         self.last_swing = u;
         at(key)
+    }
+
+    /// The floor under a flat sole (lying in the plane of `normal`, facing
+    /// `plan`'s heading) centred where the leg really had the sole last step:
+    /// the lowest height of its centre over the floors under five points
+    /// from heel to toe; `f32::MIN` when that is unknown.
+    fn floor_under_reached(
+        &self,
+        plan: &FootPlan,
+        body: &CharacterBody,
+        cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+        normal: Vec3,
+    ) -> f32 {
+        let Some(reached) = self.reached else {
+            return f32::MIN;
+        };
+        let there = FootPlan {
+            target: Vec2::new(reached.x, reached.z),
+            ..*plan
+        };
+        lowest_clear_centre(cast, &there, body, normal).map_or(f32::MIN, |c| c.floor)
     }
 
     /// Aims the landing at `plan`'s foothold: the surface under the sole
@@ -651,17 +681,46 @@ pub(super) mod tests {
         };
         // Lifting off in a print 0.25 m deep in the snow: over snow it goes on.
         key_x(&mut s, 0.0, 0.05);
-        s.reached = -0.25;
+        s.reached = Some(Vec3::new(0.0, -0.25, 0.0));
         let over_snow = 0.29 - half;
         assert!((key_x(&mut s, over_snow, 0.2) - over_snow).abs() < 1e-6);
         // Its toe would go over the sand, whose floor is 5 cm down: it waits.
         assert!((key_x(&mut s, over_snow + 0.05, 0.3) - over_snow).abs() < 1e-6);
         assert!((key_x(&mut s, over_snow + 0.1, 0.4) - over_snow).abs() < 1e-6);
         // Lifted clear, it goes on, and is on its target by the landing.
-        s.reached = -0.03;
+        s.reached = Some(Vec3::new(over_snow, -0.03, 0.0));
         let on = key_x(&mut s, over_snow + 0.15, 0.5);
         assert!(on > over_snow && on < over_snow + 0.15, "{on}");
         assert!((key_x(&mut s, 0.8, 0.99) - 0.8).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_foot_short_of_a_soft_landing_pushes_no_lower_than_the_firm_floor_under_it() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
+        // Landing in the snow at x = 0 (before x = 0.3); rigid ground beyond.
+        let ground = SnowThen(0.0);
+        let sole_pushed = |reached_x: f32| {
+            let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::X * 0.8));
+            let mut plan = swinging_at(Vec2::ZERO);
+            plan.swing = 0.3;
+            s.advance(&plan, &params, &body, &ground, 2.0);
+            s.reached = Some(Vec3::new(reached_x, 0.0, 0.0));
+            plan.swing = 0.97;
+            let key = s.advance(&plan, &params, &body, &ground, 2.0);
+            (key.centre.y + plan.lift, key.floor)
+        };
+        // Over the snow it pushes in; still over the rigid ground it stops on it.
+        let (in_snow, snow_floor) = sole_pushed(0.0);
+        assert!(
+            in_snow < -0.1 && (snow_floor + 0.3).abs() < 1e-5,
+            "{in_snow} {snow_floor}"
+        );
+        let (on_rigid, rigid_floor) = sole_pushed(0.6);
+        assert!(
+            on_rigid.abs() < 1e-5 && rigid_floor.abs() < 1e-5,
+            "{on_rigid} {rigid_floor}"
+        );
     }
 
     #[test]
