@@ -9,6 +9,12 @@
 //! not snap to every print wall and rim it passes over. The foot pushes into
 //! the ground over the ground's own [`SINK_TIME_S`], so it goes down as fast
 //! as carving presses the ground, never through it.
+//!
+//! Where the leg falls behind its swing (a knee at its top speed), the
+//! support reads the ground where the leg really has the foot
+//! ([`FootSupport::reached`]): a foot still low in a deep print waits before
+//! firmer ground ahead ([`FootSupport::trail`]), and a foot short of a
+//! softer landing pushes no lower than the firmer floor under it.
 
 use std::f32::consts::PI;
 
