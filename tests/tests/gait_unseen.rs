@@ -13,7 +13,11 @@
 //! Walkers also step up out of 0.3 m of snow onto rigid ground (see
 //! [`OUT_OF_SNOW`]): a ploughing foot clears the rigid edge and the body
 //! rises over the step without a jump. They cross 0.8 m stripes of snow
-//! and mud laid across sand, and walk along the edge between sand and snow
+//! and mud laid across sand and soil, fast walkers too (a foot the knee
+//! cannot lift out of its snow print in time waits before the firmer edge
+//! rather than digging its toe into it; a foot stepping into the snow does
+//! not push into it while its heel is still over the firmer ground), and
+//! walk along the edge between sand and snow
 //! (and sand and mud) with one foot on each side: the leg bearing the
 //! weight holds the pelvis up, and the foot in the softer ground sinks only
 //! as far as its leg reaches.
@@ -21,10 +25,15 @@
 //! Left out, as known limits: the small walker's sole on level snow on a
 //! 256-sample grid, which reads 2.2 cm into its print (a cell of 4 cm
 //! against a foot 5.5 cm wide); a 1.0 m walker with short legs (a leg
-//! length factor of 0.7) on level snow, whose stance knee averages 29°;
+//! length factor of 0.7) on level snow, whose stance knee averages 25.4°
+//! (it lands from a ploughing swing with its knee still bent, about 46° in
+//! the first tenth of the stance);
 //! and the 1.0 and 1.3 m walkers up 20° of rigid ground, whose stance knee
 //! averages 25–27° (a stair-like climb); walkers along the edge between sand
 //! and snow or mud (see [`ALONG_EDGES`]).
+//!
+//! Walkers with long and short legs (leg length factors 1.3 and 0.7) walk
+//! level mud.
 //!
 //! A walker starts standing in its own prints: the first second of a start
 //! on snow, mud, sand and up a snow slope, the 1.0 m walker's too, holds the
@@ -151,11 +160,11 @@ fn out_of_snow(walkers: &[(&str, CharacterDesc)]) -> Scene {
     checked(scene).unwrap()
 }
 
-/// Sand crossed by 0.8 m stripes of snow and mud (alternating, 0.8 m of
-/// sand between them), walked straight across by `walkers`.
-fn stripes(walkers: &[(&str, CharacterDesc)]) -> Scene {
-    let mut scene = slope_walk("sand", 0.0, walkers);
-    scene.name = "unseen-sand-snow-mud-stripes".into();
+/// `ground` crossed by 0.8 m stripes of snow and mud (alternating, 0.8 m
+/// of `ground` between them), walked straight across by `walkers`.
+fn stripes(ground: &str, walkers: &[(&str, CharacterDesc)]) -> Scene {
+    let mut scene = slope_walk(ground, 0.0, walkers);
+    scene.name = format!("unseen-{ground}-snow-mud-stripes");
     for k in 0..5 {
         let left = 1.5 + 1.6 * k as f32;
         scene.terrain.regions.push(MaterialRegion {
@@ -165,6 +174,44 @@ fn stripes(walkers: &[(&str, CharacterDesc)]) -> Scene {
         });
     }
     checked(scene).unwrap()
+}
+
+/// The stripes of [`stripes`] on `ground` crossed at Froude `froude` by a
+/// 1.0 m walker and a heavier 1.8 m one: fast enough that a foot lifted out
+/// of a deep snow print reaches the firmer ground after the stripe before
+/// its knee has lifted it, and that a foot stepping into the snow pushes
+/// into it before its heel has left the firmer ground.
+fn fast_stripes(ground: &str, froude: f32) -> Scene {
+    let heavy_tall = CharacterDesc {
+        froude,
+        ..CharacterDesc::new(1.8, 24.0 * 1.8 * 1.8)
+    };
+    let mut scene = stripes(
+        ground,
+        &[
+            ("fast-small", walker_body(1.0, froude)),
+            ("fast-tall", heavy_tall),
+        ],
+    );
+    scene.name = format!("unseen-{ground}-snow-mud-stripes-froude-{froude}");
+    scene
+}
+
+/// Level mud walked by a small walker with long legs (a leg length factor
+/// of 1.3) and a tall one with short legs (0.7): the short leg's heel rises
+/// less at toe-off, so its knee bends no further than a standard leg's.
+fn legs_in_mud() -> Scene {
+    let legs = |factor: f32, desc: CharacterDesc| CharacterDesc {
+        leg_length_factor: factor,
+        ..desc
+    };
+    let walkers = [
+        ("longleg", legs(1.3, small())),
+        ("shortleg-tall", legs(0.7, tall())),
+    ];
+    let mut scene = slope_walk("mud", 0.0, &walkers);
+    scene.name = "unseen-mud-leg-lengths".into();
+    scene
 }
 
 /// Sand with snow beside the quick walker's line (z from 2 to 3 m) and mud
@@ -221,7 +268,10 @@ fn scenes() -> Vec<Scene> {
     scenes.push(into_snow_at_an_angle());
     scenes.push(coarse_mud());
     scenes.push(out_of_snow(&all));
-    scenes.push(stripes(&all));
+    scenes.push(stripes("sand", &all));
+    scenes.push(fast_stripes("sand", 0.3));
+    scenes.push(fast_stripes("soil", 0.35));
+    scenes.push(legs_in_mud());
     scenes.push(along_edges());
     scenes.push(slope_walk(RIGID, 15.0, &all));
     scenes.push(slope_walk(RIGID, 20.0, &[("tall", tall())]));

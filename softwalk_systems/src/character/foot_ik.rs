@@ -313,8 +313,9 @@ pub fn foot_ik_stage(
     pose.forward = forward;
     pose.right = right;
     let ploughing = [0, 1].map(|k| !planted[k] && ploughs(&feet[k], &placed[k]));
-    for (support, &ploughed) in rays.support.iter_mut().zip(&ploughing) {
+    for ((support, &ploughed), foot) in rays.support.iter_mut().zip(&ploughing).zip(&placed) {
         support.landing_held |= ploughed;
+        support.reached = Some(foot.centre);
     }
     foot_states(ik, pose, gait, rays, &placed, ploughing, dt)
 }

@@ -76,6 +76,15 @@ pub fn scheduled_pitch(p: f32, duty: f32) -> f32 {
     }
 }
 
+/// Share of the scheduled heel rise (negative pitch) a body's feet make: 1
+/// for legs of standard length or longer, the leg length factor for
+/// shorter legs (the feet keep their length). The heel then lifts the ankle
+/// about as far, for the leg's length, as on a standard body, and a short
+/// leg's knee bends no further at toe-off.
+pub fn heel_rise_share(body: &CharacterBody) -> f32 {
+    body.desc.leg_length_factor.min(1.0)
+}
+
 /// The foot roll of a backward step at a foot's own phase `p` for a stance
 /// fraction `duty`: [`scheduled_pitch`] run backward in time and scaled down,
 /// so the foot lands on its toe, rolls flat, lifts its toe before the heel
@@ -481,12 +490,12 @@ impl Gait {
                 plan.from_heading = plan.foothold_heading;
                 (plan.foothold, plan.foothold_heading) = next;
             }
-            let pitch = self.roll
-                * if self.backward {
-                    backward_pitch(p, duty)
-                } else {
-                    scheduled_pitch(p, duty)
-                };
+            let scheduled = if self.backward {
+                backward_pitch(p, duty)
+            } else {
+                scheduled_pitch(p, duty)
+            };
+            let pitch = self.roll * scheduled.max(scheduled * heel_rise_share(body));
             let plan = &mut self.feet[k];
             plan.pitch = pitch;
             if in_stance {
@@ -789,6 +798,42 @@ mod tests {
             last = shares[0];
         }
         assert!(trailing_fell, "shared during the double support");
+    }
+
+    #[test]
+    fn a_short_legged_walker_lifts_its_heel_less_at_toe_off_and_its_toe_as_much() {
+        // The deepest heel rise and the highest toe lift over two walk cycles.
+        let extremes = |legs: f32| {
+            let desc = CharacterDesc {
+                leg_length_factor: legs,
+                ..CharacterDesc::adult()
+            };
+            let body = CharacterBody::new(desc).unwrap();
+            let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 50.0).unwrap();
+            let mods = GaitModifiers::default();
+            let mut gait = Gait::new(&body, &path, &mods);
+            let (mut heel, mut toe) = (0.0f32, 0.0f32);
+            for _ in 0..240 {
+                gait_stage(&mut gait, &body, &path, &mods, 1.0 / 60.0);
+                for plan in &gait.feet {
+                    (heel, toe) = (heel.min(plan.pitch), toe.max(plan.pitch));
+                }
+            }
+            (heel, toe)
+        };
+        let (standard_heel, standard_toe) = extremes(1.0);
+        assert!(
+            (standard_heel + TOE_OFF_PITCH).abs() < 0.02,
+            "{standard_heel}"
+        );
+        let (short_heel, short_toe) = extremes(0.7);
+        assert!(
+            (short_heel - 0.7 * standard_heel).abs() < 0.02,
+            "{short_heel}"
+        );
+        assert!((short_toe - standard_toe).abs() < 0.02, "{short_toe}");
+        let (long_heel, _) = extremes(1.3);
+        assert!((long_heel - standard_heel).abs() < 0.02, "{long_heel}");
     }
 
     #[test]

@@ -9,6 +9,12 @@
 //! not snap to every print wall and rim it passes over. The foot pushes into
 //! the ground over the ground's own [`SINK_TIME_S`], so it goes down as fast
 //! as carving presses the ground, never through it.
+//!
+//! Where the leg falls behind its swing (a knee at its top speed), the
+//! support reads the ground where the leg really has the foot
+//! ([`FootSupport::reached`]): a foot still low in a deep print waits before
+//! firmer ground ahead ([`FootSupport::trail`]), and a foot short of a
+//! softer landing pushes no lower than the firmer floor under it.
 
 use std::f32::consts::PI;
 
@@ -30,6 +36,10 @@ const STEP_OUT_TIME: f32 = 0.3;
 /// Give of a landing (metres) from which a foot pushes into it for the
 /// ground's whole [`SINK_TIME_S`]; a landing that gives less takes less.
 pub const FULL_PUSH_GIVE: f32 = 0.02;
+/// How far (metres) the sole a leg really reached may be below the floor
+/// of the ground its swing moves it over before the swing waits for it
+/// (see [`FootSupport::trail`]).
+pub const WAIT_BELOW_FLOOR: f32 = 0.01;
 
 /// A ground point under a sole centre, with its normal and how far it gives.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -105,6 +115,20 @@ pub struct FootSupport {
     /// True once the foot has lifted off: its landing is one it stepped
     /// onto, not the foothold the walker started standing on.
     pub stepped: bool,
+    /// The sole centre the leg really reached last step (world; set by the
+    /// foot IK, `None` before it has placed the foot).
+    pub reached: Option<Vec3>,
+    /// How far (x, z) the swinging foot's key trails its swing's target,
+    /// metres. In the rising half of the swing, a foot its leg leaves below
+    /// the floor of the ground the swing would move it over waits where it
+    /// is: a leg that cannot lift the foot out of a deep print in time does
+    /// not push it into the firmer ground ahead (a sand edge after snow).
+    /// The trail closes evenly by the time the foot pushes into its landing.
+    pub trail: Vec2,
+    /// Swing progress at the last step, for closing [`Self::trail`].
+    pub last_swing: f32,
+    /// Where (x, z) the swinging foot's key was last step.
+    pub key_at: Vec2,
 }
 
 impl FootSupport {
@@ -118,6 +142,10 @@ impl FootSupport {
             hit: true,
             landing_held: false,
             stepped: false,
+            reached: None,
+            trail: Vec2::ZERO,
+            last_swing: 0.0,
+            key_at: Vec2::new(point.point.x, point.point.z),
         }
     }
 
@@ -147,6 +175,9 @@ impl FootSupport {
             self.left_rim = self.landing.point.y;
             self.planted = false;
             self.stepped = true;
+            self.trail = Vec2::ZERO;
+            self.last_swing = 0.0;
+            self.key_at = plan.target;
         }
         let swing_time = params.swing_time();
         let u = plan.swing.clamp(0.0, 1.0);
@@ -163,16 +194,25 @@ impl FootSupport {
             .lerp(self.landing.normal, smoothstep(u))
             .try_normalize()
             .unwrap_or(Vec3::Y);
+        let plan = &self.follow(plan, body, &cast, normal, pushing_from);
         let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
         if u > pushing_from {
+            // The sole goes into its landing no lower than the floor under
+            // it where the leg really has it: a foot still over firmer
+            // ground short of a softer landing stops on that ground.
+            let stop = self
+                .landing
+                .floor()
+                .y
+                .max(self.floor_under_reached(plan, body, &cast, normal));
             let pushed = (u - pushing_from) / (1.0 - pushing_from);
-            let sole = self.landing.point.y - self.landing.give * pushed;
+            let sole = (self.landing.point.y - self.landing.give * pushed).max(stop);
             return SupportKey {
                 centre: at(sole),
                 normal,
                 pressing: true,
-                floor: self.landing.floor().y.min(sole),
-                surface: (sole - plan.lift).max(self.landing.floor().y),
+                floor: stop.min(sole),
+                surface: (sole - plan.lift).max(stop),
             };
         }
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
@@ -199,6 +239,60 @@ impl FootSupport {
             floor: floor.min(height),
             surface: clear.map_or(f32::MIN, |c| c.surface.min(height)),
         }
+    }
+
+    /// `plan` with its target moved back by the swing's trail, after
+    /// updating the trail (see [`Self::trail`]): it closes evenly until
+    /// `pushing_from`, unless, in the rising half of the swing, the sole
+    /// centre the leg reached last step is more than [`WAIT_BELOW_FLOOR`]
+    /// below the floor under the sole (lying in the plane of `normal`) where
+    /// the closed trail would put it; then the key stays where it was.
+    fn follow(
+        &mut self,
+        plan: &FootPlan,
+        body: &CharacterBody,
+        cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+        normal: Vec3,
+        pushing_from: f32,
+    ) -> FootPlan {
+        let u = plan.swing.clamp(0.0, 1.0);
+        let left = pushing_from - self.last_swing;
+        let keep = if left > 0.0 {
+            ((pushing_from - u) / left).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let at = |target: Vec2| FootPlan { target, ..*plan };
+        let onward = at(plan.target - self.trail * keep);
+        let floor = lowest_clear_centre(cast, &onward, body, normal).map_or(f32::MIN, |c| c.floor);
+        let below = self.reached.is_some_and(|r| r.y < floor - WAIT_BELOW_FLOOR);
+        let waits = u < 0.5 && u < pushing_from && below;
+        let key = if waits { self.key_at } else { onward.target };
+        self.trail = plan.target - key;
+        self.key_at = key;
+        self.last_swing = u;
+        at(key)
+    }
+
+    /// The floor under a flat sole (lying in the plane of `normal`, facing
+    /// `plan`'s heading) centred where the leg really had the sole last step:
+    /// the lowest height of its centre over the floors under five points
+    /// from heel to toe; `f32::MIN` when that is unknown.
+    fn floor_under_reached(
+        &self,
+        plan: &FootPlan,
+        body: &CharacterBody,
+        cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+        normal: Vec3,
+    ) -> f32 {
+        let Some(reached) = self.reached else {
+            return f32::MIN;
+        };
+        let there = FootPlan {
+            target: Vec2::new(reached.x, reached.z),
+            ..*plan
+        };
+        lowest_clear_centre(cast, &there, body, normal).map_or(f32::MIN, |c| c.floor)
     }
 
     /// Aims the landing at `plan`'s foothold: the surface under the sole
@@ -535,16 +629,16 @@ pub(super) mod tests {
         assert!(!s.landing_held);
     }
 
-    /// Level snow (surface 0, giving 0.3 m) before x = 0.3 and rigid
-    /// ground at the same height beyond.
-    struct SnowThenRigid;
+    /// Level snow (surface 0, giving 0.3 m) before x = 0.3 and, beyond,
+    /// ground at the same height giving the held metres (0: rigid).
+    struct SnowThen(f32);
 
-    impl Ground for SnowThenRigid {
+    impl Ground for SnowThen {
         fn cast_down(&self, x: f32, z: f32, _from_y: f32) -> Option<GroundHit> {
             Some(GroundHit {
                 point: Vec3::new(x, 0.0, z),
                 normal: Vec3::Y,
-                give: if x < 0.3 { 0.3 } else { 0.0 },
+                give: if x < 0.3 { 0.3 } else { self.0 },
             })
         }
     }
@@ -562,18 +656,77 @@ pub(super) mod tests {
                 &swinging_at(Vec2::ZERO),
                 &params,
                 &body,
-                &SnowThenRigid,
+                &SnowThen(0.0),
                 2.0,
             );
             s.landing = SupportPoint::rigid(Vec3::new(0.6, 0.0, 0.0));
             s.landing_held = held;
-            s.advance(&plan, &params, &body, &SnowThenRigid, 2.0).floor
+            s.advance(&plan, &params, &body, &SnowThen(0.0), 2.0).floor
         };
         // Over snow the sole may plough to the snow's floor; once it
         // ploughs towards a landing on rigid ground, the rigid edge ahead
         // holds it up.
         assert!((floor(false) + 0.3).abs() < 1e-5, "{}", floor(false));
         assert!(floor(true).abs() < 1e-5, "{}", floor(true));
+    }
+
+    #[test]
+    fn a_foot_the_leg_leaves_below_the_floor_ahead_waits_then_catches_up_by_the_landing() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
+        let half = 0.5 * body.foot_length;
+        let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::Y * -0.3));
+        let mut plan = swinging_at(Vec2::ZERO);
+        plan.foothold = Vec2::new(0.8, 0.0);
+        let mut key_x = |s: &mut FootSupport, x: f32, swing: f32| {
+            plan.target = Vec2::new(x, 0.0);
+            plan.swing = swing;
+            // Sand beyond the snow, giving 5 cm.
+            let sand = SnowThen(0.05);
+            s.advance(&plan, &params, &body, &sand, 2.0).centre.x
+        };
+        // Lifting off in a print 0.25 m deep in the snow: over snow it goes on.
+        key_x(&mut s, 0.0, 0.05);
+        s.reached = Some(Vec3::new(0.0, -0.25, 0.0));
+        let over_snow = 0.29 - half;
+        assert!((key_x(&mut s, over_snow, 0.2) - over_snow).abs() < 1e-6);
+        // Its toe would go over the sand, whose floor is 5 cm down: it waits.
+        assert!((key_x(&mut s, over_snow + 0.05, 0.3) - over_snow).abs() < 1e-6);
+        assert!((key_x(&mut s, over_snow + 0.1, 0.4) - over_snow).abs() < 1e-6);
+        // Lifted clear, it goes on, and is on its target by the landing.
+        s.reached = Some(Vec3::new(over_snow, -0.03, 0.0));
+        let on = key_x(&mut s, over_snow + 0.15, 0.5);
+        assert!(on > over_snow && on < over_snow + 0.15, "{on}");
+        assert!((key_x(&mut s, 0.8, 0.99) - 0.8).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_foot_short_of_a_soft_landing_pushes_no_lower_than_the_firm_floor_under_it() {
+        let body = CharacterBody::new(crate::character::CharacterDesc::adult()).unwrap();
+        let params = GaitParams::new(&body, &crate::character::GaitModifiers::default());
+        // Landing in the snow at x = 0 (before x = 0.3); rigid ground beyond.
+        let ground = SnowThen(0.0);
+        let sole_pushed = |reached_x: f32| {
+            let mut s = FootSupport::planted_on(SupportPoint::rigid(Vec3::X * 0.8));
+            let mut plan = swinging_at(Vec2::ZERO);
+            plan.swing = 0.3;
+            s.advance(&plan, &params, &body, &ground, 2.0);
+            s.reached = Some(Vec3::new(reached_x, 0.0, 0.0));
+            plan.swing = 0.97;
+            let key = s.advance(&plan, &params, &body, &ground, 2.0);
+            (key.centre.y + plan.lift, key.floor)
+        };
+        // Over the snow it pushes in; still over the rigid ground it stops on it.
+        let (in_snow, snow_floor) = sole_pushed(0.0);
+        assert!(
+            in_snow < -0.1 && (snow_floor + 0.3).abs() < 1e-5,
+            "{in_snow} {snow_floor}"
+        );
+        let (on_rigid, rigid_floor) = sole_pushed(0.6);
+        assert!(
+            on_rigid.abs() < 1e-5 && rigid_floor.abs() < 1e-5,
+            "{on_rigid} {rigid_floor}"
+        );
     }
 
     #[test]
