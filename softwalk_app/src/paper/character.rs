@@ -37,13 +37,17 @@ pub const LOOP_FLOAT_LIMIT: f32 = 0.075;
 /// the range from 5° down to 15° up.
 pub fn float_limit(angle_deg: f32) -> f32 {
     if angle_deg <= -15.0 {
-        0.06
+        STEEP_DESCENT_FLOAT_LIMIT
     } else if !(-5.0..15.0).contains(&angle_deg) {
-        0.055
+        SLOPE_FLOAT_LIMIT
     } else {
         STANCE_LIMIT
     }
 }
+/// [`float_limit`] off the range from 5° down to 15° up, metres.
+const SLOPE_FLOAT_LIMIT: f32 = 0.055;
+/// [`float_limit`] down 15° and steeper, metres.
+const STEEP_DESCENT_FLOAT_LIMIT: f32 = 0.06;
 /// Largest tilt of the long walk the tests accept, radians.
 const MAX_TILT: f32 = 0.35;
 
@@ -161,7 +165,7 @@ pub fn slope_claims(options: &PaperOptions) -> Result<Vec<Claim>, PaperError> {
             Check::new(
                 "worst stance drift",
                 format!("{:.4} m", drift),
-                "≤ 0.01 m",
+                format!("≤ {STANCE_LIMIT} m"),
                 drift <= STANCE_LIMIT,
             ),
             Check::new(
@@ -170,7 +174,10 @@ pub fn slope_claims(options: &PaperOptions) -> Result<Vec<Claim>, PaperError> {
                     .map(|g| format!("{g:.4} m"))
                     .collect::<Vec<_>>()
                     .join(", "),
-                "≤ 0.01 m from −5° to 15°, 0.045 m to −15° and from 15°, 0.09 m steeper down",
+                format!(
+                    "≤ {STANCE_LIMIT} m from −5° to 15°, {SLOPE_FLOAT_LIMIT} m elsewhere, \
+                     {STEEP_DESCENT_FLOAT_LIMIT} m down 15° and steeper"
+                ),
                 gaps_ok,
             ),
         ],
