@@ -8,7 +8,7 @@ use super::balance::RigidProxy;
 use super::body::CharacterBody;
 use super::gait::{FootPlan, Gait, clamp_dt, contact_offset};
 use super::ik::{clamp_flexion, flexion_at_distance, lift_to_reach, solve_two_bone};
-use super::pelvis::{PelvisFollower, climb_speed};
+use super::pelvis::{ExtraSpeed, PelvisFollower, climb_speed, descent_speed};
 use super::pose::Pose;
 use super::rays::{FootRays, GroundKey};
 use super::skeleton::Joint;
@@ -89,6 +89,9 @@ const MAX_PLANTED_PITCH_RATE: f32 = 3.0;
 /// rolled to reach lies down flat no faster than the pelvis lowers for it
 /// (the ankle falls by about 1.5 mm a step at 60 Hz).
 const MAX_STANDING_PITCH_RATE: f32 = 1.0;
+/// The most the pelvis lowers below its walking height for a leg to reach,
+/// a fraction of the leg reach.
+const MAX_PELVIS_DROP: f32 = 0.6;
 /// The most the pelvis rises above its walking height for bent planted legs,
 /// a fraction of the leg reach.
 const MAX_PELVIS_RAISE: f32 = 0.12;
@@ -224,6 +227,35 @@ impl FootFrame {
     ) -> f32 {
         self.pitch_where(body, from, limit, |foot| foot.ankle.distance(hip) <= reach)
     }
+
+    /// The roll nearest `from` at which a leg of `reach` from `hip` reaches
+    /// the ankle: more heel lift for a foot `trailing` behind the hip, more
+    /// toe lift ahead of it, up to [`MAX_HEEL_LIFT`] and [`MAX_TOE_LIFT`].
+    fn roll_to_reach(
+        &self,
+        body: &CharacterBody,
+        hip: Vec3,
+        reach: f32,
+        from: f32,
+        trailing: bool,
+    ) -> f32 {
+        if trailing {
+            let from = from.min(0.0);
+            self.pitch_to_reach(body, hip, reach, from, -MAX_HEEL_LIFT.max(-from))
+        } else {
+            let from = from.max(0.0);
+            self.pitch_to_reach(body, hip, reach, from, MAX_TOE_LIFT.max(from))
+        }
+    }
+}
+
+/// How far above `ankle` a hip at `hip`'s horizontal position may stand for
+/// a leg of `length` to reach it, relative to `hip` (negative: the hip must
+/// come down that far); a horizontal distance beyond `length` reads as `length`.
+fn rise_to_reach(hip: Vec3, ankle: Vec3, length: f32) -> f32 {
+    let d = ankle - hip;
+    let r = Vec2::new(d.x, d.z).length().min(length);
+    d.y + (length * length - r * r).sqrt()
 }
 
 /// A knee that cannot bend as fast as its foot rolls leaves the leg longer
@@ -347,14 +379,13 @@ fn place_feet(
         flat_heights[k] = frame.centre.y;
         let trailing = (frame.centre - hips[k]).dot(forward) < 0.0;
         let swinging = plan.phase != FootPhase::Stance;
-        let pitch = if gait.stopped {
-            plan.pitch
-        } else if trailing && (swinging || plan.contact_along > 0.0) {
-            let from = plan.pitch.min(0.0);
-            frame.pitch_to_reach(body, hips[k], reach, from, -MAX_HEEL_LIFT.max(-from))
-        } else if !trailing && (swinging || plan.contact_along < 0.0) {
-            let from = plan.pitch.max(0.0);
-            frame.pitch_to_reach(body, hips[k], reach, from, MAX_TOE_LIFT.max(from))
+        let rolls = if trailing {
+            plan.contact_along > 0.0
+        } else {
+            plan.contact_along < 0.0
+        };
+        let pitch = if !gait.stopped && (swinging || rolls) {
+            frame.roll_to_reach(body, hips[k], reach, plan.pitch, trailing)
         } else {
             plan.pitch
         };
@@ -403,15 +434,12 @@ fn follow_pelvis(
     dt: f32,
 ) -> f32 {
     let reach = REACH_MARGIN * body.leg_reach();
-    let rise = |k: usize, length: f32| {
-        let d = feet[k].ankle - hips[k];
-        let r = Vec2::new(d.x, d.z).length().min(length);
-        d.y + (length * length - r * r).sqrt()
-    };
+    let deepest = MAX_PELVIS_DROP * body.leg_reach();
+    let rise = |k: usize, length: f32| rise_to_reach(hips[k], feet[k].ankle, length);
     let needed = (0..2)
         .map(|k| -rise(k, reach) - unloaded_give(gait, rays, k))
         .fold(0.0f32, f32::max)
-        .min(0.6 * body.leg_reach());
+        .min(deepest);
     let standing = STANDING_LEG * body.leg_reach();
     let raise = (0..2)
         .filter(|&k| gait.feet[k].phase == FootPhase::Stance)
@@ -420,10 +448,71 @@ fn follow_pelvis(
         .clamp(0.0, MAX_PELVIS_RAISE * body.leg_reach());
     let ground_y = rays.body.point.y + ik.step_up;
     let ground_rate = rise_along(rays.body.normal, gait.velocity);
-    let climb = climb_speed(ik.step_up, 0.5 * gait.params.cycle_time(), gait.bob_rate());
-    ground_y
-        - ik.pelvis
-            .follow(ground_y - needed + raise, ground_rate, climb, dt)
+    let landing = (0..2)
+        .filter_map(|k| landing_drop(body, gait, rays, hips[k], k, ground_rate))
+        .fold(None, |a: Option<(f32, f32)>, b| match a {
+            Some(a) if a.0 >= b.0 => Some(a),
+            _ => Some(b),
+        })
+        .map(|(drop, time)| (drop.min(deepest), time));
+    // A landing lower than the walking height reaches lowers the pelvis by
+    // what it lacks beyond the planted legs' own need, in time for it.
+    let (beyond, time) = landing.map_or((0.0, 0.0), |(d, time)| ((d - needed).max(0.0), time));
+    let drop = needed - raise + beyond;
+    let lowered = ground_y - ik.pelvis.height;
+    let descent = if beyond > 0.0 {
+        descent_speed(drop - lowered, time, gait.bob_rate())
+    } else {
+        0.0
+    };
+    let extra = ExtraSpeed {
+        climb: climb_speed(ik.step_up, 0.5 * gait.params.cycle_time(), gait.bob_rate()),
+        descent,
+    };
+    ground_y - ik.pelvis.follow(ground_y - drop, ground_rate, extra, dt)
+}
+
+/// How far the pelvis must come down by the time swinging foot `k` lands,
+/// for its leg to reach the landing surface, metres (negative: it reaches
+/// with room to spare), and the seconds left until then; `None` for a
+/// planted foot, a walker standing still, or a landing no ray found.
+///
+/// The hip at landing is `hip` carried along the walk's velocity and the
+/// ground's rise under the body (`ground_rate`, m/s), with the bob of the
+/// landing; the foot may roll toe up ahead of that hip (or heel up behind
+/// it) to reach, as a landing foot does. A landing lower than that, down a
+/// dune's lee face or off an edge, lowers the pelvis during the swing, the
+/// stance knee bending as it does stepping down a stair, so the foot does
+/// not land out of reach and hang above its floor.
+fn landing_drop(
+    body: &CharacterBody,
+    gait: &Gait,
+    rays: &FootRays,
+    hip: Vec3,
+    k: usize,
+    ground_rate: f32,
+) -> Option<(f32, f32)> {
+    let plan = &gait.feet[k];
+    let support = &rays.support[k];
+    if gait.stopped || plan.phase == FootPhase::Stance || !support.hit {
+        return None;
+    }
+    let time = gait.time_to_landing(k);
+    let travel = gait.velocity * time;
+    let rise = ground_rate * time + gait.bob_at_landing(k) - gait.bob;
+    let hip = hip + Vec3::new(travel.x, rise, travel.y);
+    let normal = support.landing.normal;
+    let frame = FootFrame {
+        centre: support.landing.point,
+        normal,
+        along: sole_direction(plan.foothold_heading, normal),
+        contact_along: 0.0,
+    };
+    let trailing = (frame.centre - hip).dot(gait.pelvis.heading3()) < 0.0;
+    let reach = REACH_MARGIN * body.leg_reach();
+    let pitch = frame.roll_to_reach(body, hip, reach, 0.0, trailing);
+    let ankle = frame.place(body, pitch).ankle;
+    Some((-rise_to_reach(hip, ankle, reach), time))
 }
 
 /// The lowest a swinging foot on `key` may be pushed this step: into the

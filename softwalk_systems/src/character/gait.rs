@@ -400,6 +400,12 @@ impl Gait {
         (1.0 - self.local_phase(foot)) * self.params.cycle_time()
     }
 
+    /// The pelvis bob when `foot` lands (at the end of its swing), metres,
+    /// at the bob's current amplitude.
+    pub fn bob_at_landing(&self, foot: usize) -> f32 {
+        bob_at(self.bob_amplitude, (1.0 - 0.5 * foot as f32).fract())
+    }
+
     /// The unit direction of travel (x, z): the facing direction, or (while
     /// walking backward) away from it.
     pub fn travel_heading(&self) -> Vec2 {
