@@ -327,6 +327,57 @@ fn walkers_on_unseen_slopes_meet_the_gait_goals() {
     );
 }
 
+/// Largest height of a planted sole's lower end above the ground on the
+/// dunes of [`dunes`], as a share of the walker's height: a foot landing
+/// down a 40° lee face, lower than its leg reaches from the walking height,
+/// touches within a few steps of its landing (the pelvis lowers for it
+/// during the swing at a bounded speed), not only as the body comes down
+/// the face after it.
+const DUNE_FLOAT_SHARE: f32 = 0.08;
+
+/// Sand dunes 0.5 m high, 4 m apart (lee faces of about 40°), crossed along
+/// +X by the three probe walkers.
+fn dunes() -> Scene {
+    let mut scene = slope_walk(
+        "sand",
+        0.0,
+        &[("small", small()), ("quick", quick()), ("tall", tall())],
+    );
+    scene.name = "unseen-sand-dunes".into();
+    scene.terrain.shape = TerrainShape::Dunes {
+        amplitude: 0.5,
+        wavelength: 4.0,
+        stoss_fraction: 0.7,
+        sinuosity: 0.1,
+        seed: 3,
+    };
+    checked(scene).unwrap()
+}
+
+#[test]
+fn walkers_down_dune_lee_faces_meet_the_gait_goals_and_reach_their_landings() {
+    let scene = dunes();
+    let run = record_run(&scene, scene.steps()).unwrap();
+    let mut failures = Vec::new();
+    for (c, spec) in scene.characters.iter().enumerate() {
+        let q = run.quality(c);
+        println!("{}/{}: {q}", scene.name, spec.name);
+        failures.extend(
+            q.failures()
+                .into_iter()
+                .map(|f| format!("{}: {f}", spec.name)),
+        );
+        let limit = 100.0 * DUNE_FLOAT_SHARE * spec.body.height;
+        if q.planted_float_cm > limit {
+            failures.push(format!(
+                "{}: planted float {:.2} cm (goal ≤ {limit:.1} cm)",
+                spec.name, q.planted_float_cm
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "dunes: {}", failures.join("\n  "));
+}
+
 /// Largest knee flexion of a planted foot in a walker's first second, degrees:
 /// a walker standing in its own prints starts with straight legs, and its
 /// first stance bends the knee no more than walking does.

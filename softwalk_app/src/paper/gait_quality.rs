@@ -15,7 +15,10 @@
 //!   their walk cycle, bearing weight), degrees (goal ≤ 25°);
 //! - knee max: the largest knee flexion of either leg, degrees (goal ≤ 120°);
 //! - sole below ground: how far the heel or toe sits below the terrain under
-//!   it, at worst, cm (goal ≤ 2 cm).
+//!   it, at worst, cm (goal ≤ 2 cm);
+//! - planted float: how far the lower end of a planted sole sits above the
+//!   terrain under it, at worst, cm (reported; its goal depends on the
+//!   ground, see `tests/tests/gait_unseen.rs` and `paper::character::float_limit`).
 
 use std::fmt;
 
@@ -64,6 +67,9 @@ pub struct GaitQuality {
     pub knee_max_deg: f32,
     /// Deepest heel or toe below the terrain under it, cm (negative: always above).
     pub sole_below_cm: f32,
+    /// Highest a planted sole's lower end (heel or toe) stands above the
+    /// terrain under it, cm (0 when every planted sole touches or is pressed in).
+    pub planted_float_cm: f32,
 }
 
 /// One figure against its goal (the figure must not exceed the limit).
@@ -135,6 +141,7 @@ impl GaitQuality {
             q.walking_samples += 1;
             let c = &m.character;
             q.sole_below_cm = q.sole_below_cm.max(100.0 * deepest_sole(m));
+            q.planted_float_cm = q.planted_float_cm.max(100.0 * planted_float(m));
             for (k, &knee) in c.knee_flexion.iter().enumerate() {
                 q.knee_max_deg = q.knee_max_deg.max(knee.to_degrees());
                 if c.planted[k] {
@@ -234,8 +241,9 @@ impl fmt::Display for GaitQuality {
             .collect();
         write!(
             f,
-            "{} ({} walking samples)",
+            "{}, planted float {:.2} cm ({} walking samples)",
             figures.join(", "),
+            self.planted_float_cm,
             self.walking_samples
         )
     }
@@ -260,6 +268,15 @@ pub fn deepest_sole(m: &WalkerMetrics) -> f32 {
     (0..2)
         .map(|k| m.sole_ground[k].buried(&m.character.soles[k]))
         .fold(f32::NEG_INFINITY, f32::max)
+}
+
+/// How far the lower end of the higher planted sole stands above the
+/// terrain under it, metres (0 when no planted sole is above the ground).
+pub fn planted_float(m: &WalkerMetrics) -> f32 {
+    (0..2)
+        .filter(|&k| m.character.planted[k])
+        .map(|k| -m.sole_ground[k].buried(&m.character.soles[k]))
+        .fold(0.0, f32::max)
 }
 
 /// True when leg `k`'s knee at sample `s` is more than [`KNEE_REVERSAL_DEG`]
@@ -325,6 +342,29 @@ mod tests {
         assert_eq!(failures[0], "pelvis step 3.00 cm (goal ≤ 1 cm)");
         assert!(failures[2].starts_with("stance knee reversals 10.00 %"));
         assert!(q.to_string().contains("knee step 30.00°"), "{q}");
+    }
+
+    #[test]
+    fn only_a_planted_sole_above_the_ground_floats() {
+        let mut series = walk();
+        assert_eq!(GaitQuality::measure(&series, DT).planted_float_cm, 0.0);
+        // The left heel 6 cm above the ground under it at sample 5 (its toe
+        // higher still), planted: it floats 6 cm.
+        series[5].sole_ground[0] = SoleGround {
+            heel: -0.06,
+            toe: -0.08,
+            ..SoleGround::default()
+        };
+        // The right sole 20 cm up at sample 6, but swinging: no float.
+        series[6].sole_ground[1] = SoleGround {
+            heel: -0.2,
+            toe: -0.2,
+            ..SoleGround::default()
+        };
+        series[6].character.planted[1] = false;
+        let q = GaitQuality::measure(&series, DT);
+        assert!((q.planted_float_cm - 6.0).abs() < 1e-3, "{q}");
+        assert!(q.to_string().contains("planted float 6.00 cm"), "{q}");
     }
 
     #[test]

@@ -100,6 +100,11 @@ pub const MAX_FOOT_FALL_SPEED: f32 = 3.0;
 /// How far below where its swing aims it a foot the leg cannot lift
 /// further goes before it ploughs through the ground, metres.
 const PLOUGH_DEPTH: f32 = 0.01;
+/// How far beyond the planted legs' own need a landing may lie out of
+/// reach before the pelvis lowers for it in the swing, metres: the bounded
+/// pelvis takes up a slight stretch at the landing itself (a long stride on
+/// level ground), as a walking leg does.
+const LANDING_SLACK: f32 = 0.02;
 /// Bisection steps when solving the foot pitch a leg needs (resolution below 0.001 rad).
 const PITCH_STEPS: usize = 11;
 
@@ -457,7 +462,9 @@ fn follow_pelvis(
         .map(|(drop, time)| (drop.min(deepest), time));
     // A landing lower than the walking height reaches lowers the pelvis by
     // what it lacks beyond the planted legs' own need, in time for it.
-    let (beyond, time) = landing.map_or((0.0, 0.0), |(d, time)| ((d - needed).max(0.0), time));
+    let (beyond, time) = landing.map_or((0.0, 0.0), |(d, time)| {
+        ((d - needed - LANDING_SLACK).max(0.0), time)
+    });
     let drop = needed - raise + beyond;
     let lowered = ground_y - ik.pelvis.height;
     let descent = if beyond > 0.0 {
@@ -777,6 +784,52 @@ mod tests {
             ..key
         };
         assert_eq!(reachable_floor(&held, 0.1), 0.05);
+    }
+
+    /// An adult walking along +X at 1 m/s over level ground at height 0,
+    /// its left foot planted and its right foot coming down onto a landing
+    /// `below` metres under that ground; the right hip at walking height.
+    fn landing_below(below: f32) -> (CharacterBody, Gait, FootRays, Vec3) {
+        use crate::character::support::SupportPoint;
+        use crate::character::{GaitModifiers, WalkPath};
+        use crate::ground::FlatGround;
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::X, 5.0).unwrap();
+        let mut gait = Gait::new(&body, &path, &GaitModifiers::default());
+        gait.velocity = Vec2::X;
+        gait.feet[0].phase = FootPhase::Stance;
+        gait.feet[1].phase = FootPhase::SwingDown;
+        gait.feet[1].foothold = Vec2::new(0.5 * gait.params.stride, 0.1);
+        let mut rays = FootRays::new(&gait, &body, &FlatGround(0.0));
+        let at = gait.feet[1].foothold;
+        rays.support[1].landing = SupportPoint::rigid(Vec3::new(at.x, -below, at.y));
+        rays.support[1].hit = true;
+        let pelvis = gait.pelvis.position;
+        let height = gait.params.walking_hip_height(&body) + gait.bob;
+        let hip = Vec3::new(pelvis.x, height, pelvis.y + body.hip_half_width);
+        (body, gait, rays, hip)
+    }
+
+    #[test]
+    fn a_landing_below_the_legs_reach_asks_the_pelvis_down_before_the_foot_lands() {
+        let (body, gait, rays, hip) = landing_below(0.0);
+        let (level, time) = landing_drop(&body, &gait, &rays, hip, 1, 0.0).unwrap();
+        assert!(level <= 0.0, "level ground is within reach: {level}");
+        assert!((time - gait.time_to_landing(1)).abs() < 1e-6);
+        let (body, gait, rays, hip) = landing_below(0.3);
+        let (low, _) = landing_drop(&body, &gait, &rays, hip, 1, 0.0).unwrap();
+        assert!(low > 0.15 && low < 0.3, "{low}");
+        // Ground falling under the body as fast brings the hip down with it.
+        let falling = -0.3 / gait.time_to_landing(1);
+        let (carried, _) = landing_drop(&body, &gait, &rays, hip, 1, falling).unwrap();
+        assert!((carried - level).abs() < 0.02, "{carried} vs {level}");
+        // A planted foot, or a walker standing still, asks for nothing.
+        assert!(landing_drop(&body, &gait, &rays, hip, 0, 0.0).is_none());
+        let stopped = Gait {
+            stopped: true,
+            ..gait
+        };
+        assert!(landing_drop(&body, &stopped, &rays, hip, 1, 0.0).is_none());
     }
 
     #[test]

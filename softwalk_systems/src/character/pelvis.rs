@@ -199,7 +199,7 @@ mod tests {
                 .unwrap()
         };
         let (dropping, under_bob) = (drop_time(0.0), drop_time(-0.2));
-        assert!(2 * dropping < walking, "{dropping} vs {walking} steps");
+        assert!(3 * dropping < 2 * walking, "{dropping} vs {walking} steps");
         assert!(
             under_bob > dropping,
             "the bob leaves less room: {under_bob} steps"
