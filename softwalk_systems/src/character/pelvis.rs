@@ -122,6 +122,19 @@ mod tests {
         assert!((p.height - 0.7).abs() < 1e-3);
     }
 
+    /// Steps of `dt` the follower takes, within the walking bounds, from 0
+    /// to within 5 % of `target`.
+    fn walking_steps(target: f32, dt: f32) -> usize {
+        let mut p = PelvisFollower::default();
+        p.follow(0.0, 0.0, ExtraSpeed::default(), 0.0);
+        (1..=120)
+            .find(|_| {
+                let h = p.follow(target, 0.0, ExtraSpeed::default(), dt);
+                (h - target).abs() <= 0.05 * target.abs()
+            })
+            .unwrap()
+    }
+
     #[test]
     fn a_step_is_climbed_faster_but_base_and_bob_never_faster_than_the_climb_bound() {
         let dt = 1.0 / 60.0;
@@ -150,13 +163,7 @@ mod tests {
             }
             usize::MAX
         };
-        let walking = {
-            let mut p = PelvisFollower::default();
-            p.follow(0.0, 0.0, ExtraSpeed::default(), 0.0);
-            (1..=120)
-                .find(|_| p.follow(0.3, 0.0, ExtraSpeed::default(), dt) >= 0.285)
-                .unwrap()
-        };
+        let walking = walking_steps(0.3, dt);
         let (climbing, under_bob) = (rise_time(0.3, 0.0), rise_time(0.3, 0.2));
         assert!(3 * climbing < 2 * walking, "{climbing} vs {walking} steps");
         assert!(
@@ -191,13 +198,7 @@ mod tests {
             }
             usize::MAX
         };
-        let walking = {
-            let mut p = PelvisFollower::default();
-            p.follow(0.0, 0.0, ExtraSpeed::default(), 0.0);
-            (1..=120)
-                .find(|_| p.follow(-0.25, 0.0, ExtraSpeed::default(), dt) <= -0.2375)
-                .unwrap()
-        };
+        let walking = walking_steps(-0.25, dt);
         let (dropping, under_bob) = (drop_time(0.0), drop_time(-0.2));
         assert!(3 * dropping < 2 * walking, "{dropping} vs {walking} steps");
         assert!(
