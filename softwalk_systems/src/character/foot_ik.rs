@@ -427,8 +427,11 @@ fn place_feet(
 /// (less the give a foot bearing little weight need not reach, see
 /// [`unloaded_give`]), and raised (as far as every planted leg allows)
 /// where the planted legs would bend more than a standing leg does, as
-/// behind the hip on a downhill; the bounds are relative to the ground's
-/// rise under the walk, and the pelvis may climb a step in one step's time.
+/// behind the hip on a downhill; a swinging foot landing lower than its leg
+/// reaches (see [`landing_drop`]) lowers it further, in time for the
+/// landing. The bounds are relative to the ground's rise under the walk;
+/// the pelvis may climb a step in one step's time, and lower faster for a
+/// landing (see [`descent_speed`]).
 fn follow_pelvis(
     ik: &mut FootIK,
     body: &CharacterBody,
@@ -455,10 +458,7 @@ fn follow_pelvis(
     let ground_rate = rise_along(rays.body.normal, gait.velocity);
     let landing = (0..2)
         .filter_map(|k| landing_drop(body, gait, rays, hips[k], k, ground_rate))
-        .fold(None, |a: Option<(f32, f32)>, b| match a {
-            Some(a) if a.0 >= b.0 => Some(a),
-            _ => Some(b),
-        })
+        .max_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(drop, time)| (drop.min(deepest), time));
     // A landing lower than the walking height reaches lowers the pelvis by
     // what it lacks beyond the planted legs' own need, in time for it.
