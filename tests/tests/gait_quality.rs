@@ -10,7 +10,7 @@
 
 use rayon::prelude::*;
 use softwalk_app::paper::gait_figures::{GaitFigures, within};
-use softwalk_app::paper::gait_quality::STEP_UP_SCENES;
+use softwalk_app::paper::gait_quality::{GaitQuality, STEP_UP_SCENES};
 use softwalk_app::paper::gait_quality::{SOLE_BELOW_GOAL_CM, deepest_sole};
 use softwalk_app::paper::recorded_run::{RecordedRun, record_run};
 use softwalk_app::paper::stillness::Stillness;
@@ -124,8 +124,7 @@ fn sand_and_snow_walks_do_not_depend_on_the_step_rate() {
 /// The goals of the 60 Hz walk at step `dt`: the pelvis and knee steps
 /// are speeds (1 cm and 10° per 1/60 s), so a walk stepped at 30 Hz may move
 /// twice as far in one of its steps; every other goal is the same.
-fn failures_at_rate(run: &RecordedRun, dt: f32) -> Vec<String> {
-    let mut q = run.quality(0);
+fn failures_at_rate(mut q: GaitQuality, dt: f32) -> Vec<String> {
     let per_sixtieth = 1.0 / (60.0 * dt);
     q.pelvis_step_cm *= per_sixtieth;
     q.knee_step_deg *= per_sixtieth;
@@ -167,8 +166,9 @@ fn small_and_adult_walkers_meet_the_gait_goals_at_30_and_120_hz() {
             } else {
                 "walker"
             };
-            println!("{name} at {hz} Hz, {who}: {}", run.quality(0));
-            failures_at_rate(&run, dt)
+            let quality = run.quality(0);
+            println!("{name} at {hz} Hz, {who}: {quality}");
+            failures_at_rate(quality, dt)
                 .into_iter()
                 .map(|f| format!("{name} at {hz} Hz, {who}: {f}"))
                 .collect::<Vec<_>>()

@@ -317,7 +317,10 @@ pub fn long_walk_claim(options: &PaperOptions) -> Result<Claim, PaperError> {
                     "finite {finite}, max tilt {:.2}°, drift {drift:.4} m, gap {gap:.4} m, final COM {last:.2} m above ground",
                     max_tilt.to_degrees()
                 ),
-                format!("finite, tilt < 20°, drift ≤ 0.01 m, gap ≤ {LOOP_FLOAT_LIMIT} m, COM in (0.3 h, h)"),
+                format!(
+                    "finite, tilt < {:.0}°, drift ≤ {STANCE_LIMIT} m, gap ≤ {LOOP_FLOAT_LIMIT} m, COM in (0.3 h, h)",
+                    MAX_TILT.to_degrees()
+                ),
                 ok,
             )
         })

@@ -272,7 +272,7 @@ pub fn deepest_sole(m: &WalkerMetrics) -> f32 {
 
 /// How far the lower end of the higher planted sole stands above the
 /// terrain under it, metres (0 when no planted sole is above the ground).
-pub fn planted_float(m: &WalkerMetrics) -> f32 {
+fn planted_float(m: &WalkerMetrics) -> f32 {
     (0..2)
         .filter(|&k| m.character.planted[k])
         .map(|k| -m.sole_ground[k].buried(&m.character.soles[k]))

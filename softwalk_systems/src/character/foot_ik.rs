@@ -50,8 +50,8 @@ pub struct FootIK {
     /// dropping into a print), so a foot drops onto the ground instead of
     /// teleporting.
     pub flat_heights: Option<[f32; 2]>,
-    /// Knee flexion of each leg last step, radians: it changes by at most
-    /// `MAX_KNEE_SPEED`.
+    /// Knee flexion of each leg last step, radians: it changes within
+    /// `swing_knee::flexion_reach` (its top speed, eased near straight).
     pub knee_flexion: Option<[f32; 2]>,
 }
 
@@ -295,9 +295,10 @@ fn unroll_to_length(
 /// Each foot rolls as the gait schedules it (heel strike about the heel,
 /// heel rise about the toe), and further where a leg cannot reach its foot;
 /// the pelvis follows the height the legs need at a bounded speed
-/// (`PelvisFollower`); the knees stay within their range and speed. A
-/// swinging foot that ploughs holds its landing in `rays` (see
-/// [`super::FootSupport::landing_held`]).
+/// (`PelvisFollower`); the knees stay within their range and speed. Each
+/// foot's sole as the leg really reached it is recorded in `rays`
+/// ([`super::FootSupport::reached`]), and a swinging foot that ploughs
+/// holds its landing there ([`super::FootSupport::landing_held`]).
 pub fn foot_ik_stage(
     ik: &mut FootIK,
     pose: &mut Pose,

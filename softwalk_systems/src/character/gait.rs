@@ -81,7 +81,7 @@ pub fn scheduled_pitch(p: f32, duty: f32) -> f32 {
 /// shorter legs (the feet keep their length). The heel then lifts the ankle
 /// about as far, for the leg's length, as on a standard body, and a short
 /// leg's knee bends no further at toe-off.
-pub fn heel_rise_share(body: &CharacterBody) -> f32 {
+fn heel_rise_share(body: &CharacterBody) -> f32 {
     body.desc.leg_length_factor.min(1.0)
 }
 

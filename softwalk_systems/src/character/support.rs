@@ -39,7 +39,7 @@ pub const FULL_PUSH_GIVE: f32 = 0.02;
 /// How far (metres) the sole a leg really reached may be below the floor
 /// of the ground its swing moves it over before the swing waits for it
 /// (see [`FootSupport::trail`]).
-pub const WAIT_BELOW_FLOOR: f32 = 0.01;
+const WAIT_BELOW_FLOOR: f32 = 0.01;
 
 /// A ground point under a sole centre, with its normal and how far it gives.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -124,11 +124,11 @@ pub struct FootSupport {
     /// is: a leg that cannot lift the foot out of a deep print in time does
     /// not push it into the firmer ground ahead (a sand edge after snow).
     /// The trail closes evenly by the time the foot pushes into its landing.
-    pub trail: Vec2,
+    trail: Vec2,
     /// Swing progress at the last step, for closing [`Self::trail`].
-    pub last_swing: f32,
+    last_swing: f32,
     /// Where (x, z) the swinging foot's key was last step.
-    pub key_at: Vec2,
+    key_at: Vec2,
 }
 
 impl FootSupport {
@@ -263,11 +263,13 @@ impl FootSupport {
             0.0
         };
         let at = |target: Vec2| FootPlan { target, ..*plan };
-        let onward = at(plan.target - self.trail * keep);
-        let floor = lowest_clear_centre(cast, &onward, body, normal).map_or(f32::MIN, |c| c.floor);
-        let below = self.reached.is_some_and(|r| r.y < floor - WAIT_BELOW_FLOOR);
-        let waits = u < 0.5 && u < pushing_from && below;
-        let key = if waits { self.key_at } else { onward.target };
+        let onward = plan.target - self.trail * keep;
+        let waits = u < 0.5
+            && u < pushing_from
+            && self.reached.is_some_and(|r| {
+                r.y < floor_under(cast, plan, onward, body, normal) - WAIT_BELOW_FLOOR
+            });
+        let key = if waits { self.key_at } else { onward };
         self.trail = plan.target - key;
         self.key_at = key;
         self.last_swing = u;
@@ -275,9 +277,8 @@ impl FootSupport {
     }
 
     /// The floor under a flat sole (lying in the plane of `normal`, facing
-    /// `plan`'s heading) centred where the leg really had the sole last step:
-    /// the lowest height of its centre over the floors under five points
-    /// from heel to toe; `f32::MIN` when that is unknown.
+    /// `plan`'s heading) centred where the leg really had the sole last step
+    /// (see [`floor_under`]); `f32::MIN` when that is unknown.
     fn floor_under_reached(
         &self,
         plan: &FootPlan,
@@ -285,14 +286,9 @@ impl FootSupport {
         cast: &dyn Fn(Vec2) -> Option<GroundHit>,
         normal: Vec3,
     ) -> f32 {
-        let Some(reached) = self.reached else {
-            return f32::MIN;
-        };
-        let there = FootPlan {
-            target: Vec2::new(reached.x, reached.z),
-            ..*plan
-        };
-        lowest_clear_centre(cast, &there, body, normal).map_or(f32::MIN, |c| c.floor)
+        self.reached.map_or(f32::MIN, |r| {
+            floor_under(cast, plan, Vec2::new(r.x, r.z), body, normal)
+        })
     }
 
     /// Aims the landing at `plan`'s foothold: the surface under the sole
@@ -397,6 +393,21 @@ struct ClearCentre {
     surface: f32,
     /// Above the floor: the surface less what the ground gives there.
     floor: f32,
+}
+
+/// The floor under a flat sole centred at `target` (lying in the plane of
+/// `normal`, facing `plan`'s heading): the lowest height of its centre over
+/// the floors under five points from heel to toe (see
+/// [`lowest_clear_centre`]); `f32::MIN` where no ray hits.
+fn floor_under(
+    cast: &dyn Fn(Vec2) -> Option<GroundHit>,
+    plan: &FootPlan,
+    target: Vec2,
+    body: &CharacterBody,
+    normal: Vec3,
+) -> f32 {
+    let there = FootPlan { target, ..*plan };
+    lowest_clear_centre(cast, &there, body, normal).map_or(f32::MIN, |c| c.floor)
 }
 
 /// The lowest heights of the centre of a flat sole at `plan`'s target,
