@@ -11,7 +11,7 @@ use super::error::SimError;
 use super::ground_state::GroundState;
 use super::ground_view::SceneGround;
 use super::pipeline::add_pipeline;
-use super::sole_ground::SoleGround;
+use super::sole_ground::{SoleGround, under_soles};
 use super::standing_prints::press_standing_feet;
 use super::timing::SystemTimings;
 use crate::character::{Character, CharacterDesc, WalkPath};
@@ -130,17 +130,15 @@ impl SimBuilder {
         Ok(entity)
     }
 
-    /// Runs `f` with the scene's current ground (terrain and meshes).
-    /// The terrain heights under each sole (the soles' own heights without a terrain).
+    /// The ground under each sole (see [`under_soles`]).
     fn ground_under(&self, soles: &[FootSole; 2]) -> [SoleGround; 2] {
-        let ground = self.app.world.get_resource::<GroundState>();
-        let grid = ground.as_deref().map(|g| g.terrain().grid());
-        soles.map(|sole| match grid {
-            Some(grid) => SoleGround::under(grid, &sole),
-            None => SoleGround::flush(&sole),
-        })
+        under_soles(
+            self.app.world.get_resource::<GroundState>().as_deref(),
+            soles,
+        )
     }
 
+    /// Runs `f` with the scene's current ground (terrain and meshes).
     fn with_ground<T>(&self, f: impl FnOnce(&SceneGround<'_>) -> T) -> T {
         let world = &self.app.world;
         match world.get_resource::<GroundState>() {

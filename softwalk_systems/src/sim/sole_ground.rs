@@ -1,5 +1,7 @@
 //! The ground under a sole: terrain heights under its heel, centre and toe,
 //! recorded each step so sliding and burying can be measured from the metrics.
+//! A foot on a static mesh (a rock, a plank) stands on the mesh's top, so
+//! the mesh counts as the ground where it lies just above the terrain.
 //!
 //! A sole is a rounded rectangle, and so is its print. Its very tips lie on
 //! the print's wall, which a height grid can only draw as a slope one cell
@@ -7,12 +9,18 @@
 //! at the centres of the sole's rounded ends (half a sole width in from the
 //! tips): the last points whose ground the print fully carves.
 
-use engine::geom::HeightGrid;
+use engine::geom::{HeightGrid, RayScene};
 use glam::Vec3;
 
+use super::ground_state::GroundState;
 use crate::foot::FootSole;
 
-/// Terrain heights under one sole (heel end, centre, toe end), metres.
+/// How far above a sole point a static mesh's surface may be and still be
+/// the ground under it, metres: a foot sunk into a rock is measured against
+/// the rock's top, a foot under a bridge not against the bridge.
+pub const MESH_GROUND_REACH: f32 = 0.3;
+
+/// Ground heights under one sole (heel end, centre, toe end), metres.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SoleGround {
     /// Terrain height under the centre of the heel's rounded end.
@@ -42,6 +50,23 @@ impl SoleGround {
         }
     }
 
+    /// `self` raised to the static meshes of `scene` under the sole's
+    /// points, where a mesh's surface lies above the terrain and at most
+    /// [`MESH_GROUND_REACH`] above the point.
+    pub fn on_meshes(self, scene: &RayScene, sole: &FootSole) -> SoleGround {
+        let [heel, toe] = sole_ends(sole);
+        let raised = |terrain: f32, p: Vec3| {
+            scene
+                .cast_down(None, p.x, p.z, p.y + MESH_GROUND_REACH)
+                .map_or(terrain, |hit| terrain.max(hit.point.y))
+        };
+        SoleGround {
+            heel: raised(self.heel, heel),
+            centre: raised(self.centre, sole.center()),
+            toe: raised(self.toe, toe),
+        }
+    }
+
     /// The sole's own heights, as if it stood exactly on the ground (no terrain known).
     pub fn flush(sole: &FootSole) -> SoleGround {
         let [heel, toe] = sole_ends(sole);
@@ -58,6 +83,16 @@ impl SoleGround {
         let [heel, toe] = sole_ends(sole);
         (self.heel - heel.y).max(self.toe - toe.y)
     }
+}
+
+/// The ground under each sole on `ground`: its terrain, raised to its
+/// static meshes (see [`SoleGround::on_meshes`]); without a ground, the
+/// soles' own heights.
+pub fn under_soles(ground: Option<&GroundState>, soles: &[FootSole; 2]) -> [SoleGround; 2] {
+    soles.map(|sole| match ground {
+        Some(g) => SoleGround::under(g.terrain().grid(), &sole).on_meshes(g.scene(), &sole),
+        None => SoleGround::flush(&sole),
+    })
 }
 
 /// Terrain height at `p`'s `x, z`, clamped into the grid (the border height off it).
@@ -95,6 +130,35 @@ mod tests {
             "the heel end is under"
         );
         assert_eq!(SoleGround::flush(&sole).buried(&sole), 0.0);
+    }
+
+    #[test]
+    fn a_mesh_just_above_the_terrain_is_the_ground_under_a_sole_and_one_high_above_is_not() {
+        // A horizontal plate at `top` over x in [0.3, 1], z in [0, 1].
+        let plate = |top: f32| {
+            let corners = [[0.3, 0.0], [1.0, 0.0], [1.0, 1.0], [0.3, 1.0]];
+            let positions = corners.map(|[x, z]| Vec3::new(x, top, z)).to_vec();
+            let mut scene = RayScene::new();
+            let mesh = engine::geom::TriMesh::new(positions, vec![[0, 1, 2], [0, 2, 3]]).unwrap();
+            scene.add_mesh(mesh).unwrap();
+            scene
+        };
+        // The heel end over bare ground (height 0), the toe end over the plate.
+        let sole = FootSole {
+            heel: Vec3::new(0.0, 0.0, 0.5),
+            toe: Vec3::new(0.5, 0.0, 0.5),
+            width: 0.1,
+        };
+        let terrain = SoleGround::flush(&sole);
+        // A rock top 4 cm above the toe: the toe end is 4 cm inside it.
+        let on_rock = terrain.on_meshes(&plate(0.04), &sole);
+        assert_eq!(on_rock.heel, 0.0);
+        assert!((on_rock.toe - 0.04).abs() < 1e-6, "{on_rock:?}");
+        assert!((on_rock.buried(&sole) - 0.04).abs() < 1e-6);
+        // A bridge a metre above is not the ground under the foot; a mesh
+        // below the terrain does not lower it.
+        assert_eq!(terrain.on_meshes(&plate(1.0), &sole), terrain);
+        assert_eq!(terrain.on_meshes(&plate(-0.2), &sole), terrain);
     }
 
     #[test]

@@ -6,7 +6,7 @@ use engine::schedule::Time;
 use super::components::{BaseGains, Feet, Platforms, SystemFault, WalkerMetrics};
 use super::ground_state::GroundState;
 use super::labels;
-use super::sole_ground::SoleGround;
+use super::sole_ground::under_soles;
 use crate::character::{
     Balance, CharacterBody, CharacterMetrics, FootIK, FootRays, Gait, GaitModifiers, Pose,
     RigidProxy, Steering, WalkPath, balance_stage, brake_modifiers, foot_ik_stage,
@@ -180,12 +180,13 @@ pub fn foot_ik_system(world: &mut World) {
 }
 
 /// System `metrics`: records each character's [`WalkerMetrics`] for this step,
-/// with the terrain heights under each sole (x, z clamped into the grid).
+/// with the ground heights under each sole (x, z clamped into the grid; a
+/// static mesh under a sole counts, see [`under_soles`]).
 pub fn metrics_system(world: &mut World) {
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();
-    let ground = world.get_resource::<GroundState>();
-    let grid = ground.as_deref().map(|g| g.terrain().grid());
+    let ground_state = world.get_resource::<GroundState>();
+    let ground = ground_state.as_deref();
     let mut walkers = world.query::<(
         &CharacterBody,
         &Pose,
@@ -209,10 +210,7 @@ pub fn metrics_system(world: &mut World) {
             }),
             None => [None, None],
         };
-        let sole_ground = character.soles.map(|sole| match grid {
-            Some(grid) => SoleGround::under(grid, &sole),
-            None => SoleGround::flush(&sole),
-        });
+        let sole_ground = under_soles(ground, &character.soles);
         *out = WalkerMetrics {
             character,
             platform_y,
