@@ -325,13 +325,14 @@ fn ground_in_the_shadow_of_two_casters_is_no_darker_than_in_one() {
     // Two boxes side by side across the sun: their shadows overlap in a band.
     let boxes = [Vec3::ZERO, Vec3::new(0.2, 0.0, 0.25)]
         .map(|at| MeshInstance::new(&mesh, Mat4::from_translation(at), BOX_COLOUR));
-    let draw = |meshes: &[MeshInstance<'_>], shadows: bool| draw(&terrain, meshes, shadows);
-    let ground = draw(&[], false);
-    let unshadowed = draw(&boxes, false);
+    let draw_on_ground =
+        |meshes: &[MeshInstance<'_>], shadows: bool| draw(&terrain, meshes, shadows);
+    let ground = draw_on_ground(&[], false);
+    let unshadowed = draw_on_ground(&boxes, false);
     let (one, other, both) = (
-        draw(&boxes[..1], true),
-        draw(&boxes[1..], true),
-        draw(&boxes, true),
+        draw_on_ground(&boxes[..1], true),
+        draw_on_ground(&boxes[1..], true),
+        draw_on_ground(&boxes, true),
     );
     // The deepest shadow of one caster, the deepest of both, and where
     // both shade the same ground.

@@ -6,10 +6,7 @@
 use std::fmt;
 
 use glam::{Vec2, Vec3};
-use softwalk_app::paper::gait_quality::{
-    Goal, KNEE_MAX_GOAL_DEG, KNEE_STEP_GOAL_DEG, PELVIS_STEP_GOAL_CM, SOLE_BELOW_GOAL_CM,
-    deepest_sole, pelvis_step,
-};
+use softwalk_app::paper::gait_quality::{Goal, deepest_sole, pelvis_step};
 use softwalk_systems::sim::WalkerMetrics;
 
 use crate::sole_contact::StanceSlide;
@@ -144,15 +141,10 @@ impl StopFigures {
         let flat = self.flat_after_s.unwrap_or(f32::INFINITY);
         [
             goal(FLAT_FIGURE, flat, FLAT_AFTER_GOAL_S, " s"),
-            goal(
-                "pelvis step",
-                self.pelvis_step_cm,
-                PELVIS_STEP_GOAL_CM,
-                " cm",
-            ),
-            goal("knee step", self.knee_step_deg, KNEE_STEP_GOAL_DEG, "°"),
-            goal("knee max", self.knee_max_deg, KNEE_MAX_GOAL_DEG, "°"),
-            goal("sole below", self.sole_below_cm, SOLE_BELOW_GOAL_CM, " cm"),
+            Goal::pelvis_step(self.pelvis_step_cm),
+            Goal::knee_step(self.knee_step_deg),
+            Goal::knee_max(self.knee_max_deg),
+            Goal::sole_below(self.sole_below_cm),
             goal("slide", self.slide_cm, 100.0 * SLIDE_GOAL_M, " cm"),
             goal(
                 "drift at rest",

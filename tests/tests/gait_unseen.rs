@@ -45,9 +45,7 @@
 //! stance knee, the pelvis and the soles to the walk's goals.
 
 use rayon::prelude::*;
-use softwalk_app::paper::gait_quality::{
-    GaitQuality, PELVIS_STEP_GOAL_CM, SOLE_BELOW_GOAL_CM, deepest_sole,
-};
+use softwalk_app::paper::gait_quality::{GaitQuality, Goal, deepest_sole};
 use softwalk_app::paper::recorded_run::{RecordedRun, record_run};
 use softwalk_app::paper::variants::{
     RIGID, along_x, builtin, checked, rigid_material, walker, with_material, with_slope,
@@ -395,10 +393,6 @@ fn walkers_down_dune_lee_faces_meet_the_gait_goals_and_reach_their_landings() {
 /// a walker standing in its own prints starts with straight legs, and its
 /// first stance bends the knee no more than walking does.
 const FIRST_SECOND_STANCE_KNEE_DEG: f32 = 60.0;
-/// Largest pelvis height change in one step, metres (the gait goal's).
-const FIRST_SECOND_PELVIS_STEP_M: f32 = PELVIS_STEP_GOAL_CM / 100.0;
-/// Deepest a sole end may sit below the ground under it, metres (the gait goal's).
-const FIRST_SECOND_BURIED_M: f32 = SOLE_BELOW_GOAL_CM / 100.0;
 
 /// What a walker's first second on loose ground fails of the goals above.
 fn first_second_failures(
@@ -423,13 +417,13 @@ fn first_second_failures(
         .windows(2)
         .map(|w| (w[1].character.pelvis_y - w[0].character.pelvis_y).abs())
         .fold(0.0f32, f32::max);
-    if pelvis_step > FIRST_SECOND_PELVIS_STEP_M {
-        failures.push(format!("pelvis step {:.2} cm", 100.0 * pelvis_step));
-    }
     let buried = steps.iter().map(deepest_sole).fold(f32::MIN, f32::max);
-    if buried > FIRST_SECOND_BURIED_M {
-        failures.push(format!("sole {:.2} cm under the ground", 100.0 * buried));
-    }
+    // The walk's own pelvis-step and sole goals.
+    let goals = [
+        Goal::pelvis_step(100.0 * pelvis_step),
+        Goal::sole_below(100.0 * buried),
+    ];
+    failures.extend(goals.iter().filter(|g| !g.met()).map(Goal::to_string));
     failures
 }
 

@@ -1,8 +1,8 @@
 //! Height-grid surfaces drawn by patches with frustum culling, distance level of
 //! detail (geomipmapping) and skirts against cracks between levels.
 //!
-//! Patches re-mesh only when [`TerrainRenderer::mark_dirty`] reported a change
-//! of heights under them; the vertex colours of every level live in one
+//! Patches re-mesh under each rectangle given to [`TerrainRenderer::mark_dirty`]
+//! (heights or colours changed; all of them when the sun moves); the vertex colours of every level live in one
 //! pyramid over the whole grid, re-lit where a change's light reaches
 //! ([`TerrainRenderer::update`] does both).
 

@@ -51,12 +51,20 @@ impl WindowSpans {
         value: impl Fn(usize, usize) -> T + Sync,
     ) {
         let rows = self.bounds;
-        buf.par_chunks_mut(width)
+        let j1 = rows.j1.min(buf.len() / width.max(1));
+        if rows.is_empty() || rows.j0 >= j1 {
+            return;
+        }
+        // Only the rows the windows span go to the pool, so a small window
+        // is still split across threads.
+        buf[rows.j0 * width..j1 * width]
+            .par_chunks_mut(width)
             .enumerate()
-            .filter(|(j, _)| *j >= rows.j0 && *j < rows.j1)
-            .for_each(|(j, row)| {
+            .for_each(|(dj, row)| {
+                let j = rows.j0 + dj;
                 for (i0, i1) in self.row(j) {
-                    for (i, out) in row.iter_mut().enumerate().take(i1).skip(i0) {
+                    let i1 = i1.min(width);
+                    for (i, out) in (i0.min(i1)..i1).zip(&mut row[i0.min(i1)..i1]) {
                         *out = value(i, j);
                     }
                 }

@@ -28,13 +28,13 @@ pub const LOOP_FLOAT_LIMIT: f32 = 0.075;
 /// Largest gap accepted between a foot on the ground and the ground on a
 /// slope of `angle_deg` degrees (positive uphill), metres.
 ///
-/// On level ground and up to 10° a foot on the ground touches it (1 cm).
-/// Down a slope, and up a steep one, the pelvis, which moves at a bounded
-/// speed, reaches the height a foot needs a little after the foot arrives:
-/// a foot a straight leg cannot reach is held above the ground rather than
-/// dragged (it never slides) for a few steps (a known limit of the bounded
-/// pelvis): held to 6 cm down 15° and steeper, and to 5.5 cm elsewhere off
-/// the range from 5° down to 15° up.
+/// From 5° down to 15° up a foot on the ground touches it
+/// ([`STANCE_LIMIT`]). Down a slope, and up a steep one, the pelvis, which
+/// moves at a bounded speed, reaches the height a foot needs a little after
+/// the foot arrives: a foot a straight leg cannot reach is held above the
+/// ground rather than dragged (it never slides) for a few steps (a known
+/// limit of the bounded pelvis): held to 6 cm down 15° and steeper, and to
+/// 5.5 cm elsewhere.
 pub fn float_limit(angle_deg: f32) -> f32 {
     if angle_deg <= -15.0 {
         STEEP_DESCENT_FLOAT_LIMIT

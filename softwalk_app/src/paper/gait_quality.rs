@@ -14,10 +14,10 @@
 //! - stance knee: the mean knee flexion of planted legs (in the stance of
 //!   their walk cycle, bearing weight), degrees (goal ≤ 25°);
 //! - knee max: the largest knee flexion of either leg, degrees (goal ≤ 120°);
-//! - sole below ground: how far the heel or toe sits below the terrain under
+//! - sole below ground: how far the heel or toe sits below the ground under
 //!   it, at worst, cm (goal ≤ 2 cm);
 //! - planted float: how far the lower end of a planted sole sits above the
-//!   terrain under it, at worst, cm (reported; its goal depends on the
+//!   ground under it, at worst, cm (reported; its goal depends on the
 //!   ground, see `tests/tests/gait_unseen.rs` and `paper::character::float_limit`).
 
 use std::fmt;
@@ -65,10 +65,10 @@ pub struct GaitQuality {
     pub stance_knee_deg: f32,
     /// Largest knee flexion of either leg, degrees.
     pub knee_max_deg: f32,
-    /// Deepest heel or toe below the terrain under it, cm (negative: always above).
+    /// Deepest heel or toe below the ground under it, cm (negative: always above).
     pub sole_below_cm: f32,
     /// Highest a planted sole's lower end (heel or toe) stands above the
-    /// terrain under it, cm (0 when every planted sole touches or is pressed in).
+    /// ground under it, cm (0 when every planted sole touches or is pressed in).
     pub planted_float_cm: f32,
 }
 
@@ -94,6 +94,26 @@ impl Goal {
             limit,
             unit,
         }
+    }
+
+    /// The pelvis step `cm` against [`PELVIS_STEP_GOAL_CM`].
+    pub fn pelvis_step(cm: f32) -> Goal {
+        Goal::new("pelvis step", cm, PELVIS_STEP_GOAL_CM, " cm")
+    }
+
+    /// The knee step `deg` against [`KNEE_STEP_GOAL_DEG`].
+    pub fn knee_step(deg: f32) -> Goal {
+        Goal::new("knee step", deg, KNEE_STEP_GOAL_DEG, "°")
+    }
+
+    /// The largest knee flexion `deg` against [`KNEE_MAX_GOAL_DEG`].
+    pub fn knee_max(deg: f32) -> Goal {
+        Goal::new("knee max", deg, KNEE_MAX_GOAL_DEG, "°")
+    }
+
+    /// The deepest sole `cm` below the ground against [`SOLE_BELOW_GOAL_CM`].
+    pub fn sole_below(cm: f32) -> Goal {
+        Goal::new("sole below ground", cm, SOLE_BELOW_GOAL_CM, " cm")
     }
 
     /// True when the value is at most the limit (NaN fails).
@@ -172,34 +192,23 @@ impl GaitQuality {
 
     /// Every figure against its goal, in the order of the design's table.
     pub fn goals(&self) -> [Goal; 6] {
-        let goal = Goal::new;
         [
-            goal(
-                "pelvis step",
-                self.pelvis_step_cm,
-                PELVIS_STEP_GOAL_CM,
-                " cm",
-            ),
-            goal("knee step", self.knee_step_deg, KNEE_STEP_GOAL_DEG, "°"),
-            goal(
+            Goal::pelvis_step(self.pelvis_step_cm),
+            Goal::knee_step(self.knee_step_deg),
+            Goal::new(
                 "stance knee reversals",
                 self.knee_reversal_pct,
                 KNEE_REVERSAL_GOAL_PCT,
                 " %",
             ),
-            goal(
+            Goal::new(
                 LEVEL_WALK_FIGURE,
                 self.stance_knee_deg,
                 STANCE_KNEE_GOAL_DEG,
                 "°",
             ),
-            goal("knee max", self.knee_max_deg, KNEE_MAX_GOAL_DEG, "°"),
-            goal(
-                "sole below ground",
-                self.sole_below_cm,
-                SOLE_BELOW_GOAL_CM,
-                " cm",
-            ),
+            Goal::knee_max(self.knee_max_deg),
+            Goal::sole_below(self.sole_below_cm),
         ]
     }
 
@@ -262,7 +271,7 @@ fn slope_rise_rate(m: &WalkerMetrics) -> f32 {
     m.velocity.length() * m.character.ground_slope.tan()
 }
 
-/// How far the lower of heel and toe of either foot sits below the terrain
+/// How far the lower of heel and toe of either foot sits below the ground
 /// under it, metres (negative when both soles are above the ground).
 pub fn deepest_sole(m: &WalkerMetrics) -> f32 {
     (0..2)
@@ -271,7 +280,7 @@ pub fn deepest_sole(m: &WalkerMetrics) -> f32 {
 }
 
 /// How far the lower end of the higher planted sole stands above the
-/// terrain under it, metres (0 when no planted sole is above the ground).
+/// ground under it, metres (0 when no planted sole is above the ground).
 fn planted_float(m: &WalkerMetrics) -> f32 {
     (0..2)
         .filter(|&k| m.character.planted[k])

@@ -19,10 +19,10 @@ use super::model_units::ModelUnits;
 /// The default character, a CC0 MakeHuman body with a game-engine rig
 /// (`assets/characters/human.glb`; see the README beside it), built in.
 const HUMAN_GLB: &[u8] = include_bytes!("../../../assets/characters/human.glb");
-/// How far above the lowest rest-pose foot vertex a foot vertex still counts as sole, metres.
 /// The cubes of [`CharacterRig::coarse_mesh`], as a fraction of the
 /// model's largest extent.
 pub const COARSE_MESH_CELL: f32 = 1.0 / 40.0;
+/// How far above the lowest rest-pose foot vertex a foot vertex still counts as sole, metres.
 const SOLE_BAND: f32 = 0.012;
 /// Smallest share of a vertex's weight on a foot's bones for it to be part of that sole.
 const SOLE_WEIGHT: f32 = 0.5;
@@ -190,7 +190,7 @@ impl CharacterRig {
     }
 
     /// Whether `other` is this same loaded rig (a clone of it).
-    pub fn is_same(&self, other: &CharacterRig) -> bool {
+    pub(crate) fn is_same(&self, other: &CharacterRig) -> bool {
         Arc::ptr_eq(&self.data, &other.data)
     }
 

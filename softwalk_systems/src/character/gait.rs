@@ -739,6 +739,16 @@ mod tests {
     use super::*;
     use crate::character::CharacterDesc;
 
+    /// An adult with the default modifiers, standing at the start of a
+    /// straight `length` metres along +Z.
+    fn adult_walk(length: f32) -> (CharacterBody, WalkPath, GaitModifiers, Gait) {
+        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
+        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, length).unwrap();
+        let mods = GaitModifiers::default();
+        let gait = Gait::new(&body, &path, &mods);
+        (body, path, mods, gait)
+    }
+
     #[test]
     fn adult_walk_matches_boulic_figures() {
         let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
@@ -782,10 +792,7 @@ mod tests {
 
     #[test]
     fn the_weight_passes_from_the_trailing_foot_to_the_leading_one_over_the_double_support() {
-        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
-        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 50.0).unwrap();
-        let mods = GaitModifiers::default();
-        let mut gait = Gait::new(&body, &path, &mods);
+        let (body, path, mods, mut gait) = adult_walk(50.0);
         let (mut last, mut trailing_fell) = (gait.load_share(0), false);
         for _ in 0..240 {
             gait_stage(&mut gait, &body, &path, &mods, 1.0 / 60.0);
@@ -847,10 +854,7 @@ mod tests {
         assert_eq!(clamp_dt(1.0), MAX_STEP_DT);
         assert_eq!(clamp_dt(f32::NAN), 0.0);
         assert_eq!(clamp_dt(-1.0), 0.0);
-        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
-        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 5.0).unwrap();
-        let mods = GaitModifiers::default();
-        let mut gait = Gait::new(&body, &path, &mods);
+        let (body, path, mods, mut gait) = adult_walk(5.0);
         let before = gait.clone();
         gait_stage(&mut gait, &body, &path, &mods, 0.0);
         assert_eq!(gait.distance, before.distance);
@@ -900,10 +904,7 @@ mod tests {
 
     #[test]
     fn walk_stops_at_the_end_with_both_feet_planted() {
-        let body = CharacterBody::new(CharacterDesc::adult()).unwrap();
-        let path = WalkPath::straight(Vec3::ZERO, Vec3::Z, 3.0).unwrap();
-        let mods = GaitModifiers::default();
-        let mut gait = Gait::new(&body, &path, &mods);
+        let (body, path, mods, mut gait) = adult_walk(3.0);
         for _ in 0..600 {
             gait_stage(&mut gait, &body, &path, &mods, 1.0 / 60.0);
         }

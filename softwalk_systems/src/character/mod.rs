@@ -1,7 +1,7 @@
 //! The walking character: description, body, walk cycle, foot rays, the rigid
 //! proxy with the paper's balance controller (eq. 1), and foot IK.
 //!
-//! A [`Steering`] generates the path from a desired velocity ([`steer_stage`]).
+//! A [`Steering`] generates the path from a desired velocity ([`brake_modifiers`]).
 //!
 //! Each fixed step runs, in order (each stage is a plain function taking all
 //! its state explicitly, so a schedule can run them as separate systems):
@@ -89,8 +89,7 @@ pub use rig_mass::RigMasses;
 pub use rig_pose::RigPose;
 pub use skeleton::{Bone, JOINT_COUNT, Joint};
 pub use steering::{
-    Brake, Steering, SteeringSettings, brake_modifiers, closing_time, curve_radius, steer_stage,
-    stop_distance,
+    Brake, Steering, SteeringSettings, brake_modifiers, closing_time, curve_radius, stop_distance,
 };
 pub use step::{Character, step_character};
 pub use support::{FootSupport, RIM_CLEARANCE, SupportPoint};

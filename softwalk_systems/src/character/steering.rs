@@ -1,6 +1,6 @@
 //! Steering: a character whose path is generated from input.
 //!
-//! A [`Steering`] holds a desired planar velocity. Each step [`steer_stage`]
+//! A [`Steering`] holds a desired planar velocity. Each step [`brake_modifiers`]
 //! turns it into the [`WalkPath`] the gait follows, starting at the pelvis
 //! and continuing the distance already walked:
 //! - a desired direction within [`SteeringSettings::pivot_start`] of the
@@ -217,8 +217,8 @@ pub fn curve_radius(settings: &SteeringSettings, speed: f32) -> f32 {
 /// (multiply it into [`GaitModifiers::speed_scale`]); the factor follows the
 /// wish at [`SteeringSettings::speed_change_rate`], or the [`Brake`] of a stop.
 /// A stop also needs the braking and the cadence held in the gait's
-/// modifiers: call [`brake_modifiers`], which runs this stage and sets them.
-pub fn steer_stage(
+/// modifiers, which [`brake_modifiers`] (the stage callers run) sets.
+fn steer_stage(
     steering: &mut Steering,
     gait: &Gait,
     body: &CharacterBody,
@@ -244,7 +244,7 @@ pub fn steer_stage(
     *scale
 }
 
-/// Runs [`steer_stage`] and returns `base` with its walking speed scaled by
+/// The steering stage: runs `steer_stage` and returns `base` with its walking speed scaled by
 /// the steering's factor, the deceleration braked at
 /// ([`GaitModifiers::braking`]) and the cadence held
 /// ([`GaitModifiers::cadence_hold`]) this step.

@@ -11,11 +11,11 @@ use super::error::SimError;
 use super::ground_state::GroundState;
 use super::ground_view::SceneGround;
 use super::pipeline::add_pipeline;
-use super::sole_ground::{SoleGround, under_soles};
+use super::sole_ground::under_soles;
 use super::standing_prints::press_standing_feet;
 use super::timing::SystemTimings;
 use crate::character::{Character, CharacterDesc, WalkPath};
-use crate::foot::{FootSole, Side};
+use crate::foot::Side;
 use crate::terrain::{Heightfield, ScratchPool, SettleScratch, SmoothScratch};
 use crate::vegetation::{GrassPatch, GrassSettings, VegetationFriction, VirtualPlatform, XzRect};
 
@@ -91,7 +91,10 @@ impl SimBuilder {
             grass_height: 0.0,
             ground_y: c.rays.body.point.y,
             velocity: glam::Vec3::ZERO,
-            sole_ground: self.ground_under(&c.metrics.soles),
+            sole_ground: under_soles(
+                self.app.world.get_resource::<GroundState>().as_deref(),
+                &c.metrics.soles,
+            ),
             path_distance: c.gait.distance,
             path_finished: path.is_finished(c.gait.distance),
         };
@@ -128,14 +131,6 @@ impl SimBuilder {
                 message: e.to_string(),
             })?;
         Ok(entity)
-    }
-
-    /// The ground under each sole (see [`under_soles`]).
-    fn ground_under(&self, soles: &[FootSole; 2]) -> [SoleGround; 2] {
-        under_soles(
-            self.app.world.get_resource::<GroundState>().as_deref(),
-            soles,
-        )
     }
 
     /// Runs `f` with the scene's current ground (terrain and meshes).

@@ -47,7 +47,7 @@ pub struct WalkerMetrics {
     pub ground_y: f32,
     /// Velocity of the centre of mass over the path (world XZ, y = 0).
     pub velocity: Vec3,
-    /// Terrain heights under each sole's heel, centre and toe (left first).
+    /// Ground heights (terrain, or a prop just above it) under each sole's heel, centre and toe (left first).
     pub sole_ground: [SoleGround; 2],
     /// Distance the gait has covered along its path, metres.
     pub path_distance: f32,

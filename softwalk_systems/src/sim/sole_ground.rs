@@ -1,4 +1,4 @@
-//! The ground under a sole: terrain heights under its heel, centre and toe,
+//! The ground under a sole: its heights under the heel, centre and toe,
 //! recorded each step so sliding and burying can be measured from the metrics.
 //! A foot on a static mesh (a rock, a plank) stands on the mesh's top, so
 //! the mesh counts as the ground where it lies just above the terrain.
@@ -23,11 +23,11 @@ pub const MESH_GROUND_REACH: f32 = 0.3;
 /// Ground heights under one sole (heel end, centre, toe end), metres.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SoleGround {
-    /// Terrain height under the centre of the heel's rounded end.
+    /// Ground height under the centre of the heel's rounded end.
     pub heel: f32,
-    /// Terrain height under the sole centre.
+    /// Ground height under the sole centre.
     pub centre: f32,
-    /// Terrain height under the centre of the toe's rounded end.
+    /// Ground height under the centre of the toe's rounded end.
     pub toe: f32,
 }
 
@@ -52,7 +52,7 @@ impl SoleGround {
 
     /// `self` raised to the static meshes of `scene` under the sole's
     /// points, where a mesh's surface lies above the terrain and at most
-    /// [`MESH_GROUND_REACH`] above the point.
+    /// `MESH_GROUND_REACH` above the point.
     pub fn on_meshes(self, scene: &RayScene, sole: &FootSole) -> SoleGround {
         let [heel, toe] = sole_ends(sole);
         let raised = |terrain: f32, p: Vec3| {

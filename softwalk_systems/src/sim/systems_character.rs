@@ -181,7 +181,7 @@ pub fn foot_ik_system(world: &mut World) {
 
 /// System `metrics`: records each character's [`WalkerMetrics`] for this step,
 /// with the ground heights under each sole (x, z clamped into the grid; a
-/// static mesh under a sole counts, see [`under_soles`]).
+/// static mesh under a sole counts, see `sole_ground::under_soles`).
 pub fn metrics_system(world: &mut World) {
     let mut patch_query = world.query::<&GrassPatch>();
     let patches: Vec<&GrassPatch> = patch_query.iter().collect();

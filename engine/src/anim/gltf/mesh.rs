@@ -61,8 +61,8 @@ impl Merged {
     ) -> Result<(), GltfError> {
         let path = reader.path;
         let read = PrimitiveData::read(primitive, part, reader)?;
-        let base = self.positions.len() as u32;
         let first_vertex = self.positions.len();
+        let base = first_vertex as u32;
         self.indices.extend(read.indices.iter().map(|&i| base + i));
         self.positions.extend(read.positions);
         self.normals.extend(read.normals);
