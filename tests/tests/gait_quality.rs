@@ -16,7 +16,7 @@ use softwalk_app::paper::recorded_run::{RecordedRun, record_run};
 use softwalk_app::paper::stillness::Stillness;
 use softwalk_app::paper::variants::checked;
 use softwalk_app::scene::{PathSpec, Scene, builtin_scenes};
-use softwalk_systems::character::CharacterDesc;
+use softwalk_tests::walker_body;
 
 /// Length of each built-in scene's measured walk, seconds (at its own 60 Hz step).
 const SCENE_WALK_S: f32 = 5.0;
@@ -135,10 +135,7 @@ fn failures_at_rate(mut q: GaitQuality, dt: f32) -> Vec<String> {
 fn small_and_adult_walkers_meet_the_gait_goals_at_30_and_120_hz() {
     // A 1.0 m walker snapped its knee straight at each landing and bent it
     // again at full speed: at 30 Hz that read as a stance flicker.
-    let small = CharacterDesc {
-        froude: 0.15,
-        ..CharacterDesc::new(1.0, 22.0)
-    };
+    let small = walker_body(1.0, 0.15);
     let mut cases = Vec::new();
     for name in ["sand-flat", "snow-flat", "mud-flat"] {
         for hz in [30u32, 120] {

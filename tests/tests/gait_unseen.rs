@@ -25,9 +25,9 @@
 //! Left out, as known limits: the small walker's sole on level snow on a
 //! 256-sample grid, which reads 2.2 cm into its print (a cell of 4 cm
 //! against a foot 5.5 cm wide); a 1.0 m walker with short legs (a leg
-//! length factor of 0.7) on level snow, whose stance knee averages 25.4°
-//! (it lands from a ploughing swing with its knee still bent, about 46° in
-//! the first tenth of the stance);
+//! length factor of 0.7) on level snow, whose stance knee averages above
+//! the goal (it lands from a ploughing swing with its knee still bent; not
+//! run here);
 //! and the 1.0 and 1.3 m walkers up 20° of rigid ground, whose stance knee
 //! averages 25–27° (a stair-like climb); walkers along the edge between sand
 //! and snow or mud (see [`ALONG_EDGES`]).
@@ -37,8 +37,8 @@
 //!
 //! The three walkers cross sand dunes whose lee faces fall at about 40°:
 //! besides the goals, a planted sole's lower end stays within 8 % of the
-//! walker's height of the ground (see [`DUNE_FLOAT_SHARE`]); the tall walker
-//! lands about 13 cm short of the face and touches it 0.1 s later.
+//! walker's height of the ground (see [`DUNE_FLOAT_SHARE`]): a foot may
+//! still land short of a steep face and touch it a few steps later.
 //!
 //! A walker starts standing in its own prints: the first second of a start
 //! on snow, mud, sand and up a snow slope, the 1.0 m walker's too, holds the
@@ -66,9 +66,8 @@ const OUT_OF_SNOW: &str = "unseen-snow-onto-rigid";
 /// The scene whose walkers walk along the edge between sand and snow (or
 /// mud), one foot on each side. Held to every goal but the level walk's mean
 /// stance knee ([`LEVEL_WALK_FIGURE`](softwalk_app::paper::gait_quality::LEVEL_WALK_FIGURE)), a known limit: the leg on sand bends
-/// while the other stands in the deeper print, about 28° for the quick
-/// walker and 23–28° for the tall one per second of the walk, from the
-/// first second on: the walk's own figure, not its start's.
+/// while the other stands in the deeper print, over the whole walk, not
+/// only at its start (`--nocapture` prints the figures).
 const ALONG_EDGES: &str = "unseen-along-edges";
 
 /// Length of each measured walk, seconds.
@@ -286,7 +285,7 @@ fn scenes() -> Vec<Scene> {
     fine.terrain.resolution = 1024;
     scenes.push(checked(fine).unwrap());
     let bodies = [
-        ("child", walker_body(1.0, 0.15)),
+        ("child", small()),
         ("teen", walker_body(1.4, 0.15)),
         ("tall", tall()),
     ];
@@ -395,10 +394,7 @@ fn walkers_down_dune_lee_faces_meet_the_gait_goals_and_reach_their_landings() {
 const FIRST_SECOND_STANCE_KNEE_DEG: f32 = 60.0;
 
 /// What a walker's first second on loose ground fails of the goals above.
-fn first_second_failures(
-    run: &softwalk_app::paper::recorded_run::RecordedRun,
-    c: usize,
-) -> Vec<String> {
+fn first_second_failures(run: &RecordedRun, c: usize) -> Vec<String> {
     let steps = &run.walkers[c][..(1.0 / run.dt).round() as usize];
     let mut failures = Vec::new();
     let stance_knee = steps
@@ -418,7 +414,9 @@ fn first_second_failures(
         .map(|w| (w[1].character.pelvis_y - w[0].character.pelvis_y).abs())
         .fold(0.0f32, f32::max);
     let buried = steps.iter().map(deepest_sole).fold(f32::MIN, f32::max);
-    // The walk's own pelvis-step and sole goals.
+    // The walk's own pelvis-step and sole goals; the step is the raw one,
+    // the slope's rise included (stricter than `gait_quality::pelvis_step`
+    // on a slope).
     let goals = [
         Goal::pelvis_step(100.0 * pelvis_step),
         Goal::sole_below(100.0 * buried),

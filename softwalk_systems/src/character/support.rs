@@ -175,9 +175,7 @@ impl FootSupport {
             self.left_rim = self.landing.point.y;
             self.planted = false;
             self.stepped = true;
-            self.trail = Vec2::ZERO;
-            self.last_swing = 0.0;
-            self.key_at = plan.target;
+            self.restart_trail(plan.target);
         }
         let swing_time = params.swing_time();
         let u = plan.swing.clamp(0.0, 1.0);
@@ -194,7 +192,8 @@ impl FootSupport {
             .lerp(self.landing.normal, smoothstep(u))
             .try_normalize()
             .unwrap_or(Vec3::Y);
-        let plan = &self.follow(plan, body, &cast, normal, pushing_from);
+        let (plan, onward_clear) = self.follow(plan, body, &cast, normal, pushing_from);
+        let plan = &plan;
         let at = |y: f32| Vec3::new(plan.target.x, y - plan.lift, plan.target.y);
         if u > pushing_from {
             // The sole goes into its landing no lower than the floor under
@@ -218,7 +217,7 @@ impl FootSupport {
         let height = self.swing_height(u / pushing_from.max(f32::EPSILON), params.clearance);
         // Ground rising above the path between the two footholds, under any
         // part of the sole, lifts the foot.
-        let clear = lowest_clear_centre(&cast, plan, body, normal);
+        let clear = onward_clear.unwrap_or_else(|| lowest_clear_centre(&cast, plan, body, normal));
         let height = clear.map_or(height, |c| height.max(c.surface));
         // A foot ploughing towards its landing goes no lower than the floors
         // it will pass over on its way: it ploughs through loose ground, but
@@ -247,6 +246,8 @@ impl FootSupport {
     /// centre the leg reached last step is more than [`WAIT_BELOW_FLOOR`]
     /// below the floor under the sole (lying in the plane of `normal`) where
     /// the closed trail would put it; then the key stays where it was.
+    /// Also returns, when it was read and the key goes on, the clear centre
+    /// at the key (see [`lowest_clear_centre`]), so it is not read twice.
     fn follow(
         &mut self,
         plan: &FootPlan,
@@ -254,7 +255,7 @@ impl FootSupport {
         cast: &dyn Fn(Vec2) -> Option<GroundHit>,
         normal: Vec3,
         pushing_from: f32,
-    ) -> FootPlan {
+    ) -> (FootPlan, Option<Option<ClearCentre>>) {
         let u = plan.swing.clamp(0.0, 1.0);
         let left = pushing_from - self.last_swing;
         let keep = if left > 0.0 {
@@ -264,21 +265,22 @@ impl FootSupport {
         };
         let at = |target: Vec2| FootPlan { target, ..*plan };
         let onward = plan.target - self.trail * keep;
-        let waits = u < 0.5
-            && u < pushing_from
-            && self.reached.is_some_and(|r| {
-                r.y < floor_under(cast, plan, onward, body, normal) - WAIT_BELOW_FLOOR
-            });
+        let clear = (u < 0.5 && u < pushing_from && self.reached.is_some())
+            .then(|| lowest_clear_centre(cast, &at(onward), body, normal));
+        let floor = clear.flatten().map_or(f32::MIN, |c| c.floor);
+        let waits = clear.is_some() && self.reached.is_some_and(|r| r.y < floor - WAIT_BELOW_FLOOR);
         let key = if waits { self.key_at } else { onward };
         self.trail = plan.target - key;
         self.key_at = key;
         self.last_swing = u;
-        at(key)
+        (at(key), clear.filter(|_| !waits))
     }
 
     /// The floor under a flat sole (lying in the plane of `normal`, facing
-    /// `plan`'s heading) centred where the leg really had the sole last step
-    /// (see [`floor_under`]); `f32::MIN` when that is unknown.
+    /// `plan`'s heading) centred where the leg really had the sole last step:
+    /// the lowest height of its centre over the floors under five points
+    /// from heel to toe (see [`lowest_clear_centre`]); `f32::MIN` when that
+    /// is unknown or no ray hits.
     fn floor_under_reached(
         &self,
         plan: &FootPlan,
@@ -287,7 +289,11 @@ impl FootSupport {
         normal: Vec3,
     ) -> f32 {
         self.reached.map_or(f32::MIN, |r| {
-            floor_under(cast, plan, Vec2::new(r.x, r.z), body, normal)
+            let there = FootPlan {
+                target: Vec2::new(r.x, r.z),
+                ..*plan
+            };
+            lowest_clear_centre(cast, &there, body, normal).map_or(f32::MIN, |c| c.floor)
         })
     }
 
@@ -315,6 +321,13 @@ impl FootSupport {
             self.landing.point.y = patch.rest_top;
             self.landing.give = patch.rest_top - patch.rest_floor;
         }
+    }
+
+    /// Starts a new swing's trail from a key at `at` (x, z), closed.
+    fn restart_trail(&mut self, at: Vec2) {
+        self.trail = Vec2::ZERO;
+        self.last_swing = 0.0;
+        self.key_at = at;
     }
 
     /// Time the foot takes to push into its landing, seconds: as long as
@@ -393,21 +406,6 @@ struct ClearCentre {
     surface: f32,
     /// Above the floor: the surface less what the ground gives there.
     floor: f32,
-}
-
-/// The floor under a flat sole centred at `target` (lying in the plane of
-/// `normal`, facing `plan`'s heading): the lowest height of its centre over
-/// the floors under five points from heel to toe (see
-/// [`lowest_clear_centre`]); `f32::MIN` where no ray hits.
-fn floor_under(
-    cast: &dyn Fn(Vec2) -> Option<GroundHit>,
-    plan: &FootPlan,
-    target: Vec2,
-    body: &CharacterBody,
-    normal: Vec3,
-) -> f32 {
-    let there = FootPlan { target, ..*plan };
-    lowest_clear_centre(cast, &there, body, normal).map_or(f32::MIN, |c| c.floor)
 }
 
 /// The lowest heights of the centre of a flat sole at `plan`'s target,
